@@ -1,0 +1,92 @@
+// stickslip/estimators.hpp -- renewal-reward estimators with delta-method
+// confidence intervals (MODEL.md section 6).
+//
+// From N i.i.d. long excursions with displacements U_k [m] and durations t_k [s]:
+//   M0_hat = sum U / sum t                      (mobility, eq. 8)
+//   D_hat  = sum (U - M0_hat t)^2 / sum t       (renewal-reward CLT)
+//   E[t1]  = mean t
+// D_hat is the limit of var(U(t))/t for any mean velocity. The paper's eq. (12),
+// Var(U)/E[t], is wrong whenever M0 != 0; it is kept as Estimator::Paper for
+// reproducing the paper's numbers only.
+//
+// Every statistic needs only the bivariate centred moments of (U, t) up to
+// order four. They are accumulated in BivariateMoments, which merges two
+// samples exactly (Pebay 2008, arbitrary-order update), so blocks computed by
+// different threads or processes combine without loss and, merged in index
+// order, give bitwise-identical results whatever the split. Centred moments do
+// not suffer the catastrophic cancellation of raw power sums, so N = 1e9 keeps
+// its digits.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace stickslip {
+
+/// Exact, mergeable centred moments of a bivariate sample (x, y) up to total
+/// order 4: n, the means, and M(p,q) = sum (x - xbar)^p (y - ybar)^q.
+class BivariateMoments {
+public:
+    static constexpr int max_order = 4;
+
+    void add(double x, double y);
+    void merge(const BivariateMoments& other);
+
+    std::uint64_t count() const { return n_; }
+    double mean_x() const { return mean_x_; }
+    double mean_y() const { return mean_y_; }
+    /// Sum of (x - mean_x)^p (y - mean_y)^q over the sample, p + q <= 4.
+    double central_sum(int p, int q) const { return m_[p][q]; }
+    /// central_sum(p, q) / n.
+    double central_moment(int p, int q) const;
+
+private:
+    std::uint64_t n_ = 0;
+    double mean_x_ = 0.0, mean_y_ = 0.0;
+    std::array<std::array<double, max_order + 1>, max_order + 1> m_{};
+};
+
+enum class Estimator {
+    RenewalReward, ///< sum (U - M0 t)^2 / sum t: correct for any M0 (default)
+    Paper,         ///< the paper's eq. (12), Var(U)/E[t]: biased when M0 != 0
+};
+std::string to_string(Estimator e);      ///< "renewal" | "paper"
+Estimator parse_estimator(const std::string& s);
+
+/// A point estimate with its standard error and a two-sided interval.
+struct Estimate {
+    double value = 0.0;
+    double std_error = 0.0; ///< standard error (delta method)
+    double lo = 0.0, hi = 0.0; ///< value -+ q_{(1+level)/2} * std_error
+    double level = 0.95;
+};
+
+/// D, M0 and E[t1] from the moments of (U, t) over long excursions.
+struct LongExcursionEstimates {
+    Estimate diffusivity;   ///< [m^2/s]
+    Estimate mobility;      ///< mean velocity M0 [m/s]
+    Estimate mean_duration; ///< E[t1] [s]
+    std::uint64_t excursions = 0;
+    Estimator estimator = Estimator::RenewalReward;
+};
+
+/// Two-sided standard-normal quantile q_{(1+level)/2}; level in (0, 1).
+double normal_quantile_two_sided(double level);
+
+/// Estimates from moments where x = U [m], y = t [s]. Needs count() >= 2.
+LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, double level,
+                                               Estimator estimator = Estimator::RenewalReward);
+
+/// Brute-force estimates (eq. 13) from the moments of U(t) at a fixed horizon t:
+/// D_t = var U(t) / t with the standard error of the sample variance, and
+/// M0_t = mean U(t) / t.
+struct BruteForceEstimates {
+    Estimate diffusivity; ///< D_t [m^2/s]: biased by O(1/t) against D
+    Estimate mobility;    ///< [m/s]
+    std::uint64_t trajectories = 0;
+    double horizon = 0.0; ///< t [s]
+};
+BruteForceEstimates estimate_bruteforce(const BivariateMoments& u_only, double horizon, double level);
+
+} // namespace stickslip

@@ -1,0 +1,82 @@
+// stickslip/params.hpp -- the physical model's parameters, their validation and
+// the nondimensional system of MODEL.md section 3.
+//
+// Model (MODEL.md section 1): dV/dt + dphi(V) contains b(V) + force(t), with
+// phi(v) = friction*|v| and b(v) = -v/relaxation + bias. The random force is
+// sqrt(noise/2)*X(t), X the paper's Ornstein-Uhlenbeck process with
+// E[X(0)X(t)] = exp(-|t|/tau)/tau, so that as tau -> 0 the force tends to a white
+// noise of intensity `noise` (MODEL.md section 2). tau = 0 is white noise.
+//
+// Everything is in SI units (m, s). The nondimensional system takes
+// friction = noise = 1: time unit noise/friction^2, length unit noise^2/friction^3.
+#pragma once
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace stickslip {
+
+/// Thrown for invalid input. `parameter()` is the name of the offending
+/// parameter as spelled on the command line (e.g. "friction", "dt").
+class InvalidParameter : public std::invalid_argument {
+public:
+    InvalidParameter(std::string parameter, const std::string& message)
+        : std::invalid_argument(message), parameter_(std::move(parameter)) {}
+    const std::string& parameter() const noexcept { return parameter_; }
+
+private:
+    std::string parameter_;
+};
+
+/// Physical parameters of the model, SI units. Defaults: the paper's Fig. 2 case.
+struct ModelParams {
+    double friction = 3.84;    ///< Delta, dry-friction coefficient [m s^-2], > 0
+    double noise = 5.0;        ///< Gamma, white-noise intensity [m^2 s^-3], > 0
+    double tau = 0.5;          ///< noise correlation time [s], >= 0 (0: white noise)
+    double relaxation = 0.067; ///< tauL, viscous relaxation time [s], > 0 or +inf
+    double bias = 0.342;       ///< gbar, constant force [m s^-2], any finite sign
+
+    /// Amplitude a of the random force a*X [m s^-2 per s^-1/2]: sqrt(noise/2).
+    double force_amplitude() const;
+    /// 1/relaxation [s^-1]; 0 when relaxation is infinite (no viscous drag).
+    double inverse_relaxation() const;
+    bool white() const { return tau == 0.0; }
+    /// b(v) = -v/relaxation + bias [m s^-2], v in m/s.
+    double drift(double v) const { return -v * inverse_relaxation() + bias; }
+    /// Upper noise threshold x* = (friction - b(0))/a, in the paper's X units
+    /// [s^-1/2]: while stuck, the object starts moving up when X exceeds it.
+    double upper_threshold() const;
+    /// Lower noise threshold x-* = (-friction - b(0))/a [s^-1/2].
+    double lower_threshold() const;
+};
+
+/// Units of the nondimensional system (MODEL.md section 3), in SI.
+struct Scales {
+    double time;         ///< tau0 = noise/friction^2 [s]
+    double length;       ///< u0 = noise^2/friction^3 [m]
+    double velocity;     ///< u0/tau0 = noise/friction [m/s]
+    double acceleration; ///< friction [m s^-2]
+    double diffusivity;  ///< u0^2/tau0 = noise^3/friction^4 [m^2/s]
+    double noise_level;  ///< unit of X: tau0^-1/2 [s^-1/2] (X' = X*sqrt(tau0))
+};
+
+Scales scales_of(const ModelParams& p);
+
+/// The same system in nondimensional form: friction = noise = 1, tau/tau0,
+/// relaxation/tau0, bias/friction.
+ModelParams to_nondimensional(const ModelParams& p);
+
+/// Inverse of to_nondimensional for a chosen friction and noise (SI).
+ModelParams from_nondimensional(const ModelParams& nd, double friction, double noise);
+
+/// Throws InvalidParameter with one clear message for the first problem found:
+/// non-positive friction or noise, negative or non-finite tau, non-positive
+/// relaxation, non-finite bias.
+void validate(const ModelParams& p);
+
+/// True when the stationary state exists: with no viscous drag the constant
+/// force must be weaker than friction (|bias| < friction).
+bool has_stationary_state(const ModelParams& p);
+
+} // namespace stickslip

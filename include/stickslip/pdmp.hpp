@@ -1,0 +1,207 @@
+// stickslip/pdmp.hpp -- the exact, event-driven PDMP engine (MODEL.md section 4).
+//
+// The OU noise X is replaced by a jump process on the lattice delta*Z cap [-L, L]
+// (rate Lambda = 2/(tau delta)^2; up with probability (1 - tau delta x/2)/2,
+// reflecting at +-L), which converges to the OU process as delta -> 0. Between
+// jumps the velocity follows an ODE that is solved exactly, so the only
+// approximation is the lattice: no time step. State Z = (X, Y, V) with
+// Y = -1 / 0 / +1 for negative-dynamic / static / positive-dynamic.
+//
+// Kernels are inline, allocation-free and STICKSLIP_HD (GPU-ready), like
+// inclusion.hpp. X is carried as its integer lattice index, so the regeneration
+// state s- = (x_{k- - 1}, -1, 0) is recognised exactly.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "config.hpp"
+#include "excursion.hpp"
+#include "params.hpp"
+
+namespace stickslip {
+
+/// Per-run constants of the PDMP engine (SI units).
+struct PdmpConstants {
+    double delta;     ///< lattice step [s^-1/2]
+    int n_max;        ///< lattice indices run over [-n_max, n_max]; L = n_max*delta
+    double rate;      ///< jump rate Lambda = 2/(tau delta)^2 [s^-1]
+    double half_tau_delta; ///< tau*delta/2: alpha_i = (1 - half_tau_delta*delta*i)/2
+    double amp;       ///< a = sqrt(noise/2)
+    double friction;  ///< Delta [m s^-2]
+    double bias;      ///< gbar [m s^-2]
+    double relaxation;///< tauL [s], possibly +inf
+    bool viscous;     ///< relaxation finite
+    int k_plus;       ///< last index with a x <= Delta - gbar (top of the static band)
+    int k_minus;      ///< first index with a x >= -Delta - gbar (bottom of the band)
+    std::uint64_t max_events; ///< runaway guard per long excursion
+};
+
+/// Validates and precomputes; chooses L when s.lattice_bound == 0:
+/// L = 8 tau^-1/2, widened to hold both thresholds plus 4 lattice steps,
+/// and kept below 2/(tau delta). Throws InvalidParameter when impossible.
+PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s);
+
+/// Net acceleration in mode y at V = 0 [m s^-2]: gbar + a x_i - y Delta.
+STICKSLIP_HD inline double pdmp_acceleration(const PdmpConstants& c, int i, int y) {
+    return c.bias + c.amp * c.delta * i - y * c.friction;
+}
+
+/// Time [s] until the flow from (x_i, y, v) brings V to 0; +inf if never.
+STICKSLIP_HD inline double pdmp_hitting_time(const PdmpConstants& c, int i, int y, double v) {
+    const double inf = std::numeric_limits<double>::infinity();
+    if (y == 0) return inf;
+    const double k = pdmp_acceleration(c, i, y);
+    if (c.viscous) {
+        const double target = c.relaxation * k; // velocity the flow relaxes to
+        if (y * target >= 0.0) return inf;      // driven away from 0 (or towards it only asymptotically)
+        // V(t) = target + (v - target) e^{-t/tauL} = 0
+        return c.relaxation * std::log1p(-v / target);
+    }
+    if (y * k >= 0.0) return inf;
+    return -v / k;
+}
+
+/// Flow of duration t from (x_i, y, v): writes the new velocity and adds the
+/// displacement [m] to du.
+STICKSLIP_HD inline void pdmp_flow(const PdmpConstants& c, int i, int y, double v, double t,
+                                   double& v_out, double& du) {
+    if (y == 0) {
+        v_out = 0.0;
+        return;
+    }
+    const double k = pdmp_acceleration(c, i, y);
+    if (c.viscous) {
+        const double target = c.relaxation * k;
+        const double em1 = std::expm1(-t / c.relaxation); // e^{-t/tauL} - 1
+        v_out = v + (v - target) * em1;
+        du += target * t - c.relaxation * (v - target) * em1;
+    } else {
+        v_out = v + k * t;
+        du += v * t + 0.5 * k * t * t;
+    }
+}
+
+/// Probability alpha_i of a jump up from lattice index i (reflecting ends).
+STICKSLIP_HD inline double pdmp_up_probability(const PdmpConstants& c, int i) {
+    if (i >= c.n_max) return 0.0;
+    if (i <= -c.n_max) return 1.0;
+    return 0.5 * (1.0 - c.half_tau_delta * c.delta * i);
+}
+
+/// Mode after V reaches 0 in mode y at lattice index i (Appendix B's kernel).
+STICKSLIP_HD inline int pdmp_mode_at_rest(const PdmpConstants& c, int i, int y) {
+    if (y > 0) return i <= c.k_minus - 1 ? -1 : 0;
+    return i >= c.k_plus + 1 ? 1 : 0;
+}
+
+/// PDMP state: lattice index, mode, velocity [m/s].
+struct PdmpState {
+    int i;
+    int y;
+    double v;
+};
+
+/// Advances the state by one event: either the next jump of X or V reaching 0,
+/// whichever is first. Adds elapsed time [s] and displacement [m]. If `horizon`
+/// is finite and the event would end after it, stops exactly at the horizon
+/// and returns false.
+template <class Rng>
+STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time,
+                                    double& disp, double horizon) {
+    double u0, u1;
+    rng.uniform2(u0, u1);
+    const double wait = -std::log(u0) / c.rate;
+    const double t_hit = pdmp_hitting_time(c, s.i, s.y, s.v);
+    const bool hits = t_hit <= wait;
+    const double dt = hits ? t_hit : wait;
+    if (time + dt > horizon) {
+        double v_out;
+        pdmp_flow(c, s.i, s.y, s.v, horizon - time, v_out, disp);
+        s.v = v_out;
+        time = horizon;
+        return false;
+    }
+    double v_out;
+    pdmp_flow(c, s.i, s.y, s.v, dt, v_out, disp);
+    time += dt;
+    if (hits || (s.y != 0 && s.y * v_out <= 0.0)) {
+        // V reached 0 (the second test catches rounding just before t_hit).
+        s.v = 0.0;
+        s.y = pdmp_mode_at_rest(c, s.i, s.y);
+        return true;
+    }
+    s.v = v_out;
+    const bool up = u1 <= pdmp_up_probability(c, s.i);
+    if (s.y == 0) {
+        if (up && s.i == c.k_plus) s.y = 1;
+        if (!up && s.i == c.k_minus) s.y = -1;
+    }
+    s.i += up ? 1 : -1;
+    return true;
+}
+
+/// One half long excursion: dir = +1 from s+ = (x_{k+ +1}, +1, 0) to the first
+/// exact arrival at s- = (x_{k- -1}, -1, 0), however it arrives; dir = -1 the
+/// mirror image. Returns false when the event cap is reached.
+template <class Rng>
+STICKSLIP_HD inline bool pdmp_half(const PdmpConstants& c, int dir, Rng& rng, double& time,
+                                   double& disp, std::uint64_t& events) {
+    const double inf = std::numeric_limits<double>::infinity();
+    PdmpState s{dir > 0 ? c.k_plus + 1 : c.k_minus - 1, dir, 0.0};
+    const int target_i = dir > 0 ? c.k_minus - 1 : c.k_plus + 1;
+    for (;;) {
+        if (events >= c.max_events) return false;
+        pdmp_event(c, s, rng, time, disp, inf);
+        ++events;
+        if (s.v == 0.0 && s.y == -dir && s.i == target_i) return true;
+    }
+}
+
+/// One long excursion (+HLE then -HLE) of the PDMP engine.
+template <class Rng>
+STICKSLIP_HD inline ExcursionOutcome pdmp_long_excursion(const PdmpConstants& c, Rng& rng) {
+    double time = 0.0, disp = 0.0;
+    std::uint64_t events = 0;
+    const bool ok = pdmp_half(c, +1, rng, time, disp, events) && pdmp_half(c, -1, rng, time, disp, events);
+    ExcursionOutcome o;
+    o.displacement = disp;
+    o.duration = time;
+    o.work = events;
+    o.capped = !ok;
+    return o;
+}
+
+/// Initial state for a trajectory from noise x0 [s^-1/2] (rounded to the
+/// nearest lattice point) and velocity v0 [m/s]: moving if v0 != 0 or if the
+/// force at rest exceeds friction, else static.
+STICKSLIP_HD inline PdmpState pdmp_initial_state(const PdmpConstants& c, double x0, double v0) {
+    double r = std::nearbyint(x0 / c.delta);
+    if (r > c.n_max) r = c.n_max;
+    if (r < -c.n_max) r = -c.n_max;
+    PdmpState s{static_cast<int>(r), 0, v0};
+    if (v0 > 0) s.y = 1;
+    else if (v0 < 0) s.y = -1;
+    else if (s.i > c.k_plus) s.y = 1;
+    else if (s.i < c.k_minus) s.y = -1;
+    return s;
+}
+
+/// Brute-force trajectory on [0, horizon] (Algorithm 2, with the displacement
+/// over each inter-event interval). Returns U(horizon).
+template <class Rng>
+STICKSLIP_HD inline ExcursionOutcome pdmp_trajectory(const PdmpConstants& c, double x0, double v0,
+                                                     double horizon, Rng& rng) {
+    PdmpState s = pdmp_initial_state(c, x0, v0);
+    double time = 0.0, disp = 0.0;
+    std::uint64_t events = 0;
+    while (pdmp_event(c, s, rng, time, disp, horizon)) ++events;
+    ExcursionOutcome o;
+    o.displacement = disp;
+    o.duration = horizon;
+    o.work = events + 1;
+    return o;
+}
+
+} // namespace stickslip

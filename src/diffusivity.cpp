@@ -1,0 +1,134 @@
+#include "stickslip/diffusivity.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "stickslip/inclusion.hpp"
+#include "stickslip/pdmp.hpp"
+
+namespace stickslip {
+
+namespace {
+
+/// Below this many excursions the standard error of D is itself too noisy to
+/// trust (U is heavy-tailed); the report says so.
+constexpr std::uint64_t kFewExcursions = 5000;
+
+std::string fmt(double x) {
+    std::ostringstream os;
+    os.precision(4);
+    os << x;
+    return os.str();
+}
+
+ResolvedEngine resolve(const ModelParams& p, const EngineSettings& s) {
+    ResolvedEngine r;
+    if (!p.white()) {
+        r.upper_threshold = p.upper_threshold();
+        r.lower_threshold = p.lower_threshold();
+    }
+    if (s.engine == Engine::Pdmp) {
+        const PdmpConstants c = make_pdmp_constants(p, s);
+        r.stop_rule = "exact";
+        r.lattice_bound = c.n_max * c.delta;
+        r.lattice_points = 2 * c.n_max + 1;
+        r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
+        r.jump_rate = c.rate;
+    } else {
+        const InclusionConstants c = make_inclusion_constants(p, s);
+        if (c.white) {
+            r.stop_rule = "velocity-levels";
+            r.white_level = c.level;
+        } else {
+            r.stop_rule = to_string(c.rule);
+        }
+    }
+    return r;
+}
+
+void check_common(const ModelParams& p, const EngineSettings& s, double level) {
+    validate(p);
+    normal_quantile_two_sided(level); // validates level
+    if (s.engine == Engine::Pdmp) make_pdmp_constants(p, s);
+    else make_inclusion_constants(p, s);
+}
+
+} // namespace
+
+void validate(const DiffusivityRequest& req) {
+    check_common(req.params, req.engine, req.level);
+    if (req.excursions < 2)
+        throw InvalidParameter("excursions", "excursions must be >= 2 (got " + std::to_string(req.excursions) + ")");
+}
+
+void validate(const BruteForceRequest& req) {
+    check_common(req.params, req.engine, req.level);
+    if (!std::isfinite(req.horizon) || req.horizon <= 0)
+        throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + fmt(req.horizon));
+    if (req.trajectories < 2)
+        throw InvalidParameter("trajectories",
+                               "trajectories must be >= 2 (got " + std::to_string(req.trajectories) + ")");
+    if (!std::isfinite(req.v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+    if (std::isinf(req.x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+    if (req.engine.engine == Engine::Inclusion && req.horizon / req.engine.dt < 1)
+        throw InvalidParameter("time", "time must be at least one step dt");
+}
+
+DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
+    validate(req);
+    DiffusivityResult out;
+    out.request = req;
+    out.resolved = resolve(req.params, req.engine);
+    out.totals = run_long_excursions(req.params, req.engine, req.excursions, req.control);
+    const std::uint64_t done = out.totals.moments.count();
+    if (out.totals.capped > 0) {
+        const std::string msg = std::to_string(out.totals.capped) + " of " + std::to_string(req.excursions) +
+                                " excursions hit the runaway guard of " +
+                                std::to_string(req.engine.max_work_per_excursion) +
+                                (req.engine.engine == Engine::Pdmp ? " events" : " steps") +
+                                " and were dropped: the estimates are biased towards short excursions";
+        if (!req.allow_capped) throw CappedExcursions(msg + " (raise --max-steps, or pass --allow-capped)");
+        out.warnings.push_back(msg);
+    }
+    if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
+    out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
+    if (done < kFewExcursions)
+        out.warnings.push_back("only " + std::to_string(done) +
+                               " excursions: U is heavy-tailed, so the standard errors are themselves uncertain; "
+                               "use 10000 or more for reliable intervals");
+    const ModelParams nd = to_nondimensional(req.params);
+    if (req.params.white())
+        out.warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
+                               fmt(out.resolved.white_level) + " m/s, not a stick-slip excursion");
+    else if (nd.tau < 0.1 || (req.engine.engine == Engine::Inclusion && req.engine.dt > 0.01 * req.params.tau))
+        out.warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
+                               "is not << tau; report it with that caveat, not as a check");
+    if (req.estimator == Estimator::Paper &&
+        (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
+        out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");
+    return out;
+}
+
+BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
+    validate(req);
+    BruteForceResult out;
+    out.request = req;
+    out.resolved = resolve(req.params, req.engine);
+    out.resolved.stop_rule = "none"; // brute force needs no regeneration test
+    double x0 = req.x0;
+    if (std::isnan(x0)) {
+        if (req.params.white()) x0 = 0.0;
+        else if (req.engine.engine == Engine::Pdmp) {
+            const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+            x0 = (c.k_plus + 1) * c.delta;
+        } else x0 = req.params.upper_threshold();
+    }
+    out.start_noise = x0;
+    out.totals = run_bruteforce(req.params, req.engine, req.horizon, x0, req.v0, req.trajectories, req.control);
+    out.estimates = estimate_bruteforce(out.totals.moments, req.horizon, req.level);
+    out.warnings.push_back("brute force estimates D_t = var U(t)/t, biased against D by O(1/t) (relative bias shrinks "
+                           "like E[t1]/t); use `stickslip diffusivity` for an unbiased estimate");
+    return out;
+}
+
+} // namespace stickslip

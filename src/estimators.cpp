@@ -1,0 +1,147 @@
+#include "stickslip/estimators.hpp"
+
+#include <boost/math/distributions/normal.hpp>
+#include <cmath>
+#include <stdexcept>
+
+#include "stickslip/params.hpp"
+
+namespace stickslip {
+
+namespace {
+constexpr double binom[5][5] = {
+    {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
+}
+
+void BivariateMoments::add(double x, double y) {
+    BivariateMoments one;
+    one.n_ = 1;
+    one.mean_x_ = x;
+    one.mean_y_ = y;
+    merge(one);
+}
+
+void BivariateMoments::merge(const BivariateMoments& b) {
+    if (b.n_ == 0) return;
+    if (n_ == 0) {
+        *this = b;
+        return;
+    }
+    const double na = static_cast<double>(n_), nb = static_cast<double>(b.n_);
+    const double n = na + nb;
+    const double dx = b.mean_x_ - mean_x_, dy = b.mean_y_ - mean_y_;
+    // Old moments with M(0,0) = count and M(1,0) = M(0,1) = 0, so that the
+    // general binomial update (Pebay 2008) needs no special cases.
+    auto ma = m_, mb = b.m_;
+    ma[0][0] = na;
+    mb[0][0] = nb;
+    ma[1][0] = ma[0][1] = mb[1][0] = mb[0][1] = 0.0;
+    const double fa = -nb / n, fb = na / n; // shifts of each part's mean to the new mean, per unit d
+    double pa_x[5], pa_y[5], pb_x[5], pb_y[5];
+    pa_x[0] = pa_y[0] = pb_x[0] = pb_y[0] = 1.0;
+    for (int k = 1; k <= max_order; ++k) {
+        pa_x[k] = pa_x[k - 1] * fa * dx;
+        pa_y[k] = pa_y[k - 1] * fa * dy;
+        pb_x[k] = pb_x[k - 1] * fb * dx;
+        pb_y[k] = pb_y[k - 1] * fb * dy;
+    }
+    for (int p = 0; p <= max_order; ++p)
+        for (int q = 0; p + q <= max_order; ++q) {
+            if (p + q < 2) continue;
+            double s = 0.0;
+            for (int i = 0; i <= p; ++i)
+                for (int j = 0; j <= q; ++j) {
+                    const double c = binom[p][i] * binom[q][j];
+                    s += c * (pa_x[i] * pa_y[j] * ma[p - i][q - j] + pb_x[i] * pb_y[j] * mb[p - i][q - j]);
+                }
+            m_[p][q] = s;
+        }
+    mean_x_ += dx * nb / n;
+    mean_y_ += dy * nb / n;
+    n_ += b.n_;
+}
+
+double BivariateMoments::central_moment(int p, int q) const {
+    return n_ == 0 ? 0.0 : m_[p][q] / static_cast<double>(n_);
+}
+
+std::string to_string(Estimator e) { return e == Estimator::Paper ? "paper" : "renewal"; }
+
+Estimator parse_estimator(const std::string& s) {
+    if (s == "renewal") return Estimator::RenewalReward;
+    if (s == "paper") return Estimator::Paper;
+    throw InvalidParameter("estimator", "estimator must be 'renewal' (default, correct for any mobility) or 'paper' "
+                                        "(eq. 12, biased when the mobility is not 0), got '" + s + "'");
+}
+
+double normal_quantile_two_sided(double level) {
+    if (!(level > 0.0 && level < 1.0))
+        throw InvalidParameter("level", "level must be strictly between 0 and 1");
+    return boost::math::quantile(boost::math::normal_distribution<double>(), 0.5 * (1.0 + level));
+}
+
+namespace {
+Estimate make_estimate(double value, double var_influence, double n, double q, double level) {
+    Estimate e;
+    e.value = value;
+    e.std_error = std::sqrt(std::fmax(var_influence, 0.0) / (n - 1.0));
+    e.lo = value - q * e.std_error;
+    e.hi = value + q * e.std_error;
+    e.level = level;
+    return e;
+}
+} // namespace
+
+LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, double level, Estimator estimator) {
+    if (ut.count() < 2) throw InvalidParameter("excursions", "at least 2 completed excursions are needed");
+    const double q = normal_quantile_two_sided(level);
+    const double n = static_cast<double>(ut.count());
+    const double tbar = ut.mean_y();
+    const double m0 = ut.mean_x() / tbar;
+    auto mu = [&](int i, int j) { return ut.central_moment(i, j); };
+    // E[w^k t~^l] with w = U - M0 t = u~ - M0 t~ (w has sample mean exactly 0).
+    auto ew = [&](int k, int l) {
+        double s = 0.0, pw = 1.0;
+        for (int i = k; i >= 0; --i) { // term C(k,i) u~^i (-M0 t~)^{k-i}
+            s += binom[k][i] * pw * mu(i, k - i + l);
+            pw *= -m0;
+        }
+        return s;
+    };
+    LongExcursionEstimates r;
+    r.excursions = ut.count();
+    r.estimator = estimator;
+    const double s2 = ew(2, 0);
+    r.mobility = make_estimate(m0, s2 / (tbar * tbar), n, q, level);
+    r.mean_duration = make_estimate(tbar, mu(0, 2), n, q, level);
+    if (estimator == Estimator::RenewalReward) {
+        // Influence function (MODEL.md section 6): ((w^2 - D t) - 2 c w) / E[t].
+        const double d = s2 / tbar;
+        const double c = ew(1, 1) / tbar;
+        const double var_g = (ew(4, 0) - s2 * s2) + d * d * mu(0, 2) + 4 * c * c * s2 - 2 * d * ew(2, 1) -
+                             4 * c * ew(3, 0) + 4 * c * d * ew(1, 1);
+        r.diffusivity = make_estimate(d, var_g / (tbar * tbar), n, q, level);
+    } else {
+        const double d = mu(2, 0) / tbar;
+        const double var_g = (mu(4, 0) - mu(2, 0) * mu(2, 0)) + d * d * mu(0, 2) - 2 * d * mu(2, 1);
+        r.diffusivity = make_estimate(d, var_g / (tbar * tbar), n, q, level);
+    }
+    return r;
+}
+
+BruteForceEstimates estimate_bruteforce(const BivariateMoments& u, double horizon, double level) {
+    if (u.count() < 2) throw InvalidParameter("trajectories", "at least 2 trajectories are needed");
+    const double q = normal_quantile_two_sided(level);
+    const double n = static_cast<double>(u.count());
+    const double m2 = u.central_moment(2, 0), m4 = u.central_moment(4, 0);
+    BruteForceEstimates r;
+    r.trajectories = u.count();
+    r.horizon = horizon;
+    // Unbiased sample variance; its standard error from the fourth moment.
+    const double var = m2 * n / (n - 1.0);
+    r.diffusivity = make_estimate(var / horizon, (m4 - m2 * m2) / (horizon * horizon), n, q, level);
+    r.mobility = make_estimate(u.mean_x() / horizon, m2 / (horizon * horizon), n, q, level);
+    return r;
+}
+
+} // namespace stickslip

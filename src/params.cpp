@@ -1,0 +1,84 @@
+#include "stickslip/params.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace stickslip {
+
+namespace {
+std::string fmt(double x) {
+    std::ostringstream os;
+    os.precision(6);
+    os << x;
+    return os.str();
+}
+} // namespace
+
+double ModelParams::force_amplitude() const { return std::sqrt(noise / 2.0); }
+
+double ModelParams::inverse_relaxation() const { return std::isinf(relaxation) ? 0.0 : 1.0 / relaxation; }
+
+double ModelParams::upper_threshold() const { return (friction - bias) / force_amplitude(); }
+
+double ModelParams::lower_threshold() const { return (-friction - bias) / force_amplitude(); }
+
+Scales scales_of(const ModelParams& p) {
+    Scales s{};
+    s.time = p.noise / (p.friction * p.friction);
+    s.length = p.noise * p.noise / (p.friction * p.friction * p.friction);
+    s.velocity = p.noise / p.friction;
+    s.acceleration = p.friction;
+    s.diffusivity = s.length * s.length / s.time;
+    s.noise_level = 1.0 / std::sqrt(s.time);
+    return s;
+}
+
+ModelParams to_nondimensional(const ModelParams& p) {
+    const Scales s = scales_of(p);
+    ModelParams nd;
+    nd.friction = 1.0;
+    nd.noise = 1.0;
+    nd.tau = p.tau / s.time;
+    nd.relaxation = std::isinf(p.relaxation) ? p.relaxation : p.relaxation / s.time;
+    nd.bias = p.bias / p.friction;
+    return nd;
+}
+
+ModelParams from_nondimensional(const ModelParams& nd, double friction, double noise) {
+    ModelParams unit;
+    unit.friction = friction;
+    unit.noise = noise;
+    const Scales s = scales_of(unit);
+    ModelParams p;
+    p.friction = friction;
+    p.noise = noise;
+    p.tau = nd.tau * s.time;
+    p.relaxation = std::isinf(nd.relaxation) ? nd.relaxation : nd.relaxation * s.time;
+    p.bias = nd.bias * friction;
+    return p;
+}
+
+void validate(const ModelParams& p) {
+    if (!std::isfinite(p.friction) || p.friction <= 0)
+        throw InvalidParameter("friction", "friction must be a finite number > 0 (m s^-2), got " + fmt(p.friction));
+    if (!std::isfinite(p.noise) || p.noise <= 0)
+        throw InvalidParameter("noise", "noise must be a finite number > 0 (m^2 s^-3), got " + fmt(p.noise));
+    if (!std::isfinite(p.tau) || p.tau < 0)
+        throw InvalidParameter("tau", "tau must be a finite number >= 0 (s; 0 is white noise), got " + fmt(p.tau));
+    if (std::isnan(p.relaxation) || p.relaxation <= 0)
+        throw InvalidParameter("relaxation",
+                               "relaxation must be > 0 (s) or inf (no viscous drag), got " + fmt(p.relaxation));
+    if (!std::isfinite(p.bias))
+        throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + fmt(p.bias));
+    // Products that overflow would make every later formula meaningless.
+    const Scales s = scales_of(p);
+    if (!std::isfinite(s.diffusivity) || s.diffusivity <= 0 || !std::isfinite(s.time) || s.time <= 0)
+        throw InvalidParameter("noise", "friction and noise are out of the representable range: noise^3/friction^4 = " +
+                                            fmt(s.diffusivity));
+}
+
+bool has_stationary_state(const ModelParams& p) {
+    return !std::isinf(p.relaxation) || std::fabs(p.bias) < p.friction;
+}
+
+} // namespace stickslip
