@@ -1,15 +1,17 @@
 // White-noise references by one-dimensional quadrature (MODEL.md section 7).
 //
 // The density is written q(v) = exp(-(phi(v) - phi_min)) with phi convex and
-// piecewise quadratic (kink at v = 0), so it never overflows; the integration
-// range is cut where q < e^-700. F(v) is integrated from whichever end is
-// nearer in sign (F < 0 everywhere and vanishes at both ends), so F^2/q keeps
-// its relative precision in the tails. Adaptive Gauss-Kronrod (61 points)
-// with breakpoints at the kink and at the mode gives ~1e-13 relative accuracy.
+// piecewise quadratic (kink at v = 0), so it never overflows; the range is cut
+// where q < e^-700. Integrals use composite 20-point Gauss-Legendre panels on
+// segments split at the kink, the mode and M0 (the integrand is analytic on
+// each panel, so every panel is exact to rounding). F(v) = int (u - M0) q du is
+// accumulated from the left end for v <= M0 and from the right end (with a
+// minus sign) for v > M0: F < 0 everywhere and vanishes at both ends, so this
+// keeps its relative precision in the tails, where F^2/q is evaluated.
 #include "stickslip/analytic.hpp"
 
 #include <algorithm>
-#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <vector>
 
@@ -17,17 +19,15 @@ namespace stickslip {
 
 namespace {
 
-using boost::math::quadrature::gauss_kronrod;
-constexpr double kTol = 1e-14;
-constexpr unsigned kDepth = 20;
+using Rule = boost::math::quadrature::gauss<double, 20>;
 constexpr double kCut = 700.0;
+constexpr int kPanels = 400; // per segment
 
 struct Hayakawa {
     double a2;  // 1/(Gamma tauL)  (0 without viscous drag)
     double cp;  // 2 (Delta - gbar)/Gamma, slope for v > 0
     double cm;  // 2 (Delta + gbar)/Gamma, slope magnitude for v < 0
-    double v_min, phi_min, lo, hi;
-    std::vector<double> breaks; // sorted: lo, (0), (v_min), hi
+    double v_min = 0, phi_min = 0, lo = 0, hi = 0;
 
     double phi(double v) const { return a2 * v * v + (v >= 0 ? cp * v : -cm * v); }
     double q(double v) const { return std::exp(-(phi(v) - phi_min)); }
@@ -36,13 +36,11 @@ struct Hayakawa {
         a2 = p.inverse_relaxation() / p.noise;
         cp = 2.0 * (p.friction - p.bias) / p.noise;
         cm = 2.0 * (p.friction + p.bias) / p.noise;
-        v_min = 0.0;
         if (cp < 0 && a2 > 0) v_min = -cp / (2 * a2);
         if (cm < 0 && a2 > 0) v_min = cm / (2 * a2);
         phi_min = phi(v_min);
-        // Expand outwards until phi - phi_min exceeds the cut, then bisect.
-        auto edge = [&](double dir) {
-            double step = 1.0 / (std::fabs(cp) + std::fabs(cm) + std::sqrt(a2) + 1e-300);
+        auto edge = [&](double dir) { // expand until phi - phi_min > kCut, then bisect
+            double step = 1.0 / (std::fabs(cp) + std::fabs(cm) + std::sqrt(a2));
             double inner = v_min, outer = v_min + dir * step;
             while (phi(outer) - phi_min < kCut) {
                 inner = outer;
@@ -57,66 +55,89 @@ struct Hayakawa {
         };
         lo = edge(-1.0);
         hi = edge(+1.0);
-        breaks = {lo, hi};
-        if (0.0 > lo && 0.0 < hi) breaks.push_back(0.0);
-        if (v_min != 0.0) breaks.push_back(v_min);
-        std::sort(breaks.begin(), breaks.end());
+    }
+
+    std::vector<double> breaks(double extra) const {
+        std::vector<double> b{lo, hi};
+        for (double x : {0.0, v_min, extra})
+            if (x > lo && x < hi) b.push_back(x);
+        std::sort(b.begin(), b.end());
+        b.erase(std::unique(b.begin(), b.end()), b.end());
+        return b;
+    }
+
+    /// Panel edges: kPanels equal panels per segment between breaks.
+    std::vector<double> edges(double extra) const {
+        const auto b = breaks(extra);
+        std::vector<double> e;
+        for (std::size_t s = 0; s + 1 < b.size(); ++s)
+            for (int k = 0; k < kPanels; ++k) e.push_back(b[s] + (b[s + 1] - b[s]) * k / kPanels);
+        e.push_back(b.back());
+        return e;
     }
 
     template <class F>
-    double integrate(F f, double a, double b) const {
-        if (b <= a) return 0.0;
+    static double panel(F f, double a, double b) {
+        return Rule::integrate(f, a, b);
+    }
+
+    template <class F>
+    double integrate(F f, double extra = 0.0) const {
+        const auto e = edges(extra);
         double s = 0.0;
-        double x0 = a;
-        for (double br : breaks) {
-            if (br <= x0) continue;
-            if (br >= b) break;
-            s += gauss_kronrod<double, 61>::integrate(f, x0, br, kDepth, kTol);
-            x0 = br;
-        }
-        return s + gauss_kronrod<double, 61>::integrate(f, x0, b, kDepth, kTol);
+        for (std::size_t k = 0; k + 1 < e.size(); ++k) s += panel(f, e[k], e[k + 1]);
+        return s;
     }
 };
 
-} // namespace
-
-double hayakawa_potential(const ModelParams& p, double v) { return Hayakawa(p).phi(v); }
-
-double hayakawa_density(const ModelParams& p, double v) {
+void check(const ModelParams& p) {
     validate(p);
     if (!has_stationary_state(p))
         throw InvalidParameter("bias", "no stationary state: with relaxation inf, |bias| must be < friction");
+}
+
+} // namespace
+
+double hayakawa_potential(const ModelParams& p, double v) {
+    check(p);
+    return Hayakawa(p).phi(v);
+}
+
+double hayakawa_density(const ModelParams& p, double v) {
+    check(p);
     const Hayakawa h(p);
-    const double z = h.integrate([&](double u) { return h.q(u); }, h.lo, h.hi);
     if (v < h.lo || v > h.hi) return 0.0;
+    const double z = h.integrate([&](double u) { return h.q(u); });
     return h.q(v) / z;
 }
 
 WhiteNoiseReference white_noise_reference(const ModelParams& p) {
-    validate(p);
-    if (!has_stationary_state(p))
-        throw InvalidParameter("bias", "no stationary state: with relaxation inf, |bias| must be < friction");
+    check(p);
     const Hayakawa h(p);
-    const double z = h.integrate([&](double u) { return h.q(u); }, h.lo, h.hi);
-    const double m0 = h.integrate([&](double u) { return u * h.q(u); }, h.lo, h.hi) / z;
-    const double var = h.integrate([&](double u) { return (u - m0) * (u - m0) * h.q(u); }, h.lo, h.hi) / z;
+    const double z = h.integrate([&](double u) { return h.q(u); });
+    const double m0 = h.integrate([&](double u) { return u * h.q(u); }) / z;
+    const double var = h.integrate([&](double u) { return (u - m0) * (u - m0) * h.q(u); }, m0) / z;
+
+    // F at the panel edges, from the nearer end; then F^2/q panel by panel.
+    const auto e = h.edges(m0);
     auto flux = [&](double u) { return (u - m0) * h.q(u); };
-    // F_q(v) = int_{lo}^{v} (u - M0) q du, from the nearer end to avoid cancellation.
-    auto big_f = [&](double v) {
-        if (v <= m0) return h.integrate(flux, h.lo, v);
-        return -h.integrate(flux, v, h.hi);
-    };
-    auto integrand = [&](double v) {
-        const double f = big_f(v);
-        return f * (f / h.q(v));
-    };
-    // m0 is where F turns; add it as a breakpoint of the outer integral.
-    Hayakawa outer = h;
-    if (m0 > h.lo && m0 < h.hi) {
-        outer.breaks.push_back(m0);
-        std::sort(outer.breaks.begin(), outer.breaks.end());
+    const std::size_t n = e.size();
+    std::vector<double> f_edge(n, 0.0);
+    for (std::size_t k = 1; k < n && e[k] <= m0; ++k) f_edge[k] = f_edge[k - 1] + Hayakawa::panel(flux, e[k - 1], e[k]);
+    for (std::size_t k = n - 1; k-- > 0 && e[k] >= m0;) f_edge[k] = f_edge[k + 1] - Hayakawa::panel(flux, e[k], e[k + 1]);
+    double integral = 0.0;
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+        const double a = e[k], b = e[k + 1];
+        const bool left = b <= m0;
+        auto big_f = [&](double v) {
+            return left ? f_edge[k] + Hayakawa::panel(flux, a, v) : f_edge[k + 1] - Hayakawa::panel(flux, v, b);
+        };
+        integral += Hayakawa::panel([&](double v) {
+            const double f = big_f(v);
+            return f * (f / h.q(v));
+        }, a, b);
     }
-    const double d = 4.0 / p.noise * outer.integrate(integrand, h.lo, h.hi) / z;
+    const double d = 4.0 / p.noise * integral / z;
     return {m0, d, var};
 }
 
