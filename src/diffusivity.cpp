@@ -49,6 +49,12 @@ ResolvedEngine resolve(const ModelParams& p, const EngineSettings& s) {
 void check_common(const ModelParams& p, const EngineSettings& s, double level) {
     validate(p);
     normal_quantile_two_sided(level); // validates level
+    // Both step settings are checked whatever the engine, so a typo in the
+    // unused one is reported rather than silently ignored.
+    if (!std::isfinite(s.dt) || s.dt <= 0)
+        throw InvalidParameter("dt", "dt must be a finite number > 0 (s), got " + fmt(s.dt));
+    if (!std::isfinite(s.grid) || s.grid <= 0)
+        throw InvalidParameter("grid", "grid must be a finite number > 0 (s^-1/2), got " + fmt(s.grid));
     if (s.engine == Engine::Pdmp) make_pdmp_constants(p, s);
     else make_inclusion_constants(p, s);
 }
@@ -94,8 +100,8 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
     out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
     if (done < kFewExcursions)
         out.warnings.push_back("only " + std::to_string(done) +
-                               " excursions: U is heavy-tailed, so the standard errors are themselves uncertain; "
-                               "use 10000 or more for reliable intervals");
+                               " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
+                               "themselves uncertain; use 10000 or more for reliable intervals");
     const ModelParams nd = to_nondimensional(req.params);
     if (req.params.white())
         out.warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +

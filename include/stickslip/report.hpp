@@ -1,7 +1,7 @@
 // stickslip/report.hpp -- machine- and human-readable reports of results.
 //
 // The JSON schema is a contract that users script against (documented in
-// docs/cli.md); the Python module's to_dict() is the same object. Infinite
+// README.md, section "JSON output"); the Python module's to_dict() is the same object. Infinite
 // relaxation is written as the string "inf". Timing lives under "work" so that
 // results can be compared with it removed.
 #pragma once

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iostream>
 #include <sstream>
 #include <string>
 
@@ -53,6 +54,13 @@ struct Comparison {
         return os.str();
     }
 };
+
+/// Prints the comparison (so the test log documents every number) and
+/// returns whether it passes.
+inline bool check(const Comparison& c, const std::string& what) {
+    std::cout << "[measured] " << c.message(what) << (c.ok() ? "" : "  <-- FAILS") << std::endl;
+    return c.ok();
+}
 
 inline Comparison compare(double a, double se_a, double b, double se_b, double allowance = 0.0,
                           double k = 4.0) {

@@ -32,7 +32,7 @@ void expect_twins(const ss::EngineSettings& phys, std::uint64_t n) {
     for (const auto& q : qs) {
         // Rounding can flip a rare threshold decision; allow 2% of a standard error.
         const auto c = compare(q.x.value / q.unit, 0.0, q.y.value, q.y.std_error, 0.0, 0.02);
-        EXPECT_TRUE(c.ok()) << c.message(std::string(q.name) + " physical/unit vs nondimensional");
+        EXPECT_TRUE(check(c, std::string(q.name) + " physical/unit vs nondimensional"));
         EXPECT_NEAR(q.x.std_error / q.unit, q.y.std_error, 0.02 * q.y.std_error) << q.name;
     }
 }
@@ -56,7 +56,7 @@ TEST(Symmetry, ZeroBiasGivesZeroMobility) {
     e.engine = ss::Engine::Pdmp;
     const auto r = run_le(p, e, 20000, 4);
     const auto c = compare(r.estimates.mobility.value, r.estimates.mobility.std_error, 0.0, 0.0);
-    EXPECT_TRUE(c.ok()) << c.message("mobility with bias 0 against 0");
+    EXPECT_TRUE(check(c, "mobility with bias 0 against 0"));
 }
 
 void expect_mirror(const ss::EngineSettings& e, std::uint64_t n) {
@@ -67,10 +67,10 @@ void expect_mirror(const ss::EngineSettings& e, std::uint64_t n) {
     const auto b = run_le(minus, e, n, 12);
     const auto cm = compare(a.estimates.mobility.value, a.estimates.mobility.std_error, -b.estimates.mobility.value,
                             b.estimates.mobility.std_error);
-    EXPECT_TRUE(cm.ok()) << cm.message("M0(bias) vs -M0(-bias)");
+    EXPECT_TRUE(check(cm, "M0(bias) vs -M0(-bias)"));
     const auto cd = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.std_error,
                             b.estimates.diffusivity.value, b.estimates.diffusivity.std_error);
-    EXPECT_TRUE(cd.ok()) << cd.message("D(bias) vs D(-bias)");
+    EXPECT_TRUE(check(cd, "D(bias) vs D(-bias)"));
     // The mobility is clearly non-zero here, so the sign flip is a real test.
     EXPECT_GT(std::fabs(a.estimates.mobility.value), 5 * a.estimates.mobility.std_error);
     EXPECT_LT(b.estimates.mobility.value, 0.0);

@@ -30,9 +30,9 @@ TEST(WhiteNoise, PureDryFrictionGivesFiveQuarters) {
     const double ref = 1.25;
     EXPECT_DOUBLE_EQ(ss::white_noise_reference(p).diffusivity, ref);
     const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref, 0.0, 0.015 * ref);
-    EXPECT_TRUE(c.ok()) << c.message("white-noise D' vs 5/4 (dt' = 1e-3, allowance 1.5%)");
+    EXPECT_TRUE(check(c, "white-noise D' vs 5/4 (dt' = 1e-3, allowance 1.5%)"));
     const auto m = compare(r.estimates.mobility.value, r.estimates.mobility.std_error, 0.0, 0.0);
-    EXPECT_TRUE(m.ok()) << m.message("white-noise M0' vs 0");
+    EXPECT_TRUE(check(m, "white-noise M0' vs 0"));
 }
 
 TEST(WhiteNoise, RelaxationAndBiasMatchQuadrature) {
@@ -48,10 +48,10 @@ TEST(WhiteNoise, RelaxationAndBiasMatchQuadrature) {
     const auto r = run_le(p, e, 200000, 77);
     const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref.diffusivity, 0.0,
                            0.015 * ref.diffusivity);
-    EXPECT_TRUE(c.ok()) << c.message("white-noise D' vs quadrature (relaxation' 0.2, bias' 0.3, allowance 1.5%)");
+    EXPECT_TRUE(check(c, "white-noise D' vs quadrature (relaxation' 0.2, bias' 0.3, allowance 1.5%)"));
     const auto m = compare(r.estimates.mobility.value, r.estimates.mobility.std_error, ref.mobility, 0.0,
                            0.015 * ref.mobility);
-    EXPECT_TRUE(m.ok()) << m.message("white-noise M0' vs quadrature (allowance 1.5%)");
+    EXPECT_TRUE(check(m, "white-noise M0' vs quadrature (allowance 1.5%)"));
 }
 
 TEST(WhiteNoise, PhysicalUnitsScaleLikeGammaCubedOverDeltaFourth) {
@@ -67,7 +67,7 @@ TEST(WhiteNoise, PhysicalUnitsScaleLikeGammaCubedOverDeltaFourth) {
     e.dt = 1e-3 * ss::scales_of(p).time;
     const auto r = run_le(p, e, 50000, 5);
     const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref, 0.0, 0.015 * ref);
-    EXPECT_TRUE(c.ok()) << c.message("white-noise D vs 5/4 Gamma^3/Delta^4 (physical units)");
+    EXPECT_TRUE(check(c, "white-noise D vs 5/4 Gamma^3/Delta^4 (physical units)"));
 }
 
 TEST(WhiteNoise, ColoredNoiseWithTinyTauConverges) {
@@ -84,7 +84,7 @@ TEST(WhiteNoise, ColoredNoiseWithTinyTauConverges) {
     const auto r = run_le(p, e, 3000, 31);
     EXPECT_EQ(r.resolved.stop_rule, "stuck");
     const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, 1.25, 0.0, 0.03 * 1.25);
-    EXPECT_TRUE(c.ok()) << c.message("colored D' at tau' = 1e-4 vs white 5/4");
+    EXPECT_TRUE(check(c, "colored D' at tau' = 1e-4 vs white 5/4"));
 }
 
 } // namespace

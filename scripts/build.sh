@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs missing dependencies, then configures (Release; Ninja when
+# available) and builds stickslip with all cores. Fast when already built.
+#
+#   bash scripts/build.sh            # build dir: build/
+#   STICKSLIP_BUILD_DIR=build-x bash scripts/build.sh
+#
+# Extra arguments are passed to the configure step (e.g. -DSTICKSLIP_NATIVE=ON).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+bash scripts/install-deps.sh
+
+BUILD_DIR="${STICKSLIP_BUILD_DIR:-build}"
+JOBS="$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)"
+
+cache="$BUILD_DIR/CMakeCache.txt"
+if [[ ! -f "$cache" ]]; then
+  generator=()
+  if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+  cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
+elif [[ $# -gt 0 ]] || ! grep -q '^CMAKE_BUILD_TYPE:[A-Z]*=Release$' "$cache"; then
+  # Already configured (with whatever generator it has): only reconfigure when
+  # asked to, or when it is not a Release build. Otherwise the build step below
+  # re-runs CMake by itself if any CMakeLists.txt changed.
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@"
+fi
+
+cmake --build "$BUILD_DIR" --parallel "$JOBS"

@@ -1,0 +1,538 @@
+// End-to-end tests of the `stickslip` command: they run the built binary
+// (STICKSLIP_CLI_PATH) in a child process with stdin from /dev/null and stdout
+// and stderr captured in temporary files, and check the documented contract:
+//   * exit codes: 0 ok, 2 bad input (nothing on stdout, exactly one line on
+//     stderr naming the parameter), 3 untrustworthy run (capped excursions);
+//   * the JSON schema of `diffusivity` and `bruteforce`;
+//   * bitwise reproducibility: the same JSON (less "work") for any --threads.
+// Every run uses small, fast settings; the whole suite takes a few seconds.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <spawn.h>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+#include "stickslip/config.hpp" // STICKSLIP_VERSION_STRING
+
+extern char** environ;
+
+namespace {
+
+using nlohmann::json;
+using Args = std::vector<std::string>;
+
+struct Result {
+    int code = -1; ///< exit status; 128 + signal if killed
+    std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+std::string temp_file(const char* tag) {
+    std::string dir = ::testing::TempDir();
+    if (dir.empty()) dir = "/tmp/";
+    if (dir.back() != '/') dir += '/';
+    std::string path = dir + "stickslip_cli_" + tag + "_XXXXXX";
+    std::vector<char> buf(path.begin(), path.end());
+    buf.push_back('\0');
+    const int fd = ::mkstemp(buf.data());
+    if (fd < 0) throw std::runtime_error("mkstemp failed for " + path);
+    ::close(fd);
+    return std::string(buf.data());
+}
+
+/// Runs `stickslip args...` without a shell.
+Result run(const Args& args) {
+    const std::string out_path = temp_file("out"), err_path = temp_file("err");
+    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
+    argv_s.insert(argv_s.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_TRUNC, 0);
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_TRUNC, 0);
+    pid_t pid = -1;
+    const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    Result r;
+    if (rc != 0) {
+        ADD_FAILURE() << "cannot start " << argv[0] << ": " << std::strerror(rc);
+    } else {
+        int status = 0;
+        while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    }
+    r.out = slurp(out_path);
+    r.err = slurp(err_path);
+    std::remove(out_path.c_str());
+    std::remove(err_path.c_str());
+    return r;
+}
+
+std::string describe(const Args& args) {
+    std::string s = "stickslip";
+    for (const auto& a : args) s += " " + a;
+    return s;
+}
+
+bool has(const Args& args, const std::string& flag) {
+    for (const auto& a : args)
+        if (a == flag) return true;
+    return false;
+}
+
+/// Adds fast settings, right after the subcommand, unless the arguments set
+/// them already (CLI11 rejects repeated options), so that a case that wrongly
+/// passes validation still finishes quickly.
+Args fast(const Args& args) {
+    if (args.empty() || (args[0] != "diffusivity" && args[0] != "bruteforce")) return args;
+    Args extra;
+    const bool pdmp = has(args, "pdmp");
+    if (args[0] == "diffusivity" && !has(args, "--excursions")) extra.insert(extra.end(), {"--excursions", pdmp ? "300" : "200"});
+    if (args[0] == "bruteforce") {
+        if (!has(args, "--time")) extra.insert(extra.end(), {"--time", "1"});
+        if (!has(args, "--trajectories")) extra.insert(extra.end(), {"--trajectories", "100"});
+    }
+    if (!pdmp && !has(args, "--dt")) extra.insert(extra.end(), {"--dt", "1e-3"});
+    Args out{args[0]};
+    out.insert(out.end(), extra.begin(), extra.end());
+    out.insert(out.end(), args.begin() + 1, args.end());
+    return out;
+}
+
+/// Runs, expects exit 0, nothing on stderr, and one JSON object on stdout.
+std::optional<json> run_json(const Args& args) {
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 0) << describe(args) << "\nstderr: " << r.err;
+    EXPECT_EQ(r.err, "") << describe(args) << ": no progress or notes on stderr when it is not a terminal";
+    if (r.code != 0) return std::nullopt;
+    try {
+        return json::parse(r.out);
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << describe(args) << ": stdout is not JSON (" << e.what() << "):\n" << r.out;
+        return std::nullopt;
+    }
+}
+
+json without_work(json j) {
+    j.erase("work");
+    return j;
+}
+
+int count_lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+const Args kPdmp{"diffusivity", "--engine", "pdmp", "--excursions", "300", "--format", "json"};
+const Args kInclusion{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--format", "json"};
+
+Args with(Args base, std::initializer_list<std::string> more) {
+    base.insert(base.end(), more);
+    return base;
+}
+
+void expect_number(const json& j, const std::string& key, const std::string& where) {
+    ASSERT_TRUE(j.contains(key)) << where << " lacks \"" << key << "\":\n" << j.dump(2);
+    EXPECT_TRUE(j[key].is_number()) << where << "." << key << " is not a number: " << j[key];
+}
+
+void expect_estimate(const json& j, const std::string& key, bool with_ci) {
+    ASSERT_TRUE(j.contains(key)) << "no \"" << key << "\"";
+    const json& e = j[key];
+    expect_number(e, "value", key);
+    expect_number(e, "stderr", key);
+    EXPECT_GT(e["stderr"].get<double>(), 0.0) << key;
+    if (!with_ci) return;
+    ASSERT_TRUE(e.contains("ci")) << key;
+    ASSERT_TRUE(e["ci"].is_array()) << key;
+    ASSERT_EQ(e["ci"].size(), 2u) << key;
+    expect_number(e, "level", key);
+    EXPECT_DOUBLE_EQ(e["level"].get<double>(), 0.95) << key;
+    const double v = e["value"], lo = e["ci"][0], hi = e["ci"][1];
+    EXPECT_LT(lo, v) << key;
+    EXPECT_LT(v, hi) << key;
+    // A symmetric normal interval: half-width = 1.959964 * stderr.
+    EXPECT_NEAR((hi - lo) / 2, 1.959963984540054 * e["stderr"].get<double>(), 1e-9 * std::fabs(hi - lo)) << key;
+}
+
+/// The documented schema of `diffusivity --format json`.
+void expect_diffusivity_schema(const json& j, bool pdmp) {
+    const std::string step = pdmp ? "grid" : "dt", other = pdmp ? "dt" : "grid";
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j.value("engine", ""), pdmp ? "pdmp" : "inclusion");
+    EXPECT_EQ(j.value("estimator", ""), "renewal");
+    ASSERT_TRUE(j.contains("stop_rule"));
+    EXPECT_EQ(j["stop_rule"], pdmp ? "exact" : "bridge"); // dt 1e-3 <= tau/10 = 0.05: auto picks bridge
+
+    ASSERT_TRUE(j.contains("params"));
+    const json& p = j["params"];
+    for (const char* k : {"friction", "noise", "tau", "relaxation", "bias", "seed", "excursions"})
+        expect_number(p, k, "params");
+    expect_number(p, step, "params");
+    EXPECT_FALSE(p.contains(other)) << "params." << other << " only belongs to the other engine";
+    EXPECT_DOUBLE_EQ(p["friction"].get<double>(), 3.84);
+    EXPECT_DOUBLE_EQ(p["noise"].get<double>(), 5.0);
+    EXPECT_DOUBLE_EQ(p["tau"].get<double>(), 0.5);
+    EXPECT_DOUBLE_EQ(p["relaxation"].get<double>(), 0.067);
+    EXPECT_DOUBLE_EQ(p["bias"].get<double>(), 0.342);
+    EXPECT_EQ(p["seed"].get<std::uint64_t>(), 1u);
+    EXPECT_EQ(p["excursions"].get<std::uint64_t>(), pdmp ? 300u : 200u);
+
+    ASSERT_TRUE(j.contains("nondimensional"));
+    const json& nd = j["nondimensional"];
+    for (const char* k : {"tau", "relaxation", "bias", "time_unit", "length_unit"}) expect_number(nd, k, "nondimensional");
+    expect_number(nd, step, "nondimensional");
+    const double time_unit = 5.0 / (3.84 * 3.84), length_unit = 25.0 / (3.84 * 3.84 * 3.84);
+    EXPECT_NEAR(nd["time_unit"].get<double>(), time_unit, 1e-12 * time_unit);
+    EXPECT_NEAR(nd["length_unit"].get<double>(), length_unit, 1e-12 * length_unit);
+    EXPECT_NEAR(nd["tau"].get<double>(), 0.5 / time_unit, 1e-12);
+    EXPECT_NEAR(nd["bias"].get<double>(), 0.342 / 3.84, 1e-12);
+    if (!pdmp) {
+        EXPECT_NEAR(nd["dt"].get<double>(), 1e-3 / time_unit, 1e-15);
+    }
+    if (nd.contains("diffusivity") && nd.contains("diffusivity_unit")) {
+        const double d = j["diffusivity"]["value"];
+        EXPECT_NEAR(nd["diffusivity"].get<double>() * nd["diffusivity_unit"].get<double>(), d, 1e-12 * std::fabs(d));
+    }
+
+    expect_estimate(j, "diffusivity", true);
+    expect_estimate(j, "mobility", true);
+    expect_estimate(j, "mean_duration", false);
+    EXPECT_GT(j["diffusivity"]["value"].get<double>(), 0.0);
+    EXPECT_GT(j["mean_duration"]["value"].get<double>(), 0.0);
+
+    ASSERT_TRUE(j.contains("work"));
+    const json& w = j["work"];
+    expect_number(w, pdmp ? "events" : "steps", "work");
+    expect_number(w, "seconds", "work");
+    expect_number(w, "threads", "work");
+    EXPECT_GT(w[pdmp ? "events" : "steps"].get<double>(), 0.0);
+    EXPECT_GE(w["threads"].get<int>(), 1);
+}
+
+// --- help, version ------------------------------------------------------------
+
+TEST(CliHelp, TopLevelHelpExitsZeroAndStatesUnits) {
+    const Result r = run({"--help"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("diffusivity"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bruteforce"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("SI units"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Nondimensional units"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Exit codes"), std::string::npos) << r.out;
+}
+
+TEST(CliHelp, SubcommandHelpListsFlagsWithUnits) {
+    const Result d = run({"diffusivity", "--help"});
+    EXPECT_EQ(d.code, 0) << d.err;
+    for (const char* s : {"--friction", "m s^-2", "--noise", "m^2 s^-3", "--tau", "--relaxation", "--bias", "--engine",
+                          "--dt", "--grid", "s^-1/2", "--excursions", "--estimator", "--seed", "--threads", "--format",
+                          "--allow-capped"})
+        EXPECT_NE(d.out.find(s), std::string::npos) << "diffusivity --help lacks " << s;
+    const Result b = run({"bruteforce", "--help"});
+    EXPECT_EQ(b.code, 0) << b.err;
+    for (const char* s : {"--time", "--trajectories", "--x0", "--v0", "m s^-2"})
+        EXPECT_NE(b.out.find(s), std::string::npos) << "bruteforce --help lacks " << s;
+}
+
+TEST(CliHelp, VersionMatchesLibrary) {
+    const Result r = run({"--version"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find(STICKSLIP_VERSION_STRING), std::string::npos) << r.out;
+}
+
+// --- diffusivity: output ------------------------------------------------------
+
+TEST(CliDiffusivity, PdmpJsonSchema) {
+    const auto j = run_json(kPdmp);
+    ASSERT_TRUE(j);
+    expect_diffusivity_schema(*j, true);
+}
+
+TEST(CliDiffusivity, InclusionJsonSchema) {
+    const auto j = run_json(kInclusion);
+    ASSERT_TRUE(j);
+    expect_diffusivity_schema(*j, false);
+    EXPECT_EQ((*j)["version"], STICKSLIP_VERSION_STRING);
+}
+
+TEST(CliDiffusivity, TableIsTheDefaultFormat) {
+    const Args args{"diffusivity", "--dt", "1e-3", "--excursions", "200"};
+    const Result r = run(args);
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* s : {"diffusivity D", "mobility M0", "E[t1]", "95% interval", "m^2/s", "nondim"})
+        EXPECT_NE(r.out.find(s), std::string::npos) << "table lacks " << s << ":\n" << r.out;
+    EXPECT_FALSE(json::accept(r.out)) << "the table is not JSON";
+}
+
+TEST(CliDiffusivity, InfiniteRelaxationIsTheStringInf) {
+    for (const Args& base : {kPdmp, kInclusion}) {
+        const auto j = run_json(with(base, {"--relaxation", "inf"}));
+        ASSERT_TRUE(j);
+        EXPECT_EQ((*j)["params"]["relaxation"], "inf");
+        EXPECT_EQ((*j)["nondimensional"]["relaxation"], "inf");
+        EXPECT_TRUE((*j)["diffusivity"]["value"].is_number());
+    }
+}
+
+TEST(CliDiffusivity, WhiteNoiseRuns) {
+    const auto j = run_json(with(kInclusion, {"--tau", "0"}));
+    ASSERT_TRUE(j);
+    EXPECT_EQ((*j)["params"]["tau"].get<double>(), 0.0);
+    EXPECT_EQ((*j)["stop_rule"], "velocity-levels");
+    EXPECT_GT((*j)["diffusivity"]["value"].get<double>(), 0.0);
+}
+
+TEST(CliDiffusivity, PaperEstimatorIsNamedAndChangesOnlyD) {
+    const auto renewal = run_json(kInclusion);
+    const auto paper = run_json(with(kInclusion, {"--estimator", "paper"}));
+    ASSERT_TRUE(renewal && paper);
+    EXPECT_EQ((*paper)["estimator"], "paper");
+    EXPECT_EQ((*renewal)["estimator"], "renewal");
+    // Same seed, same excursions: only the D formula differs (M0 != 0 here).
+    EXPECT_EQ((*paper)["mobility"], (*renewal)["mobility"]);
+    EXPECT_EQ((*paper)["mean_duration"], (*renewal)["mean_duration"]);
+    EXPECT_NE((*paper)["diffusivity"]["value"], (*renewal)["diffusivity"]["value"]);
+}
+
+TEST(CliDiffusivity, LevelSetsTheIntervals) {
+    const auto a = run_json(kPdmp);
+    const auto b = run_json(with(kPdmp, {"--level", "0.9"}));
+    ASSERT_TRUE(a && b);
+    EXPECT_DOUBLE_EQ((*b)["diffusivity"]["level"].get<double>(), 0.9);
+    EXPECT_EQ((*a)["diffusivity"]["value"], (*b)["diffusivity"]["value"]);
+    const auto width = [](const json& j) { return j["diffusivity"]["ci"][1].get<double>() - j["diffusivity"]["ci"][0].get<double>(); };
+    EXPECT_LT(width(*b), width(*a));
+}
+
+// --- reproducibility ----------------------------------------------------------
+
+class CliThreads : public ::testing::TestWithParam<Args> {};
+
+TEST_P(CliThreads, SameJsonForAnyThreadCount) {
+    const Args base = GetParam();
+    const auto one = run_json(with(base, {"--threads", "1"}));
+    ASSERT_TRUE(one);
+    EXPECT_EQ((*one)["work"]["threads"].get<int>(), 1);
+    for (const char* n : {"2", "3"}) {
+        const auto many = run_json(with(base, {"--threads", n}));
+        ASSERT_TRUE(many);
+        EXPECT_EQ((*many)["work"]["threads"].get<int>(), std::atoi(n));
+        // Bitwise: the serialised text, not just the parsed values.
+        EXPECT_EQ(without_work(*one).dump(), without_work(*many).dump()) << describe(base) << " --threads " << n;
+    }
+}
+
+TEST_P(CliThreads, DifferentSeedsDiffer) {
+    const Args base = GetParam();
+    const auto a = run_json(with(base, {"--seed", "1"}));
+    const auto b = run_json(with(base, {"--seed", "2"}));
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ((*b)["params"]["seed"].get<std::uint64_t>(), 2u);
+    EXPECT_NE((*a)["diffusivity"]["value"], (*b)["diffusivity"]["value"]);
+    EXPECT_NE((*a)["mobility"]["value"], (*b)["mobility"]["value"]);
+}
+
+TEST_P(CliThreads, SameSeedSameResultAcrossRuns) {
+    const auto a = run_json(with(GetParam(), {"--seed", "12345678901234"}));
+    const auto b = run_json(with(GetParam(), {"--seed", "12345678901234"}));
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(without_work(*a).dump(), without_work(*b).dump());
+}
+
+std::string engine_case_name(const ::testing::TestParamInfo<Args>& info) {
+    static const char* const names[] = {"DiffusivityPdmp", "DiffusivityInclusion", "DiffusivityWhite",
+                                        "BruteforcePdmp", "BruteforceInclusion"};
+    return names[info.index];
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Engines, CliThreads,
+    ::testing::Values(kPdmp, kInclusion, with(kInclusion, {"--tau", "0"}),
+                      Args{"bruteforce", "--engine", "pdmp", "--time", "1", "--trajectories", "200", "--format", "json"},
+                      Args{"bruteforce", "--dt", "1e-3", "--time", "1", "--trajectories", "200", "--format", "json"}),
+    engine_case_name);
+
+// --- bruteforce -----------------------------------------------------------------
+
+TEST(CliBruteforce, JsonSchema) {
+    for (const bool pdmp : {false, true}) {
+        const Args args = pdmp ? Args{"bruteforce", "--engine", "pdmp", "--time", "2", "--trajectories", "200",
+                                      "--format", "json"}
+                               : Args{"bruteforce", "--dt", "1e-3", "--time", "2", "--trajectories", "200",
+                                      "--format", "json"};
+        const auto j = run_json(args);
+        ASSERT_TRUE(j);
+        EXPECT_EQ((*j)["engine"], pdmp ? "pdmp" : "inclusion");
+        EXPECT_EQ((*j)["estimator"], "bruteforce");
+        ASSERT_TRUE(j->contains("params"));
+        const json& p = (*j)["params"];
+        for (const char* k : {"friction", "noise", "tau", "relaxation", "bias", "seed", "time", "trajectories"})
+            expect_number(p, k, "params");
+        expect_number(p, pdmp ? "grid" : "dt", "params");
+        EXPECT_DOUBLE_EQ(p["time"].get<double>(), 2.0);
+        EXPECT_EQ(p["trajectories"].get<std::uint64_t>(), 200u);
+        ASSERT_TRUE(j->contains("nondimensional"));
+        for (const char* k : {"tau", "relaxation", "bias", "time_unit", "length_unit"})
+            expect_number((*j)["nondimensional"], k, "nondimensional");
+        expect_estimate(*j, "diffusivity", true);
+        expect_estimate(*j, "mobility", true);
+        ASSERT_TRUE(j->contains("work"));
+        expect_number((*j)["work"], pdmp ? "events" : "steps", "work");
+        expect_number((*j)["work"], "seconds", "work");
+        expect_number((*j)["work"], "threads", "work");
+    }
+}
+
+// --- bad input: exit 2, nothing on stdout, one line on stderr naming it -----------
+
+struct BadInput {
+    Args args;
+    std::string names; ///< must appear in the error line
+};
+
+void PrintTo(const BadInput& b, std::ostream* os) { *os << describe(b.args); }
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, ExitsTwoWithOneLineNamingTheParameter) {
+    const Args args = fast(GetParam().args);
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 2) << describe(args) << "\nstderr: " << r.err;
+    EXPECT_EQ(r.out, "") << describe(args);
+    EXPECT_EQ(count_lines(r.err), 1) << describe(args) << "\nstderr: " << r.err;
+    EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << describe(args);
+    EXPECT_NE(r.err.find(GetParam().names), std::string::npos)
+        << describe(args) << ": the error should name " << GetParam().names << "\nstderr: " << r.err;
+}
+
+const BadInput kBadInputs[] = {
+    {{"diffusivity", "--friction", "0"}, "friction"},
+    {{"diffusivity", "--friction", "-1"}, "friction"},
+    {{"diffusivity", "--friction", "inf"}, "friction"},
+    {{"diffusivity", "--noise", "0"}, "noise"},
+    {{"diffusivity", "--tau", "-1"}, "tau"},
+    {{"diffusivity", "--relaxation", "0"}, "relaxation"},
+    {{"diffusivity", "--relaxation", "nan"}, "relaxation"},
+    {{"diffusivity", "--bias", "nan"}, "bias"},
+    {{"diffusivity", "--dt", "0"}, "dt"},
+    {{"diffusivity", "--dt", "-1e-4"}, "dt"},
+    {{"diffusivity", "--dt", "1e-3x"}, "dt"},
+    {{"diffusivity", "--engine", "pdmp", "--grid", "0"}, "grid"},
+    {{"diffusivity", "--engine", "pdmp", "--tau", "0"}, "tau"},
+    {{"diffusivity", "--engine", "pdmp", "--grid", "2"}, "grid"}, // tau*grid*L < 2 impossible
+    {{"diffusivity", "--engine", "pdmp", "--lattice-bound", "-1"}, "lattice-bound"},
+    {{"diffusivity", "--excursions", "1"}, "excursions"},
+    {{"diffusivity", "--excursions", "abc"}, "excursions"},
+    {{"diffusivity", "--excursions", "2.5"}, "excursions"},
+    {{"diffusivity", "--level", "1.5"}, "level"},
+    {{"diffusivity", "--level", "0"}, "level"},
+    {{"diffusivity", "--format", "xml"}, "format"},
+    {{"diffusivity", "--engine", "foo"}, "engine"},
+    {{"diffusivity", "--estimator", "foo"}, "estimator"},
+    {{"diffusivity", "--stop-rule", "foo"}, "stop-rule"},
+    {{"diffusivity", "--seed", "-1"}, "seed"},
+    {{"diffusivity", "--threads", "-1"}, "threads"},
+    {{"diffusivity", "--max-steps", "0"}, "max-steps"},
+    {{"diffusivity", "--no-such-flag"}, "--no-such-flag"},
+    {{"diffusivity", "--friction"}, "friction"}, // missing value
+    {{"diffusivity", "--relaxation", "inf", "--bias", "3.84"}, "bias"},
+    {{"diffusivity", "--relaxation", "inf", "--bias", "-5"}, "bias"},
+    {{"diffusivity", "--engine", "pdmp", "--relaxation", "inf", "--bias", "4"}, "bias"},
+    {{"bruteforce", "--time", "0"}, "time"},
+    {{"bruteforce", "--time", "-1"}, "time"},
+    {{"bruteforce", "--trajectories", "1"}, "trajectories"},
+    {{"bruteforce", "--trajectories", "abc"}, "trajectories"},
+    {{"bruteforce", "--x0", "nan"}, "x0"},
+    {{"bruteforce", "--engine", "pdmp", "--tau", "0"}, "tau"},
+    {{"bruteforce", "--friction", "0"}, "friction"},
+    {{}, "subcommand"},
+    {{"nonsense"}, "subcommand"},
+};
+
+std::string bad_input_name(const ::testing::TestParamInfo<BadInput>& info) {
+    std::string name = std::to_string(info.index);
+    for (const auto& a : info.param.args)
+        for (char c : a) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    if (info.param.args.empty()) name += "no_arguments";
+    return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(kBadInputs), bad_input_name);
+
+// --- runaway guard: exit 3 ------------------------------------------------------
+
+TEST(CliCapped, GuardHitIsAnErrorByDefault) {
+    const Args args{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10"};
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("runaway guard"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--max-steps"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--allow-capped"), std::string::npos) << r.err;
+}
+
+TEST(CliCapped, AllowCappedStillFailsWhenFewerThanTwoComplete) {
+    for (const Args& args : {Args{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10",
+                                  "--allow-capped"},
+                             Args{"diffusivity", "--engine", "pdmp", "--excursions", "200", "--max-steps", "10",
+                                  "--allow-capped", "--format", "json"}}) {
+        const Result r = run(args);
+        EXPECT_EQ(r.code, 3) << describe(args) << "\n" << r.err;
+        EXPECT_EQ(r.out, "") << describe(args);
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("fewer than 2"), std::string::npos) << r.err;
+    }
+}
+
+TEST(CliCapped, SomeCappedIsErrorUnlessAllowed) {
+    // With 3000 events per excursion a good part, but not all, of the PDMP
+    // excursions of the Fig. 2 case hit the guard (deterministic for seed 1).
+    const Args base{"diffusivity", "--engine", "pdmp", "--excursions", "300", "--max-steps", "3000", "--format", "json"};
+    const Result refused = run(base);
+    EXPECT_EQ(refused.code, 3) << refused.err;
+    EXPECT_EQ(refused.out, "");
+    EXPECT_EQ(count_lines(refused.err), 1) << refused.err;
+    EXPECT_NE(refused.err.find("runaway guard"), std::string::npos) << refused.err;
+
+    const auto j = run_json(with(base, {"--allow-capped"}));
+    ASSERT_TRUE(j);
+    const auto capped = (*j)["capped"].get<std::uint64_t>(), completed = (*j)["completed"].get<std::uint64_t>();
+    EXPECT_GT(capped, 0u);
+    EXPECT_GE(completed, 2u);
+    EXPECT_EQ(capped + completed, 300u);
+    bool warned = false;
+    for (const auto& w : (*j)["warnings"]) warned = warned || w.get<std::string>().find("runaway guard") != std::string::npos;
+    EXPECT_TRUE(warned) << (*j)["warnings"].dump();
+}
+
+} // namespace
