@@ -133,6 +133,11 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
     if (!(n >= 1) || n > 1e8)
         throw InvalidParameter("grid", "grid = " + fmt(s.grid) + " gives " + fmt(2 * n + 1) +
                                            " lattice points; choose grid so that tau*grid^2 is between 1e-16 and 1");
+    if ((k_plus + 2 > n || k_minus - 2 < -n) && s.lattice_bound > 0)
+        throw InvalidParameter("lattice-bound", "lattice-bound L = " + fmt(n * s.grid) +
+                                                    " s^-1/2 does not reach the noise thresholds x* = " +
+                                                    fmt(p.upper_threshold()) + ", x-* = " +
+                                                    fmt(p.lower_threshold()) + " (s^-1/2) plus two grid steps");
     if (k_plus + 2 > n || k_minus - 2 < -n)
         throw InvalidParameter("grid", "tau*grid*L must be < 2, but the lattice must reach the noise thresholds x* = " +
                                            fmt(p.upper_threshold()) + ", x-* = " + fmt(p.lower_threshold()) +
