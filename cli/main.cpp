@@ -28,7 +28,7 @@ Nondimensional units: time noise/friction^2, length noise^2/friction^3,
 diffusivity noise^3/friction^4; both are reported.
 Defaults are the paper's Fig. 2 case. Results are bitwise reproducible for a
 given --seed, whatever --threads. Exit codes: 0 ok, 2 bad input, 3 untrustworthy
-run (runaway excursions), 130 interrupted.)";
+run (runaway excursions).)";
 
 struct ModelFlags {
     std::string friction = "3.84", noise = "5", tau = "0.5", relaxation = "0.067", bias = "0.342";
@@ -65,7 +65,7 @@ void add_model_flags(CLI::App* app, ModelFlags& f) {
     app->add_option("--threads", f.threads, "worker threads; 0 = all cores")->capture_default_str();
     app->add_option("--level", f.level, "confidence level of the intervals, in (0, 1)")->capture_default_str();
     app->add_option("--max-steps", f.max_steps,
-                    "runaway guard: most steps (inclusion) or events (pdmp) per excursion or trajectory")
+                    "runaway guard: most steps (inclusion) or events (pdmp) per long excursion")
         ->capture_default_str();
     app->add_option("--format", f.format, "table (human) or json (one object on stdout)")->capture_default_str();
     app->add_flag("--quiet", f.quiet, "no progress line on stderr");
@@ -78,6 +78,18 @@ double to_double(const std::string& name, const std::string& s) {
     if (s.empty() || end != s.c_str() + s.size() || errno == ERANGE)
         throw ss::InvalidParameter(name, name + " must be a number, got '" + s + "'");
     if (std::isnan(x)) throw ss::InvalidParameter(name, name + " must be a number, got NaN");
+    return x;
+}
+
+std::uint64_t to_seed(const std::string& s) {
+    // Parsed as an integer: seeds above 2^53 must not be rounded.
+    char* end = nullptr;
+    errno = 0;
+    if (s.empty() || s[0] == '-' || s[0] == '+')
+        throw ss::InvalidParameter("seed", "seed must be an integer in [0, 2^64), got '" + s + "'");
+    const unsigned long long x = std::strtoull(s.c_str(), &end, 0);
+    if (end != s.c_str() + s.size() || errno == ERANGE)
+        throw ss::InvalidParameter("seed", "seed must be an integer in [0, 2^64), got '" + s + "'");
     return x;
 }
 
@@ -101,7 +113,7 @@ void fill(const ModelFlags& f, ss::ModelParams& p, ss::EngineSettings& e, ss::Ru
     e.stop_rule = ss::parse_stop_rule(f.stop_rule);
     e.white_level = to_double("white-level", f.white_level);
     e.max_work_per_excursion = to_count("max-steps", f.max_steps);
-    c.seed = to_count("seed", f.seed);
+    c.seed = to_seed(f.seed);
     const std::uint64_t threads = to_count("threads", f.threads);
     if (threads > 4096) throw ss::InvalidParameter("threads", "threads must be between 0 and 4096");
     c.threads = static_cast<unsigned>(threads);
@@ -160,7 +172,7 @@ int main(int argc, char** argv) {
     add_model_flags(brute, bf);
     brute->add_option("--time", horizon, "horizon t [s]")->capture_default_str();
     brute->add_option("--trajectories", trajectories, "number N' of trajectories (>= 2)")->capture_default_str();
-    brute->add_option("--x0", x0, "initial noise X(0) [s^-1/2]; default: the threshold x* (stuck at the threshold)");
+    brute->add_option("--x0", x0, "initial noise X(0) [s^-1/2]; default: the upper threshold x* (pdmp: the first lattice point above it, where the object starts moving)");
     brute->add_option("--v0", v0, "initial velocity [m/s]")->capture_default_str();
     brute->footer(kConventions);
 

@@ -98,6 +98,10 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
     }
     if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
     out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
+    if (req.engine.engine == Engine::Pdmp && out.resolved.truncated_mass > 1e-9)
+        out.warnings.push_back("the pdmp lattice is truncated at L = " + fmt(out.resolved.lattice_bound) +
+                               " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
+                               fmt(out.resolved.truncated_mass) + "; use a finer grid");
     if (done < kFewExcursions)
         out.warnings.push_back("only " + std::to_string(done) +
                                " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
@@ -131,7 +135,12 @@ BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
     }
     out.start_noise = x0;
     out.totals = run_bruteforce(req.params, req.engine, req.horizon, x0, req.v0, req.trajectories, req.control);
-    out.estimates = estimate_bruteforce(out.totals.moments, req.horizon, req.level);
+    // The inclusion engine simulates a whole number of steps: use the time it
+    // actually simulated, and say so when it differs from the request.
+    const double simulated = out.totals.moments.mean_y();
+    if (std::fabs(simulated - req.horizon) > 1e-9 * req.horizon)
+        out.warnings.push_back("time rounded to a whole number of steps: " + fmt(simulated) + " s simulated");
+    out.estimates = estimate_bruteforce(out.totals.moments, simulated, req.level);
     out.warnings.push_back("brute force estimates D_t = var U(t)/t, biased against D by O(1/t) (relative bias shrinks "
                            "like E[t1]/t); use `stickslip diffusivity` for an unbiased estimate");
     return out;

@@ -144,8 +144,20 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
                                            " (s^-1/2); with grid " + fmt(s.grid) + " it only reaches L = " +
                                            fmt(n * s.grid) + ": use a finer grid");
     c.n_max = static_cast<int>(n);
-    c.k_plus = static_cast<int>(k_plus);
-    c.k_minus = static_cast<int>(k_minus);
+    // The quotients above are rounded; when a threshold falls on a lattice
+    // point they can disagree with the sign of pdmp_acceleration, which is
+    // what the kernels use to decide whether the object moves. Settle k+- with
+    // that very expression, so that the object at s+ accelerates strictly up,
+    // at s- strictly down, and the static band is exactly where it cannot move.
+    int kp = static_cast<int>(k_plus), km = static_cast<int>(k_minus);
+    while (pdmp_acceleration(c, kp + 1, +1) <= 0.0) ++kp;
+    while (pdmp_acceleration(c, kp, +1) > 0.0) --kp;
+    while (pdmp_acceleration(c, km - 1, -1) >= 0.0) --km;
+    while (pdmp_acceleration(c, km, -1) < 0.0) ++km;
+    if (kp + 2 > c.n_max || km - 2 < -c.n_max)
+        throw InvalidParameter("grid", "the lattice does not reach the noise thresholds; use a finer grid");
+    c.k_plus = kp;
+    c.k_minus = km;
     return c;
 }
 

@@ -126,17 +126,19 @@ STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& r
     double v_out;
     pdmp_flow(c, s.i, s.y, s.v, dt, v_out, disp);
     time += dt;
-    if (hits || (s.y != 0 && s.y * v_out <= 0.0)) {
-        // V reached 0 (the second test catches rounding just before t_hit).
+    if (hits || (s.y != 0 && s.v != 0.0 && s.y * v_out <= 0.0)) {
+        // V reached 0. The second test catches rounding just before t_hit; it
+        // does not apply to a start from V = 0 (s+- or after a stop), where a
+        // zero-length wait must leave the mode alone.
         s.v = 0.0;
         s.y = pdmp_mode_at_rest(c, s.i, s.y);
         return true;
     }
     s.v = v_out;
     const bool up = u1 <= pdmp_up_probability(c, s.i);
-    if (s.y == 0) {
-        if (up && s.i == c.k_plus) s.y = 1;
-        if (!up && s.i == c.k_minus) s.y = -1;
+    if (s.y == 0) { // leaving the static band starts the motion
+        if (up && s.i >= c.k_plus) s.y = 1;
+        if (!up && s.i <= c.k_minus) s.y = -1;
     }
     s.i += up ? 1 : -1;
     return true;
