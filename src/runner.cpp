@@ -74,7 +74,7 @@ RunTotals run_samples(std::uint64_t n, const RunControl& ctl,
                     pending.erase(it);
                     ++next_to_merge;
                 }
-                if (ctl.progress) {
+                if (ctl.progress && !cancelled) {
                     const auto now = clock::now();
                     if (std::chrono::duration<double>(now - last_report).count() >= ctl.progress_interval) {
                         last_report = now;
@@ -98,7 +98,13 @@ RunTotals run_samples(std::uint64_t n, const RunControl& ctl,
     } else {
         std::vector<std::thread> pool;
         pool.reserve(threads);
-        for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+        try {
+            for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+        } catch (...) { // could not start a thread: stop the others cleanly
+            stop = true;
+            for (auto& th : pool) th.join();
+            throw;
+        }
         for (auto& th : pool) th.join();
     }
     if (error) std::rethrow_exception(error);

@@ -31,12 +31,7 @@ TEST(BruteForce, AgreesWithLongExcursionsOnFig2Case) {
 TEST(BruteForce, DrivenCaseRenewalAgreesAndPaperEq12Disagrees) {
     // MODEL.md section 6: relaxation 0.067, bias 2.0, friction 3.84, noise 3,
     // tau 0.1: eq. (12) gives about 3.2e-3, renewal and brute force about 1.8e-3.
-    ss::ModelParams p;
-    p.relaxation = 0.067;
-    p.bias = 2.0;
-    p.friction = 3.84;
-    p.noise = 3.0;
-    p.tau = 0.1;
+    const ss::ModelParams p{.friction = 3.84, .noise = 3.0, .tau = 0.1, .relaxation = 0.067, .bias = 2.0};
     ss::EngineSettings e;
     e.engine = ss::Engine::Pdmp;
     e.grid = 0.25;

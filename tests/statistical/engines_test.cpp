@@ -33,12 +33,7 @@ TEST(Engines, PdmpAgreesWithInclusionOnFig4Case) {
 
 TEST(Engines, PdmpWithoutViscousDragAgreesWithInclusion) {
     // Pure dry friction with a bias (relaxation inf: the linear flow formulas).
-    ss::ModelParams p;
-    p.friction = 1;
-    p.noise = 1;
-    p.tau = 1.0;
-    p.relaxation = std::numeric_limits<double>::infinity();
-    p.bias = 0.3;
+    const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 1.0, .relaxation = std::numeric_limits<double>::infinity(), .bias = 0.3};
     ss::EngineSettings pd;
     pd.engine = ss::Engine::Pdmp;
     pd.grid = 0.0625;

@@ -47,8 +47,7 @@ TEST(Reproducibility, InclusionIdenticalForAnyThreadCount) {
 }
 
 TEST(Reproducibility, WhiteNoiseAndBruteForceIdenticalForAnyThreadCount) {
-    ss::ModelParams p;
-    p.tau = 0;
+    const ss::ModelParams p{.tau = 0};
     ss::EngineSettings e;
     e.dt = 1e-3;
     ss::RunControl c1, c2;

@@ -50,8 +50,7 @@ TEST(Units, InclusionPhysicalRunEqualsNondimensionalTwin) {
 }
 
 TEST(Symmetry, ZeroBiasGivesZeroMobility) {
-    ss::ModelParams p;
-    p.bias = 0.0;
+    const ss::ModelParams p{.bias = 0.0};
     ss::EngineSettings e;
     e.engine = ss::Engine::Pdmp;
     const auto r = run_le(p, e, 20000, 4);
