@@ -28,7 +28,14 @@ Nondimensional units: time noise/friction^2, length noise^2/friction^3,
 diffusivity noise^3/friction^4; both are reported.
 Defaults are the paper's Fig. 2 case. Results are bitwise reproducible for a
 given --seed, whatever --threads. Exit codes: 0 ok, 2 bad input, 3 untrustworthy
-run (runaway excursions).)";
+run (runaway excursions).
+
+Examples:
+  stickslip diffusivity                                  # Fig. 2 case, inclusion engine
+  stickslip diffusivity --engine pdmp --excursions 100000 --format json
+  stickslip diffusivity --friction 1 --noise 1 --tau 0 --relaxation inf --bias 0 \
+      --dt 1e-3                                          # white noise: D -> 5/4 exactly
+  stickslip bruteforce --engine pdmp --time 10 --trajectories 20000)";
 
 struct ModelFlags {
     std::string friction = "3.84", noise = "5", tau = "0.5", relaxation = "0.067", bias = "0.342";
@@ -39,35 +46,35 @@ struct ModelFlags {
 };
 
 void add_model_flags(CLI::App* app, ModelFlags& f) {
-    app->add_option("--friction", f.friction, "dry-friction coefficient Delta [m s^-2], > 0")->capture_default_str();
-    app->add_option("--noise", f.noise, "noise intensity Gamma [m^2 s^-3], > 0")->capture_default_str();
-    app->add_option("--tau", f.tau, "noise correlation time [s], >= 0 (0 = white noise)")->capture_default_str();
-    app->add_option("--relaxation", f.relaxation, "viscous relaxation time tauL [s], > 0, or inf for none")
+    app->add_option("--friction", f.friction, "dry-friction coefficient Delta [m s^-2], > 0")->type_name("NUM")->capture_default_str();
+    app->add_option("--noise", f.noise, "noise intensity Gamma [m^2 s^-3], > 0")->type_name("NUM")->capture_default_str();
+    app->add_option("--tau", f.tau, "noise correlation time [s], >= 0 (0 = white noise)")->type_name("NUM")->capture_default_str();
+    app->add_option("--relaxation", f.relaxation, "viscous relaxation time tauL [s], > 0, or inf for none")->type_name("NUM|inf")
         ->capture_default_str();
-    app->add_option("--bias", f.bias, "constant force gbar [m s^-2], e.g. gravity on an incline")
+    app->add_option("--bias", f.bias, "constant force gbar [m s^-2], e.g. gravity on an incline")->type_name("NUM")
         ->capture_default_str();
     app->add_option("--engine", f.engine,
-                    "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)")
+                    "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)")->type_name("inclusion|pdmp")
         ->capture_default_str();
-    app->add_option("--dt", f.dt, "time step of the inclusion engine [s]")->capture_default_str();
-    app->add_option("--grid", f.grid, "lattice step delta of the pdmp noise [s^-1/2]")->capture_default_str();
+    app->add_option("--dt", f.dt, "time step of the inclusion engine [s]")->type_name("NUM")->capture_default_str();
+    app->add_option("--grid", f.grid, "lattice step delta of the pdmp noise [s^-1/2]")->type_name("NUM")->capture_default_str();
     app->add_option("--lattice-bound", f.lattice_bound,
-                    "pdmp lattice half-width L [s^-1/2]; 0 = 8 tau^-1/2 (or what tau*grid*L < 2 allows)")
+                    "pdmp lattice half-width L [s^-1/2]; 0 = 8 tau^-1/2 (or what tau*grid*L < 2 allows)")->type_name("NUM")
         ->capture_default_str();
     app->add_option("--stop-rule", f.stop_rule,
                     "inclusion HLE end test: auto (bridge if dt <= tau/10, else stuck), bridge (rule Q), stuck "
-                    "(rule P)")
+                    "(rule P)")->type_name("auto|bridge|stuck")
         ->capture_default_str();
     app->add_option("--white-level", f.white_level,
-                    "white noise only: regeneration velocity levels +-c [m/s]; 0 chooses c")
+                    "white noise only: regeneration velocity levels +-c [m/s]; 0 chooses c")->type_name("NUM")
         ->capture_default_str();
-    app->add_option("--seed", f.seed, "random seed (64-bit); same seed, same result")->capture_default_str();
-    app->add_option("--threads", f.threads, "worker threads; 0 = all cores")->capture_default_str();
-    app->add_option("--level", f.level, "confidence level of the intervals, in (0, 1)")->capture_default_str();
+    app->add_option("--seed", f.seed, "random seed (64-bit); same seed, same result")->type_name("INT")->capture_default_str();
+    app->add_option("--threads", f.threads, "worker threads; 0 = all cores")->type_name("INT")->capture_default_str();
+    app->add_option("--level", f.level, "confidence level of the intervals, in (0, 1)")->type_name("NUM")->capture_default_str();
     app->add_option("--max-steps", f.max_steps,
-                    "runaway guard: most steps (inclusion) or events (pdmp) per long excursion")
+                    "runaway guard: most steps (inclusion) or events (pdmp) per long excursion")->type_name("INT")
         ->capture_default_str();
-    app->add_option("--format", f.format, "table (human) or json (one object on stdout)")->capture_default_str();
+    app->add_option("--format", f.format, "table (human) or json (one object on stdout)")->type_name("table|json")->capture_default_str();
     app->add_flag("--quiet", f.quiet, "no progress line on stderr");
 }
 
@@ -154,10 +161,10 @@ int main(int argc, char** argv) {
         "D, mobility M0 and mean long-excursion duration E[t1] from N i.i.d. long excursions, with delta-method "
         "confidence intervals. D = sum (U - M0 t)^2 / sum t (renewal-reward form; correct for any M0).");
     add_model_flags(diff, df);
-    diff->add_option("--excursions", excursions, "number N of long excursions (>= 2)")->capture_default_str();
+    diff->add_option("--excursions", excursions, "number N of long excursions (>= 2)")->type_name("INT")->capture_default_str();
     diff->add_option("--estimator", estimator,
                      "renewal (default, correct) or paper (eq. 12, Var U/E t: biased when M0 != 0; for reproducing "
-                     "the paper's numbers only)")
+                     "the paper's numbers only)")->type_name("renewal|paper")
         ->capture_default_str();
     diff->add_flag("--allow-capped", allow_capped,
                    "report a result even if some excursions hit --max-steps (they are dropped; biased)");
@@ -170,10 +177,10 @@ int main(int argc, char** argv) {
         "Brute-force estimate D_t = var U(t) / t (paper eq. 13) from N' trajectories on [0, t]: biased by O(1/t), "
         "for comparison with the long-excursion estimator.");
     add_model_flags(brute, bf);
-    brute->add_option("--time", horizon, "horizon t [s]")->capture_default_str();
-    brute->add_option("--trajectories", trajectories, "number N' of trajectories (>= 2)")->capture_default_str();
-    brute->add_option("--x0", x0, "initial noise X(0) [s^-1/2]; default: the upper threshold x* (pdmp: the first lattice point above it, where the object starts moving)");
-    brute->add_option("--v0", v0, "initial velocity [m/s]")->capture_default_str();
+    brute->add_option("--time", horizon, "horizon t [s]")->type_name("NUM")->capture_default_str();
+    brute->add_option("--trajectories", trajectories, "number N' of trajectories (>= 2)")->type_name("INT")->capture_default_str();
+    brute->add_option("--x0", x0, "initial noise X(0) [s^-1/2]; default: the upper threshold x* (pdmp: the first lattice point above it, where the object starts moving)")->type_name("NUM");
+    brute->add_option("--v0", v0, "initial velocity [m/s]")->type_name("NUM")->capture_default_str();
     brute->footer(kConventions);
 
     try {
