@@ -34,7 +34,7 @@ Examples:
   stickslip diffusivity                                  # Fig. 2 case, inclusion engine
   stickslip diffusivity --engine pdmp --excursions 100000 --format json
   stickslip diffusivity --friction 1 --noise 1 --tau 0 --relaxation inf --bias 0 \
-      --dt 1e-3                                          # white noise: D -> 5/4 exactly
+      --dt 1e-3                                          # white noise, exact D = 5/4
   stickslip bruteforce --engine pdmp --time 10 --trajectories 20000)";
 
 struct ModelFlags {
