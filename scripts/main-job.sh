@@ -14,6 +14,6 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/build.sh >&2
 
 BUILD_DIR="${STICKSLIP_BUILD_DIR:-build}"
-EXCURSIONS="${STICKSLIP_MAIN_EXCURSIONS:-16000}"
+EXCURSIONS="${STICKSLIP_MAIN_EXCURSIONS:-24000}"
 echo "main job: stickslip diffusivity, paper Fig. 2 parameters, $EXCURSIONS long excursions" >&2
 exec "$BUILD_DIR/stickslip" diffusivity --excursions "$EXCURSIONS" "$@"

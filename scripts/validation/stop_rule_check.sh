@@ -6,6 +6,9 @@
 # 1/t:  D = (t2 D_t2 - t1 D_t1) / (t2 - t1).
 #
 # Usage: scripts/validation/stop_rule_check.sh [N_excursions] [N_trajectories] [t1] [t2]
+# Seeds are SEED_BASE+1 (bridge), +2 (stuck), +3, +4 (brute force); SEED_BASE
+# defaults to 100. docs/validation.md used `2000000 100000 10 20` with
+# SEED_BASE=100, and N_LE = 6e6, N_BF = 4e5 with SEED_BASE=200 (bridge only).
 # Defaults aim at ~0.5% standard errors and take hours on 2 cores; the numbers in
 # docs/validation.md state the sizes that were run.
 set -euo pipefail
@@ -15,13 +18,14 @@ N_BF=${2:-400000}
 T1=${3:-10}
 T2=${4:-20}
 B=${STICKSLIP_BIN:-build/stickslip}
+S=${SEED_BASE:-100}
 OUT=${STICKSLIP_VALIDATION_OUT:-build/validation}
 mkdir -p "$OUT"
 common=(--friction 1 --noise 1 --tau 0.1 --relaxation inf --bias 0 --dt 1e-3 --format json --quiet)
-$B diffusivity "${common[@]}" --excursions "$N_LE" --stop-rule bridge --seed 101 > "$OUT/sr_bridge.json"
-$B diffusivity "${common[@]}" --excursions "$N_LE" --stop-rule stuck --seed 102 > "$OUT/sr_stuck.json"
-$B bruteforce "${common[@]}" --trajectories "$N_BF" --time "$T1" --seed 103 > "$OUT/sr_bf_t1.json"
-$B bruteforce "${common[@]}" --trajectories "$N_BF" --time "$T2" --seed 104 > "$OUT/sr_bf_t2.json"
+$B diffusivity "${common[@]}" --excursions "$N_LE" --stop-rule bridge --seed $((S + 1)) > "$OUT/sr_bridge.json"
+$B diffusivity "${common[@]}" --excursions "$N_LE" --stop-rule stuck --seed $((S + 2)) > "$OUT/sr_stuck.json"
+$B bruteforce "${common[@]}" --trajectories "$N_BF" --time "$T1" --seed $((S + 3)) > "$OUT/sr_bf_t1.json"
+$B bruteforce "${common[@]}" --trajectories "$N_BF" --time "$T2" --seed $((S + 4)) > "$OUT/sr_bf_t2.json"
 /usr/bin/python3 - "$OUT" "$T1" "$T2" <<'PY'
 import json, math, sys
 out, t1, t2 = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
