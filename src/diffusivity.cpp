@@ -1,7 +1,7 @@
+#include "format.hpp"
 #include "stickslip/diffusivity.hpp"
 
 #include <cmath>
-#include <sstream>
 
 #include "stickslip/inclusion.hpp"
 #include "stickslip/pdmp.hpp"
@@ -13,13 +13,6 @@ namespace {
 /// Below this many excursions the standard error of D is itself too noisy to
 /// trust (U is heavy-tailed); the report says so.
 constexpr std::uint64_t kFewExcursions = 5000;
-
-std::string fmt(double x) {
-    std::ostringstream os;
-    os.precision(4);
-    os << x;
-    return os.str();
-}
 
 ResolvedEngine resolve(const ModelParams& p, const EngineSettings& s) {
     ResolvedEngine r;
@@ -49,12 +42,7 @@ ResolvedEngine resolve(const ModelParams& p, const EngineSettings& s) {
 void check_common(const ModelParams& p, const EngineSettings& s, double level) {
     validate(p);
     normal_quantile_two_sided(level); // validates level
-    // Both step settings are checked whatever the engine, so a typo in the
-    // unused one is reported rather than silently ignored.
-    if (!std::isfinite(s.dt) || s.dt <= 0)
-        throw InvalidParameter("dt", "dt must be a finite number > 0 (s), got " + fmt(s.dt));
-    if (!std::isfinite(s.grid) || s.grid <= 0)
-        throw InvalidParameter("grid", "grid must be a finite number > 0 (s^-1/2), got " + fmt(s.grid));
+    validate(s);
     if (s.engine == Engine::Pdmp) make_pdmp_constants(p, s);
     else make_inclusion_constants(p, s);
 }
@@ -70,7 +58,7 @@ void validate(const DiffusivityRequest& req) {
 void validate(const BruteForceRequest& req) {
     check_common(req.params, req.engine, req.level);
     if (!std::isfinite(req.horizon) || req.horizon <= 0)
-        throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + fmt(req.horizon));
+        throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + detail::format_number(req.horizon));
     if (req.trajectories < 2)
         throw InvalidParameter("trajectories",
                                "trajectories must be >= 2 (got " + std::to_string(req.trajectories) + ")");
@@ -99,9 +87,9 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
     if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
     out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
     if (req.engine.engine == Engine::Pdmp && out.resolved.truncated_mass > 1e-9)
-        out.warnings.push_back("the pdmp lattice is truncated at L = " + fmt(out.resolved.lattice_bound) +
+        out.warnings.push_back("the pdmp lattice is truncated at L = " + detail::format_number(out.resolved.lattice_bound) +
                                " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
-                               fmt(out.resolved.truncated_mass) + "; use a finer grid");
+                               detail::format_number(out.resolved.truncated_mass) + "; use a finer grid");
     if (done < kFewExcursions)
         out.warnings.push_back("only " + std::to_string(done) +
                                " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
@@ -109,7 +97,7 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
     const ModelParams nd = to_nondimensional(req.params);
     if (req.params.white())
         out.warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
-                               fmt(out.resolved.white_level) + " m/s, not a stick-slip excursion");
+                               detail::format_number(out.resolved.white_level) + " m/s, not a stick-slip excursion");
     else if (nd.tau < 0.1 || (req.engine.engine == Engine::Inclusion && req.engine.dt > 0.01 * req.params.tau))
         out.warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
                                "is not << tau; report it with that caveat, not as a check");
@@ -139,7 +127,7 @@ BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
     // actually simulated, and say so when it differs from the request.
     const double simulated = out.totals.moments.mean_y();
     if (std::fabs(simulated - req.horizon) > 1e-9 * req.horizon)
-        out.warnings.push_back("time rounded to a whole number of steps: " + fmt(simulated) + " s simulated");
+        out.warnings.push_back("time rounded to a whole number of steps: " + detail::format_number(simulated) + " s simulated");
     out.estimates = estimate_bruteforce(out.totals.moments, simulated, req.level);
     out.warnings.push_back("brute force estimates D_t = var U(t)/t, biased against D by O(1/t) (relative bias shrinks "
                            "like E[t1]/t); use `stickslip diffusivity` for an unbiased estimate");

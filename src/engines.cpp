@@ -1,25 +1,18 @@
 // Construction and validation of the per-run engine constants.
 #include <cmath>
-#include <sstream>
 
+#include "format.hpp"
 #include "stickslip/inclusion.hpp"
 #include "stickslip/pdmp.hpp"
 
 namespace stickslip {
 
 namespace {
-std::string fmt(double x) {
-    std::ostringstream os;
-    os.precision(6);
-    os << x;
-    return os.str();
-}
-
 void check_stationary(const ModelParams& p) {
     if (!has_stationary_state(p))
         throw InvalidParameter("bias", "with relaxation inf the bias must satisfy |bias| < friction (otherwise the "
                                        "object accelerates forever and D is undefined); got bias " +
-                                           fmt(p.bias) + ", friction " + fmt(p.friction));
+                                           detail::format_number(p.bias) + ", friction " + detail::format_number(p.friction));
 }
 } // namespace
 
@@ -53,19 +46,30 @@ double white_level_default(const ModelParams& p) {
     return 0.5 * scale;
 }
 
+void validate(const EngineSettings& s) {
+    // Both step settings are checked whatever the engine, so a typo in the
+    // unused one is reported rather than silently ignored.
+    if (!std::isfinite(s.dt) || s.dt <= 0)
+        throw InvalidParameter("dt", "dt must be a finite number > 0 (s), got " + detail::format_number(s.dt));
+    if (!std::isfinite(s.grid) || s.grid <= 0)
+        throw InvalidParameter("grid", "grid must be a finite number > 0 (s^-1/2), got " + detail::format_number(s.grid));
+    if (!std::isfinite(s.lattice_bound) || s.lattice_bound < 0)
+        throw InvalidParameter("lattice-bound", "lattice-bound must be >= 0 (s^-1/2; 0 chooses it)");
+    if (!std::isfinite(s.white_level) || s.white_level < 0)
+        throw InvalidParameter("white-level", "white-level must be a finite number >= 0 (m/s; 0 chooses it)");
+    if (s.max_work_per_excursion == 0) throw InvalidParameter("max-steps", "max-steps must be >= 1");
+}
+
 InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSettings& s) {
     validate(p);
+    validate(s);
     check_stationary(p);
-    if (!std::isfinite(s.dt) || s.dt <= 0)
-        throw InvalidParameter("dt", "dt must be a finite number > 0 (s), got " + fmt(s.dt));
-    if (s.max_work_per_excursion == 0)
-        throw InvalidParameter("max-steps", "max-steps must be >= 1");
     InclusionConstants c{};
     c.h = s.dt;
     c.keep = 1.0 - s.dt * p.inverse_relaxation();
     if (c.keep < 0)
-        throw InvalidParameter("dt", "dt must be smaller than relaxation (dt = " + fmt(s.dt) +
-                                         " s, relaxation = " + fmt(p.relaxation) +
+        throw InvalidParameter("dt", "dt must be smaller than relaxation (dt = " + detail::format_number(s.dt) +
+                                         " s, relaxation = " + detail::format_number(p.relaxation) +
                                          " s): the explicit drift step would overshoot");
     c.h_bias = s.dt * p.bias;
     c.h_friction = s.dt * p.friction;
@@ -74,15 +78,13 @@ InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSe
     if (c.white) {
         c.h_amp = std::sqrt(p.noise * s.dt);
         c.level = s.white_level > 0 ? s.white_level : white_level_default(p);
-        if (!std::isfinite(c.level))
-            throw InvalidParameter("white-level", "white-level must be a finite number > 0 (m/s)");
         c.rule = StopRule::Stuck; // unused for white noise
     } else {
         c.h_amp = s.dt * p.force_amplitude();
         c.ou = ou_step(p.tau, s.dt);
         if (!(std::isfinite(c.ou.l11) && std::isfinite(c.ou.l21) && std::isfinite(c.ou.l22) &&
               std::isfinite(c.ou.mean_coef)))
-            throw InvalidParameter("dt", "dt/tau = " + fmt(s.dt / p.tau) +
+            throw InvalidParameter("dt", "dt/tau = " + detail::format_number(s.dt / p.tau) +
                                              " is outside the range where the OU step is computable");
         c.x_up = p.upper_threshold();
         c.x_down = p.lower_threshold();
@@ -99,12 +101,7 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
     if (p.white())
         throw InvalidParameter("tau", "the pdmp engine needs colored noise (tau > 0); use --engine inclusion for "
                                       "white noise");
-    if (!std::isfinite(s.grid) || s.grid <= 0)
-        throw InvalidParameter("grid", "grid must be a finite number > 0 (s^-1/2), got " + fmt(s.grid));
-    if (!std::isfinite(s.lattice_bound) || s.lattice_bound < 0)
-        throw InvalidParameter("lattice-bound", "lattice-bound must be >= 0 (s^-1/2; 0 chooses it)");
-    if (s.max_work_per_excursion == 0)
-        throw InvalidParameter("max-steps", "max-steps must be >= 1");
+    validate(s);
     PdmpConstants c{};
     c.delta = s.grid;
     c.rate = 2.0 / (p.tau * p.tau * s.grid * s.grid);
@@ -123,7 +120,7 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
     if (s.lattice_bound > 0) {
         n = std::floor(s.lattice_bound / s.grid);
         if (n * s.grid * p.tau * s.grid >= 2.0)
-            throw InvalidParameter("lattice-bound", "tau*grid*L = " + fmt(p.tau * s.grid * n * s.grid) +
+            throw InvalidParameter("lattice-bound", "tau*grid*L = " + detail::format_number(p.tau * s.grid * n * s.grid) +
                                                         " must be < 2; use a smaller lattice-bound or grid");
     } else {
         n = std::ceil(8.0 / std::sqrt(p.tau) / s.grid);
@@ -131,18 +128,18 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
         n = std::fmin(n, n_allowed);
     }
     if (!(n >= 1) || n > 1e8)
-        throw InvalidParameter("grid", "grid = " + fmt(s.grid) + " gives " + fmt(2 * n + 1) +
+        throw InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " + detail::format_number(2 * n + 1) +
                                            " lattice points; choose grid so that tau*grid^2 is between 1e-16 and 1");
     if ((k_plus + 2 > n || k_minus - 2 < -n) && s.lattice_bound > 0)
-        throw InvalidParameter("lattice-bound", "lattice-bound L = " + fmt(n * s.grid) +
+        throw InvalidParameter("lattice-bound", "lattice-bound L = " + detail::format_number(n * s.grid) +
                                                     " s^-1/2 does not reach the noise thresholds x* = " +
-                                                    fmt(p.upper_threshold()) + ", x-* = " +
-                                                    fmt(p.lower_threshold()) + " (s^-1/2) plus two grid steps");
+                                                    detail::format_number(p.upper_threshold()) + ", x-* = " +
+                                                    detail::format_number(p.lower_threshold()) + " (s^-1/2) plus two grid steps");
     if (k_plus + 2 > n || k_minus - 2 < -n)
         throw InvalidParameter("grid", "tau*grid*L must be < 2, but the lattice must reach the noise thresholds x* = " +
-                                           fmt(p.upper_threshold()) + ", x-* = " + fmt(p.lower_threshold()) +
-                                           " (s^-1/2); with grid " + fmt(s.grid) + " it only reaches L = " +
-                                           fmt(n * s.grid) + ": use a finer grid");
+                                           detail::format_number(p.upper_threshold()) + ", x-* = " + detail::format_number(p.lower_threshold()) +
+                                           " (s^-1/2); with grid " + detail::format_number(s.grid) + " it only reaches L = " +
+                                           detail::format_number(n * s.grid) + ": use a finer grid");
     c.n_max = static_cast<int>(n);
     // The quotients above are rounded; when a threshold falls on a lattice
     // point they can disagree with the sign of pdmp_acceleration, which is

@@ -1,18 +1,9 @@
+#include "format.hpp"
 #include "stickslip/params.hpp"
 
 #include <cmath>
-#include <sstream>
 
 namespace stickslip {
-
-namespace {
-std::string fmt(double x) {
-    std::ostringstream os;
-    os.precision(6);
-    os << x;
-    return os.str();
-}
-} // namespace
 
 double ModelParams::force_amplitude() const { return std::sqrt(noise / 2.0); }
 
@@ -60,21 +51,21 @@ ModelParams from_nondimensional(const ModelParams& nd, double friction, double n
 
 void validate(const ModelParams& p) {
     if (!std::isfinite(p.friction) || p.friction <= 0)
-        throw InvalidParameter("friction", "friction must be a finite number > 0 (m s^-2), got " + fmt(p.friction));
+        throw InvalidParameter("friction", "friction must be a finite number > 0 (m s^-2), got " + detail::format_number(p.friction));
     if (!std::isfinite(p.noise) || p.noise <= 0)
-        throw InvalidParameter("noise", "noise must be a finite number > 0 (m^2 s^-3), got " + fmt(p.noise));
+        throw InvalidParameter("noise", "noise must be a finite number > 0 (m^2 s^-3), got " + detail::format_number(p.noise));
     if (!std::isfinite(p.tau) || p.tau < 0)
-        throw InvalidParameter("tau", "tau must be a finite number >= 0 (s; 0 is white noise), got " + fmt(p.tau));
+        throw InvalidParameter("tau", "tau must be a finite number >= 0 (s; 0 is white noise), got " + detail::format_number(p.tau));
     if (std::isnan(p.relaxation) || p.relaxation <= 0)
         throw InvalidParameter("relaxation",
-                               "relaxation must be > 0 (s) or inf (no viscous drag), got " + fmt(p.relaxation));
+                               "relaxation must be > 0 (s) or inf (no viscous drag), got " + detail::format_number(p.relaxation));
     if (!std::isfinite(p.bias))
-        throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + fmt(p.bias));
+        throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + detail::format_number(p.bias));
     // Products that overflow would make every later formula meaningless.
     const Scales s = scales_of(p);
     if (!std::isfinite(s.diffusivity) || s.diffusivity <= 0 || !std::isfinite(s.time) || s.time <= 0)
         throw InvalidParameter("noise", "friction and noise are out of the representable range: noise^3/friction^4 = " +
-                                            fmt(s.diffusivity));
+                                            detail::format_number(s.diffusivity));
 }
 
 bool has_stationary_state(const ModelParams& p) {

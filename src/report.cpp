@@ -49,7 +49,7 @@ ordered_json nondimensional_json(const ModelParams& p, const EngineSettings& s) 
     j["tau"] = nd.tau;
     j["relaxation"] = number_or_inf(nd.relaxation);
     j["bias"] = nd.bias;
-    if (s.engine == Engine::Pdmp) j["grid"] = s.grid * sc.time > 0 ? s.grid * std::sqrt(sc.time) : 0.0;
+    if (s.engine == Engine::Pdmp) j["grid"] = s.grid / sc.noise_level;
     else j["dt"] = s.dt / sc.time;
     j["time_unit"] = sc.time;
     j["length_unit"] = sc.length;
@@ -104,7 +104,7 @@ std::string param_line(const ModelParams& p, const EngineSettings& s) {
     const ModelParams nd = to_nondimensional(p);
     os << "nondimensional: tau' " << g(nd.tau) << ", relaxation' "
        << (std::isinf(nd.relaxation) ? std::string("inf") : g(nd.relaxation)) << ", bias' " << g(nd.bias);
-    if (s.engine == Engine::Pdmp) os << ", grid' " << g(s.grid * std::sqrt(scales_of(p).time));
+    if (s.engine == Engine::Pdmp) os << ", grid' " << g(s.grid / scales_of(p).noise_level);
     else os << ", dt' " << g(s.dt / scales_of(p).time);
     os << "  (time unit " << g(scales_of(p).time) << " s, length unit " << g(scales_of(p).length) << " m)\n";
     return os.str();

@@ -52,6 +52,11 @@ struct EngineSettings {
     std::uint64_t max_work_per_excursion = 200'000'000;
 };
 
+/// Throws InvalidParameter for a non-positive or non-finite dt or grid, a
+/// negative lattice bound or white level, or a zero work cap. Both step
+/// settings are checked whatever the engine.
+void validate(const EngineSettings& s);
+
 /// Outcome of one long excursion (or one brute-force trajectory).
 struct ExcursionOutcome {
     double displacement = 0.0; ///< U [m]
