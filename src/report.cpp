@@ -76,6 +76,19 @@ ordered_json resolved_json(const ResolvedEngine& r, const ModelParams& p, const 
     return j;
 }
 
+/// The common tail of every report: work done (the only part that changes
+/// between runs with the same seed), warnings and the library version.
+void add_work_and_notes(ordered_json& j, const EngineSettings& s, const RunTotals& totals,
+                        const std::vector<std::string>& warnings) {
+    ordered_json work;
+    work[s.engine == Engine::Pdmp ? "events" : "steps"] = totals.work;
+    work["seconds"] = totals.seconds;
+    work["threads"] = totals.threads;
+    j["work"] = work;
+    j["warnings"] = warnings;
+    j["version"] = STICKSLIP_VERSION_STRING;
+}
+
 std::string dump(const ordered_json& j, int indent) { return j.dump(indent) + "\n"; }
 
 std::string g(double x, int prec = 6) {
@@ -134,13 +147,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     j["completed"] = r.estimates.excursions;
     j["capped"] = r.totals.capped;
     j["engine_details"] = resolved_json(r.resolved, q.params, q.engine);
-    ordered_json work;
-    work[q.engine.engine == Engine::Pdmp ? "events" : "steps"] = r.totals.work;
-    work["seconds"] = r.totals.seconds;
-    work["threads"] = r.totals.threads;
-    j["work"] = work;
-    j["warnings"] = r.warnings;
-    j["version"] = STICKSLIP_VERSION_STRING;
+    add_work_and_notes(j, q.engine, r.totals, r.warnings);
     return dump(j, indent);
 }
 
@@ -166,13 +173,7 @@ std::string to_json(const BruteForceResult& r, int indent) {
     j["diffusivity"] = estimate_json(r.estimates.diffusivity);
     j["mobility"] = estimate_json(r.estimates.mobility);
     j["engine_details"] = resolved_json(r.resolved, q.params, q.engine);
-    ordered_json work;
-    work[q.engine.engine == Engine::Pdmp ? "events" : "steps"] = r.totals.work;
-    work["seconds"] = r.totals.seconds;
-    work["threads"] = r.totals.threads;
-    j["work"] = work;
-    j["warnings"] = r.warnings;
-    j["version"] = STICKSLIP_VERSION_STRING;
+    add_work_and_notes(j, q.engine, r.totals, r.warnings);
     return dump(j, indent);
 }
 
