@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# bench/run.sh -- stickslip's benchmark driver. Prints one table comparing
+#   * the Google Benchmark kernels (one core): Philox normal pairs alone,
+#     inclusion steps/s and PDMP events/s for the Fig. 2 and pure-dry cases;
+#   * whole runs on one core for the Fig. 2 case at dt = 1e-3 s:
+#     `stickslip diffusivity --threads 1`, the plain C++ loop (mt19937_64 +
+#     normal_distribution, -O3 -march=native and -O2) and the NumPy script,
+#     with D +- SE and a PASS/FAIL check that each baseline's D agrees with
+#     stickslip's within 4 combined standard errors.
+# Whole runs use dt = 1e-3 s (8e3 steps per excursion instead of 8e4 at the
+# CLI's default 1e-4) so that the driver stays cheap; the kernels time the
+# Fig. 2 case at dt = 1e-4 s as the paper runs it.
+#
+# Usage: bench/run.sh [--quick] [--excursions N] [--numpy-excursions N]
+#                     [--seed S] [--min-time SECONDS] [--build-dir DIR]
+# Env:   STICKSLIP_BENCH_PYTHON  interpreter for the NumPy baseline (default /usr/bin/python3)
+# Exit:  0 all checks passed (skipped baselines do not count), 1 a FAIL, 2 usage/build error.
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/.." && pwd)
+build="$root/build-bench"
+excursions=20000
+numpy_excursions=5000
+min_time=0.5
+seed=1
+quick=0
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --quick) quick=1; shift ;;
+    --excursions) excursions=$2; shift 2 ;;
+    --numpy-excursions) numpy_excursions=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    --min-time) min_time=$2; shift 2 ;;
+    --build-dir) build=$2; shift 2 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) echo "run.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+if [[ $quick == 1 ]]; then
+  excursions=2000; numpy_excursions=1000; min_time=0.1
+fi
+dt=1e-3
+py=${STICKSLIP_BENCH_PYTHON:-/usr/bin/python3}
+
+# --- build (own build dir; the benchmark option is OFF by default elsewhere) ---
+echo "== building in $build" >&2
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_BUILD_BENCH=ON \
+      -DSTICKSLIP_BUILD_TESTS=OFF >/dev/null
+cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" \
+      --target stickslip_cli stickslip_bench_kernels plain_loop_O3 plain_loop_O2 >/dev/null
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# --- kernels (single thread) ---
+echo "== kernels (Google Benchmark, min_time ${min_time}s each)" >&2
+"$build/bench/stickslip_bench_kernels" --benchmark_min_time="$min_time" \
+    --benchmark_out="$tmp/kernels.json" --benchmark_out_format=json >/dev/null
+
+# --- whole runs, Fig. 2 case, dt 1e-3, one thread ---
+echo "== stickslip diffusivity: $excursions excursions, dt $dt, 1 thread" >&2
+"$build/stickslip" diffusivity --threads 1 --format json --quiet --dt "$dt" \
+    --excursions "$excursions" --seed "$seed" >"$tmp/stickslip.json"
+
+for opt in O3 O2; do
+  echo "== plain loop -$opt: $excursions excursions" >&2
+  "$build/bench/plain_loop_$opt" --excursions "$excursions" --dt "$dt" \
+      --seed "$((seed + 1))" >"$tmp/plain_$opt.json"
+done
+
+echo "== NumPy baseline: $numpy_excursions excursions ($py)" >&2
+if "$py" -c "import numpy" 2>/dev/null; then
+  timeout 300 "$py" "$here/baselines/numpy_baseline.py" --excursions "$numpy_excursions" \
+      --dt "$dt" --seed "$((seed + 2))" >"$tmp/numpy.json" \
+    || { echo "NumPy baseline failed (exit $?)" >"$tmp/numpy.skip"; rm -f "$tmp/numpy.json"; }
+else
+  echo "SKIPPED: numpy is not installed for $py (set STICKSLIP_BENCH_PYTHON to an interpreter that has it)" \
+    >"$tmp/numpy.skip"
+fi
+
+# --- report (stdlib-only Python) ---
+python_report=/usr/bin/python3
+command -v "$python_report" >/dev/null || python_report=python3
+"$python_report" "$here/report.py" "$tmp" --excursions "$excursions" \
+    --numpy-excursions "$numpy_excursions" --dt "$dt" --cores "$(nproc 2>/dev/null || echo '?')"
