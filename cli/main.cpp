@@ -45,36 +45,34 @@ struct ModelFlags {
     bool quiet = false;
 };
 
+/// A value option: shown with its type and its default in --help.
+CLI::Option* add_value(CLI::App* app, const std::string& name, std::string& value, const std::string& type,
+                       const std::string& help) {
+    return app->add_option(name, value, help)->type_name(type)->capture_default_str();
+}
+
 void add_model_flags(CLI::App* app, ModelFlags& f) {
-    app->add_option("--friction", f.friction, "dry-friction coefficient Delta [m s^-2], > 0")->type_name("NUM")->capture_default_str();
-    app->add_option("--noise", f.noise, "noise intensity Gamma [m^2 s^-3], > 0")->type_name("NUM")->capture_default_str();
-    app->add_option("--tau", f.tau, "noise correlation time [s], >= 0 (0 = white noise)")->type_name("NUM")->capture_default_str();
-    app->add_option("--relaxation", f.relaxation, "viscous relaxation time tauL [s], > 0, or inf for none")->type_name("NUM|inf")
-        ->capture_default_str();
-    app->add_option("--bias", f.bias, "constant force gbar [m s^-2], e.g. gravity on an incline")->type_name("NUM")
-        ->capture_default_str();
-    app->add_option("--engine", f.engine,
-                    "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)")->type_name("inclusion|pdmp")
-        ->capture_default_str();
-    app->add_option("--dt", f.dt, "time step of the inclusion engine [s]")->type_name("NUM")->capture_default_str();
-    app->add_option("--grid", f.grid, "lattice step delta of the pdmp noise [s^-1/2]")->type_name("NUM")->capture_default_str();
-    app->add_option("--lattice-bound", f.lattice_bound,
-                    "pdmp lattice half-width L [s^-1/2]; 0 = 8 tau^-1/2 (or what tau*grid*L < 2 allows)")->type_name("NUM")
-        ->capture_default_str();
-    app->add_option("--stop-rule", f.stop_rule,
-                    "inclusion HLE end test: auto (bridge if dt <= tau/10, else stuck), bridge (rule Q), stuck "
-                    "(rule P)")->type_name("auto|bridge|stuck")
-        ->capture_default_str();
-    app->add_option("--white-level", f.white_level,
-                    "white noise only: regeneration velocity levels +-c [m/s]; 0 chooses c")->type_name("NUM")
-        ->capture_default_str();
-    app->add_option("--seed", f.seed, "random seed (64-bit); same seed, same result")->type_name("INT")->capture_default_str();
-    app->add_option("--threads", f.threads, "worker threads; 0 = all cores")->type_name("INT")->capture_default_str();
-    app->add_option("--level", f.level, "confidence level of the intervals, in (0, 1)")->type_name("NUM")->capture_default_str();
-    app->add_option("--max-steps", f.max_steps,
-                    "runaway guard: most steps (inclusion) or events (pdmp) per long excursion")->type_name("INT")
-        ->capture_default_str();
-    app->add_option("--format", f.format, "table (human) or json (one object on stdout)")->type_name("table|json")->capture_default_str();
+    add_value(app, "--friction", f.friction, "NUM", "dry-friction coefficient Delta [m s^-2], > 0");
+    add_value(app, "--noise", f.noise, "NUM", "noise intensity Gamma [m^2 s^-3], > 0");
+    add_value(app, "--tau", f.tau, "NUM", "noise correlation time [s], >= 0 (0 = white noise)");
+    add_value(app, "--relaxation", f.relaxation, "NUM|inf", "viscous relaxation time tauL [s], > 0, or inf for none");
+    add_value(app, "--bias", f.bias, "NUM", "constant force gbar [m s^-2], e.g. gravity on an incline");
+    add_value(app, "--engine", f.engine, "inclusion|pdmp",
+              "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)");
+    add_value(app, "--dt", f.dt, "NUM", "time step of the inclusion engine [s]");
+    add_value(app, "--grid", f.grid, "NUM", "lattice step delta of the pdmp noise [s^-1/2]");
+    add_value(app, "--lattice-bound", f.lattice_bound, "NUM",
+              "pdmp lattice half-width L [s^-1/2]; 0 = 8 tau^-1/2 (or what tau*grid*L < 2 allows)");
+    add_value(app, "--stop-rule", f.stop_rule, "auto|bridge|stuck",
+              "inclusion HLE end test: auto (bridge if dt <= tau/10, else stuck), bridge (rule Q), stuck (rule P)");
+    add_value(app, "--white-level", f.white_level, "NUM",
+              "white noise only: regeneration velocity levels +-c [m/s]; 0 chooses c");
+    add_value(app, "--seed", f.seed, "INT", "random seed (64-bit); same seed, same result");
+    add_value(app, "--threads", f.threads, "INT", "worker threads; 0 = all cores");
+    add_value(app, "--level", f.level, "NUM", "confidence level of the intervals, in (0, 1)");
+    add_value(app, "--max-steps", f.max_steps, "INT",
+              "runaway guard: most steps (inclusion) or events (pdmp) per long excursion");
+    add_value(app, "--format", f.format, "table|json", "table (human) or json (one object on stdout)");
     app->add_flag("--quiet", f.quiet, "no progress line on stderr");
 }
 
@@ -133,8 +131,8 @@ void fill(const ModelFlags& f, ss::ModelParams& p, ss::EngineSettings& e, ss::Ru
 std::function<bool(const ss::Progress&)> progress_line(bool quiet, const char* what) {
     if (quiet || !isatty(STDERR_FILENO)) return {};
     return [what](const ss::Progress& pr) {
-        const double rate = pr.seconds > 0 ? pr.done / pr.seconds : 0.0;
-        const double left = rate > 0 ? (pr.total - pr.done) / rate : 0.0;
+        const double rate = pr.seconds > 0 ? static_cast<double>(pr.done) / pr.seconds : 0.0;
+        const double left = rate > 0 ? static_cast<double>(pr.total - pr.done) / rate : 0.0;
         std::fprintf(stderr, "\r%llu/%llu %s, %.1f s elapsed, ~%.0f s left   ",
                      static_cast<unsigned long long>(pr.done), static_cast<unsigned long long>(pr.total), what,
                      pr.seconds, left);
@@ -161,11 +159,10 @@ int main(int argc, char** argv) {
         "D, mobility M0 and mean long-excursion duration E[t1] from N i.i.d. long excursions, with delta-method "
         "confidence intervals. D = sum (U - M0 t)^2 / sum t (renewal-reward form; correct for any M0).");
     add_model_flags(diff, df);
-    diff->add_option("--excursions", excursions, "number N of long excursions (>= 2)")->type_name("INT")->capture_default_str();
-    diff->add_option("--estimator", estimator,
-                     "renewal (default, correct) or paper (eq. 12, Var U/E t: biased when M0 != 0; for reproducing "
-                     "the paper's numbers only)")->type_name("renewal|paper")
-        ->capture_default_str();
+    add_value(diff, "--excursions", excursions, "INT", "number N of long excursions (>= 2)");
+    add_value(diff, "--estimator", estimator, "renewal|paper",
+              "renewal (default, correct) or paper (eq. 12, Var U/E t: biased when M0 != 0; for reproducing the "
+              "paper's numbers only)");
     diff->add_flag("--allow-capped", allow_capped,
                    "report a result even if some excursions hit --max-steps (they are dropped; biased)");
     diff->footer(kConventions);
@@ -177,10 +174,13 @@ int main(int argc, char** argv) {
         "Brute-force estimate D_t = var U(t) / t (paper eq. 13) from N' trajectories on [0, t]: biased by O(1/t), "
         "for comparison with the long-excursion estimator.");
     add_model_flags(brute, bf);
-    brute->add_option("--time", horizon, "horizon t [s]")->type_name("NUM")->capture_default_str();
-    brute->add_option("--trajectories", trajectories, "number N' of trajectories (>= 2)")->type_name("INT")->capture_default_str();
-    brute->add_option("--x0", x0, "initial noise X(0) [s^-1/2]; default: the upper threshold x* (pdmp: the first lattice point above it, where the object starts moving)")->type_name("NUM");
-    brute->add_option("--v0", v0, "initial velocity [m/s]")->type_name("NUM")->capture_default_str();
+    add_value(brute, "--time", horizon, "NUM", "horizon t [s]");
+    add_value(brute, "--trajectories", trajectories, "INT", "number N' of trajectories (>= 2)");
+    brute->add_option("--x0", x0,
+                      "initial noise X(0) [s^-1/2]; default: the upper threshold x* (pdmp: the first lattice point "
+                      "above it, where the object starts moving)")
+        ->type_name("NUM");
+    add_value(brute, "--v0", v0, "NUM", "initial velocity [m/s]");
     brute->footer(kConventions);
 
     try {

@@ -40,11 +40,10 @@ ResolvedEngine resolve(const ModelParams& p, const EngineSettings& s) {
 }
 
 void check_common(const ModelParams& p, const EngineSettings& s, double level) {
-    validate(p);
-    normal_quantile_two_sided(level); // validates level
-    validate(s);
+    // Building the engine's constants validates the model and both step settings.
     if (s.engine == Engine::Pdmp) make_pdmp_constants(p, s);
     else make_inclusion_constants(p, s);
+    normal_quantile_two_sided(level); // validates level
 }
 
 } // namespace
