@@ -19,6 +19,9 @@ PACKAGES=(
   libcli11-dev        # CLI11: the command-line parser
   nlohmann-json3-dev  # nlohmann/json: JSON reports
   libboost-dev        # Boost.Math (header-only): quadrature and distributions
+  python3             # Debian's /usr/bin/python3: figures and validation scripts
+  python3-numpy       # arrays for the figures, the NumPy baseline of bench/
+  python3-matplotlib  # the paper's figures (scripts/figures)
 )
 
 if [[ "${STICKSLIP_SKIP_DEPS:-0}" == 1 ]]; then

@@ -1,4 +1,5 @@
 #include "format.hpp"
+#include "run_checks.hpp"
 #include "stickslip/diffusivity.hpp"
 
 #include <cmath>
@@ -14,7 +15,9 @@ namespace {
 /// trust (U is heavy-tailed); the report says so.
 constexpr std::uint64_t kFewExcursions = 5000;
 
-ResolvedEngine resolve(const ModelParams& p, const EngineSettings& s) {
+} // namespace
+
+ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s) {
     ResolvedEngine r;
     if (!p.white()) {
         r.upper_threshold = p.upper_threshold();
@@ -39,6 +42,8 @@ ResolvedEngine resolve(const ModelParams& p, const EngineSettings& s) {
     return r;
 }
 
+namespace {
+
 void check_common(const ModelParams& p, const EngineSettings& s, double level) {
     // Building the engine's constants validates the model and both step settings.
     if (s.engine == Engine::Pdmp) make_pdmp_constants(p, s);
@@ -47,6 +52,39 @@ void check_common(const ModelParams& p, const EngineSettings& s, double level) {
 }
 
 } // namespace
+
+namespace detail {
+
+void finish_long_excursion_run(const ModelParams& p, const EngineSettings& s, const ResolvedEngine& resolved,
+                               const RunTotals& totals, bool allow_capped, std::vector<std::string>& warnings) {
+    const std::uint64_t done = totals.moments.count();
+    if (totals.capped > 0) {
+        const std::string msg = std::to_string(totals.capped) + " of " + std::to_string(totals.requested) +
+                                " excursions hit the runaway guard of " + std::to_string(s.max_work_per_excursion) +
+                                (s.engine == Engine::Pdmp ? " events" : " steps") +
+                                " and were dropped: the estimates are biased towards short excursions";
+        if (!allow_capped) throw CappedExcursions(msg + " (raise --max-steps, or pass --allow-capped)");
+        warnings.push_back(msg);
+    }
+    if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
+    if (s.engine == Engine::Pdmp && resolved.truncated_mass > 1e-9)
+        warnings.push_back("the pdmp lattice is truncated at L = " + format_number(resolved.lattice_bound) +
+                           " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
+                           format_number(resolved.truncated_mass) + "; use a finer grid");
+    if (done < kFewExcursions)
+        warnings.push_back("only " + std::to_string(done) +
+                           " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
+                           "themselves uncertain; use 10000 or more for reliable intervals");
+    const ModelParams nd = to_nondimensional(p);
+    if (p.white())
+        warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
+                           format_number(resolved.white_level) + " m/s, not a stick-slip excursion");
+    else if (nd.tau < 0.1 || (s.engine == Engine::Inclusion && s.dt > 0.01 * p.tau))
+        warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
+                           "is not << tau; report it with that caveat, not as a check");
+}
+
+} // namespace detail
 
 void validate(const DiffusivityRequest& req) {
     check_common(req.params, req.engine, req.level);
@@ -71,35 +109,11 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
     validate(req);
     DiffusivityResult out;
     out.request = req;
-    out.resolved = resolve(req.params, req.engine);
+    out.resolved = resolve_engine(req.params, req.engine);
     out.totals = run_long_excursions(req.params, req.engine, req.excursions, req.control);
-    const std::uint64_t done = out.totals.moments.count();
-    if (out.totals.capped > 0) {
-        const std::string msg = std::to_string(out.totals.capped) + " of " + std::to_string(req.excursions) +
-                                " excursions hit the runaway guard of " +
-                                std::to_string(req.engine.max_work_per_excursion) +
-                                (req.engine.engine == Engine::Pdmp ? " events" : " steps") +
-                                " and were dropped: the estimates are biased towards short excursions";
-        if (!req.allow_capped) throw CappedExcursions(msg + " (raise --max-steps, or pass --allow-capped)");
-        out.warnings.push_back(msg);
-    }
-    if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
+    detail::finish_long_excursion_run(req.params, req.engine, out.resolved, out.totals, req.allow_capped,
+                                      out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
-    if (req.engine.engine == Engine::Pdmp && out.resolved.truncated_mass > 1e-9)
-        out.warnings.push_back("the pdmp lattice is truncated at L = " + detail::format_number(out.resolved.lattice_bound) +
-                               " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
-                               detail::format_number(out.resolved.truncated_mass) + "; use a finer grid");
-    if (done < kFewExcursions)
-        out.warnings.push_back("only " + std::to_string(done) +
-                               " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
-                               "themselves uncertain; use 10000 or more for reliable intervals");
-    const ModelParams nd = to_nondimensional(req.params);
-    if (req.params.white())
-        out.warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
-                               detail::format_number(out.resolved.white_level) + " m/s, not a stick-slip excursion");
-    else if (nd.tau < 0.1 || (req.engine.engine == Engine::Inclusion && req.engine.dt > 0.01 * req.params.tau))
-        out.warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
-                               "is not << tau; report it with that caveat, not as a check");
     if (req.estimator == Estimator::Paper &&
         (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
         out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");
@@ -110,7 +124,7 @@ BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
     validate(req);
     BruteForceResult out;
     out.request = req;
-    out.resolved = resolve(req.params, req.engine);
+    out.resolved = resolve_engine(req.params, req.engine);
     out.resolved.stop_rule = "none"; // brute force needs no regeneration test
     double x0 = req.x0;
     if (std::isnan(x0)) {

@@ -2,6 +2,7 @@
 
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "stickslip/params.hpp"
@@ -78,6 +79,85 @@ double normal_quantile_two_sided(double level) {
     if (!(level > 0.0 && level < 1.0))
         throw InvalidParameter("level", "level must be strictly between 0 and 1");
     return boost::math::quantile(boost::math::normal_distribution<double>(), 0.5 * (1.0 + level));
+}
+
+Estimate make_interval(double value, double std_error, double level) {
+    const double q = normal_quantile_two_sided(level);
+    Estimate e;
+    e.value = value;
+    e.std_error = std_error;
+    e.lo = value - q * std_error;
+    e.hi = value + q * std_error;
+    e.level = level;
+    return e;
+}
+
+RatioMoments::RatioMoments(std::size_t dim, bool full_covariance)
+    : dim_(dim), full_(full_covariance), mean_y_(dim, 0.0), m_yt_(dim, 0.0),
+      m_yy_(full_covariance ? dim * dim : dim, 0.0) {}
+
+void RatioMoments::add(const double* y, double t) {
+    // Chan's update with a one-point sample: M += d_j d_k (n-1)/n with d = x - old mean.
+    ++n_;
+    const double n = static_cast<double>(n_);
+    const double dt = t - mean_t_;
+    const double f = (n - 1.0) / n;
+    mean_t_ += dt / n;
+    m_tt_ += dt * dt * f;
+    thread_local std::vector<double> d;
+    d.resize(dim_);
+    for (std::size_t j = 0; j < dim_; ++j) {
+        d[j] = y[j] - mean_y_[j];
+        mean_y_[j] += d[j] / n;
+        m_yt_[j] += d[j] * dt * f;
+    }
+    if (full_) {
+        for (std::size_t j = 0; j < dim_; ++j) {
+            const double dj = d[j] * f;
+            double* row = &m_yy_[j * dim_];
+            for (std::size_t k = 0; k < dim_; ++k) row[k] += dj * d[k];
+        }
+    } else {
+        for (std::size_t j = 0; j < dim_; ++j) m_yy_[j] += d[j] * d[j] * f;
+    }
+}
+
+void RatioMoments::merge(const RatioMoments& o) {
+    if (o.n_ == 0) return;
+    if (n_ == 0) {
+        *this = o;
+        return;
+    }
+    if (o.dim_ != dim_ || o.full_ != full_) throw std::logic_error("RatioMoments::merge: shapes differ");
+    const double na = static_cast<double>(n_), nb = static_cast<double>(o.n_), n = na + nb;
+    const double f = na * nb / n;
+    const double dt = o.mean_t_ - mean_t_;
+    std::vector<double> d(dim_);
+    for (std::size_t j = 0; j < dim_; ++j) d[j] = o.mean_y_[j] - mean_y_[j];
+    for (std::size_t j = 0; j < dim_; ++j) {
+        if (full_) {
+            for (std::size_t k = 0; k < dim_; ++k) cyy(j, k) += o.cyy(j, k) + d[j] * d[k] * f;
+        } else {
+            m_yy_[j] += o.m_yy_[j] + d[j] * d[j] * f;
+        }
+        m_yt_[j] += o.m_yt_[j] + d[j] * dt * f;
+        mean_y_[j] += d[j] * nb / n;
+    }
+    m_tt_ += o.m_tt_ + dt * dt * f;
+    mean_t_ += dt * nb / n;
+    n_ += o.n_;
+}
+
+double RatioMoments::ratio_covariance(std::size_t j, std::size_t k) const {
+    if (j != k && !full_) throw std::logic_error("RatioMoments: covariance of two ratios needs full_covariance");
+    if (n_ < 2) return std::numeric_limits<double>::quiet_NaN();
+    const double rj = ratio(j), rk = ratio(k), n = static_cast<double>(n_);
+    const double c = cyy(j, k) - rj * m_yt_[k] - rk * m_yt_[j] + rj * rk * m_tt_;
+    return c / (n - 1.0) / n / (mean_t_ * mean_t_);
+}
+
+Estimate RatioMoments::estimate(std::size_t j, double level) const {
+    return make_interval(ratio(j), std::sqrt(std::fmax(ratio_covariance(j, j), 0.0)), level);
 }
 
 namespace {

@@ -5,7 +5,13 @@
 // Hayakawa's, p(v) ~ exp(-v^2/(Gamma tauL) - 2 Delta |v|/Gamma + 2 gbar v/Gamma),
 // and whose mobility and diffusivity follow from one-dimensional quadrature:
 //   M0 = int v p dv,  F(v) = int_{-inf}^v (u - M0) p(u) du,  D = (4/Gamma) int F^2/p dv.
-// These are the references for every white-noise-limit test. All in SI units.
+// For pure dry friction (no viscous drag, no bias) the transient law is known in
+// closed form too (Touchette, Van der Straeten and Just 2010). These are the
+// references for every white-noise-limit test. All in SI units; p.tau is ignored
+// throughout (the references are those of the white-noise limit).
+//
+// Noise convention (MODEL.md section 2): the white-noise limit has intensity
+// Gamma = p.noise, i.e. the Fokker-Planck diffusion coefficient is Gamma/2.
 #pragma once
 
 #include "params.hpp"
@@ -21,15 +27,89 @@ struct WhiteNoiseReference {
 };
 WhiteNoiseReference white_noise_reference(const ModelParams& p);
 
+/// Hayakawa's stationary velocity density for white noise, normalised once.
+///
+/// p(v) = exp(-phi(v)) / Z with phi(v) = v^2/(Gamma tauL) + 2 Delta |v|/Gamma
+/// - 2 gbar v/Gamma shifted so that min phi = 0; phi is convex and piecewise
+/// quadratic with a kink at v = 0. Build it once and evaluate it many times:
+/// the constructor does the quadratures (about a millisecond), the calls are
+/// a few flops. p.tau is ignored. Throws InvalidParameter (like every function
+/// here: "friction", "noise", ... from validate(), or "bias" when no
+/// stationary state exists, i.e. relaxation = inf and |bias| >= friction).
+class HayakawaDensity {
+public:
+    explicit HayakawaDensity(const ModelParams& p);
+
+    /// Normalised density p(v) [s/m] at velocity v [m/s]; 0 for |v| = inf.
+    double operator()(double v) const;
+    /// P(a <= V <= b) [1] for a <= b [m/s] (either may be infinite); for a > b
+    /// it is -P(b <= V <= a). Computed by Gauss-Legendre panels split at the
+    /// kink and the mode, so each panel integrates an analytic function and the
+    /// result is exact to rounding: use it to compare histogram bins, where the
+    /// density at the bin centre would be off by O(width^2).
+    double probability(double a, double b) const;
+    /// Stationary mean E[V] = M0 [m/s].
+    double mean() const { return mean_; }
+    /// Stationary variance Var(V) [m^2/s^2].
+    double variance() const { return variance_; }
+    /// phi(v) = -log(p(v)/p(mode)) >= 0 [1]: the potential, 0 at the mode.
+    double potential(double v) const;
+    /// The most probable velocity [m/s] (0 unless |bias| > friction with drag).
+    double mode() const { return mode_; }
+
+private:
+    template <class Visit>
+    void visit_nodes(double a, double b, Visit&& visit) const;
+
+    double a2_ = 0, cp_ = 0, cm_ = 0; // phi = a2 v^2 + cp v (v >= 0), a2 v^2 - cm v (v < 0), unshifted [s^2/m^2, s/m]
+    double mode_ = 0, phi_min_ = 0;   // argmin and min of the unshifted phi
+    double lo_ = 0, hi_ = 0;          // where phi - phi_min = 700: the density is 0 in double beyond
+    double inv_z_ = 0, mean_ = 0, variance_ = 0;
+};
+
 /// Unnormalised log of Hayakawa's density, -log p(v) + const [dimensionless].
 double hayakawa_potential(const ModelParams& p, double v);
 
-/// Normalised Hayakawa stationary density p(v) [s/m].
+/// Normalised Hayakawa stationary density p(v) [s/m]. Convenience wrapper of
+/// HayakawaDensity that keeps the last parameters' normalisation per thread, so
+/// that repeated calls with the same parameters do not redo the quadrature.
 double hayakawa_density(const ModelParams& p, double v);
 
 /// Closed forms for pure dry friction with a constant force (no viscous drag),
 /// |bias| < friction; g = bias/friction. SI units.
 double dry_friction_mobility(const ModelParams& p);    ///< (Gamma/Delta) g/(1-g^2)
 double dry_friction_diffusivity(const ModelParams& p); ///< Gamma^3/Delta^4 (5g^4+22g^2+5)/(4(1-g^2)^4)
+
+// ---- Pure dry friction, transient (Touchette, Van der Straeten, Just 2010) ----
+//
+// dV = -Delta sgn(V) dt + sqrt(Gamma) dW: relaxation must be inf and bias 0
+// (InvalidParameter "relaxation" or "bias" otherwise; p.tau is ignored). Their
+// formulas (2.10), (2.11), (2.13) are written in x = 2v', s = 2t'; here they are
+// restated in the MODEL.md nondimensional variables v' = v Delta/Gamma,
+// t' = t Delta^2/Gamma (section 9) and returned in SI. Evaluated in extended
+// precision with scaled complementary error functions, so they neither
+// overflow (e^{2|v0|} Phi(-...) is never formed) nor lose the small values
+// at large t to cancellation. Time arguments must be finite ("time"),
+// velocities finite ("v0", "v").
+
+/// Transition density p(v, t | v0) [s/m] of V(t) = v [m/s] given V(0) = v0
+/// [m/s], for t > 0 [s] (t = 0 is a delta function: rejected).
+double dry_friction_propagator(const ModelParams& p, double v, double t, double v0);
+
+/// First moment E[V(t) | V(0) = v0] [m/s] for t >= 0 [s] (v0 at t = 0).
+double dry_friction_first_moment(const ModelParams& p, double t, double v0);
+
+/// Stationary autocorrelation <V(t) V(0)> [m^2/s^2] at lag t [s]; even in t
+/// (|t| is used). It equals the covariance, since the stationary mean is 0:
+/// C(0) = Var(V) = Gamma^2/(2 Delta^2) and 2 int_0^inf C = D = 5 Gamma^3/(4 Delta^4).
+double dry_friction_autocorrelation(const ModelParams& p, double t);
+
+/// Diffusivity of a purely viscous object, D = relaxation^2 * noise [m^2/s]:
+/// the Delta -> 0 limit of white_noise_reference (an Ornstein-Uhlenbeck
+/// velocity with relaxation time tauL, whose integral diffuses with
+/// tauL^2 Gamma whatever the bias). Friction, bias and tau are not used; noise
+/// must be finite and > 0 ("noise") and relaxation finite and > 0
+/// ("relaxation": with neither drag nor friction nothing is stationary).
+double viscous_diffusivity(const ModelParams& p);
 
 } // namespace stickslip

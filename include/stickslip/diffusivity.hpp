@@ -37,6 +37,9 @@ struct ResolvedEngine {
     double upper_threshold = 0, lower_threshold = 0; ///< x*, x-* [s^-1/2] (colored)
 };
 
+/// Validates p and s (InvalidParameter) and resolves the engine's details.
+ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s);
+
 struct DiffusivityResult {
     DiffusivityRequest request;
     ResolvedEngine resolved;

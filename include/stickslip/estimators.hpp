@@ -21,6 +21,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace stickslip {
 
@@ -60,6 +61,50 @@ struct Estimate {
     double std_error = 0.0; ///< standard error (delta method)
     double lo = 0.0, hi = 0.0; ///< value -+ q_{(1+level)/2} * std_error
     double level = 0.95;
+};
+
+/// Estimate with the normal interval value -+ q_{(1+level)/2} * std_error.
+Estimate make_interval(double value, double std_error, double level);
+
+/// Mergeable centred sums for ratio estimators R_j = E[y_j] / E[t] from i.i.d.
+/// samples (y, t), y a vector of `dim` path functionals of one excursion (time
+/// spent in a velocity bin, integral of V(s)V(s+r) ds, ...) and t its duration.
+/// This is the renewal-reward form of a stationary average, exact in the limit
+/// of many excursions with no burn-in. With t = 1 for every sample, R_j is a
+/// plain mean. Chan's pairwise update: merges are exact and, done in index
+/// order, bitwise reproducible. The covariance of y_j with y_k is kept for all
+/// pairs when `full_covariance` (needed for functions of several ratios, cost
+/// dim^2 per sample), else only its diagonal.
+class RatioMoments {
+public:
+    RatioMoments() = default;
+    RatioMoments(std::size_t dim, bool full_covariance);
+
+    void add(const double* y, double t);
+    void merge(const RatioMoments& other);
+
+    std::size_t dim() const { return dim_; }
+    std::uint64_t count() const { return n_; }
+    double mean_denominator() const { return mean_t_; }
+    double mean(std::size_t j) const { return mean_y_[j]; }
+    /// R_j = mean(y_j) / mean(t).
+    double ratio(std::size_t j) const { return mean_y_[j] / mean_t_; }
+    /// Delta-method covariance of R_j and R_k:
+    /// cov(y_j - R_j t, y_k - R_k t) / (n E[t]^2), sample covariance with n - 1.
+    /// j != k needs full_covariance.
+    double ratio_covariance(std::size_t j, std::size_t k) const;
+    /// R_j with its standard error and interval.
+    Estimate estimate(std::size_t j, double level) const;
+
+private:
+    double& cyy(std::size_t j, std::size_t k) { return full_ ? m_yy_[j * dim_ + k] : m_yy_[j]; }
+    double cyy(std::size_t j, std::size_t k) const { return full_ ? m_yy_[j * dim_ + k] : m_yy_[j]; }
+
+    std::size_t dim_ = 0;
+    bool full_ = false;
+    std::uint64_t n_ = 0;
+    double mean_t_ = 0.0, m_tt_ = 0.0;
+    std::vector<double> mean_y_, m_yt_, m_yy_;
 };
 
 /// D, M0 and E[t1] from the moments of (U, t) over long excursions.

@@ -81,10 +81,19 @@ STICKSLIP_HD inline void inclusion_colored_step(const InclusionConstants& c, dou
 /// Runs one colored-noise half long excursion. dir = +1: from (x*, 0) until the
 /// object, stuck, sees X reach x-*; dir = -1: the mirror image. Adds the
 /// displacement sum of V (in units of h: multiply by h) to vsum and the steps to
-/// `steps`. Returns false when the step cap is reached.
-template <class Rng>
+/// `steps`. Returns false when the step cap is reached. `observe(x, v)` sees the
+/// state at the start of every applied step (each stands for a time h), so an
+/// observable of the path is sampled exactly as the displacement is.
+/// Observer that ignores the path: the default of the long-excursion kernels,
+/// compiled away entirely.
+struct NoPathObserver {
+    STICKSLIP_HD void operator()(double /*x*/, double /*v*/) const {}
+};
+
+template <class Rng, class Observer = NoPathObserver>
 STICKSLIP_HD inline bool inclusion_colored_half(const InclusionConstants& c, int dir, Rng& rng,
-                                                double& vsum, std::uint64_t& steps) {
+                                                double& vsum, std::uint64_t& steps,
+                                                Observer&& observe = Observer{}) {
     double x = dir > 0 ? c.x_up : c.x_down;
     double v = 0.0;
     const double target = dir > 0 ? c.x_down : c.x_up;
@@ -110,6 +119,7 @@ STICKSLIP_HD inline bool inclusion_colored_half(const InclusionConstants& c, int
         }
         const double v_next = soft_threshold(f, c.h_friction);
         prev_stuck = (v == 0.0 && v_next == 0.0);
+        observe(x, v);
         vsum += v;
         ++steps;
         x = x_next;
@@ -120,9 +130,10 @@ STICKSLIP_HD inline bool inclusion_colored_half(const InclusionConstants& c, int
 /// White-noise half excursion between the velocity levels: dir = +1 runs from
 /// V = +c until V reaches -c (the crossing step is not applied), dir = -1 the
 /// mirror image. One Philox call serves two steps.
-template <class Rng>
+template <class Rng, class Observer = NoPathObserver>
 STICKSLIP_HD inline bool inclusion_white_half(const InclusionConstants& c, int dir, Rng& rng,
-                                              double& vsum, std::uint64_t& steps) {
+                                              double& vsum, std::uint64_t& steps,
+                                              Observer&& observe = Observer{}) {
     double v = dir * c.level;
     for (;;) {
         if (steps >= c.max_steps) return false;
@@ -132,6 +143,7 @@ STICKSLIP_HD inline bool inclusion_white_half(const InclusionConstants& c, int d
             const double f = c.keep * v + c.h_bias + c.h_amp * zz[k];
             const double v_next = soft_threshold(f, c.h_friction);
             if (dir > 0 ? v_next <= -c.level : v_next >= c.level) return true;
+            observe(0.0, v);
             vsum += v;
             ++steps;
             v = v_next;
@@ -139,17 +151,20 @@ STICKSLIP_HD inline bool inclusion_white_half(const InclusionConstants& c, int d
     }
 }
 
-/// One long excursion (+HLE then -HLE) of the inclusion engine.
-template <class Rng>
-STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion(const InclusionConstants& c, Rng& rng) {
+/// One long excursion (+HLE then -HLE) of the inclusion engine; `observe(x, v)`
+/// sees every applied step (x = 0 for white noise).
+template <class Rng, class Observer = NoPathObserver>
+STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion(const InclusionConstants& c, Rng& rng,
+                                                              Observer&& observe = Observer{}) {
     double vsum = 0.0;
     std::uint64_t steps = 0;
     bool ok;
     if (c.white)
-        ok = inclusion_white_half(c, +1, rng, vsum, steps) && inclusion_white_half(c, -1, rng, vsum, steps);
+        ok = inclusion_white_half(c, +1, rng, vsum, steps, observe) &&
+             inclusion_white_half(c, -1, rng, vsum, steps, observe);
     else
-        ok = inclusion_colored_half(c, +1, rng, vsum, steps) &&
-             inclusion_colored_half(c, -1, rng, vsum, steps);
+        ok = inclusion_colored_half(c, +1, rng, vsum, steps, observe) &&
+             inclusion_colored_half(c, -1, rng, vsum, steps, observe);
     ExcursionOutcome o;
     o.displacement = c.h * vsum;
     o.duration = c.h * static_cast<double>(steps);
@@ -161,9 +176,12 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion(const InclusionCon
 /// Brute-force trajectory (Algorithm 2 with time stepping): from noise x0
 /// [s^-1/2] (ignored for white noise) and velocity v0 [m/s], `nsteps` steps.
 /// Returns U(nsteps*h).
-template <class Rng>
-STICKSLIP_HD inline ExcursionOutcome inclusion_trajectory(const InclusionConstants& c, double x0,
-                                                          double v0, std::uint64_t nsteps, Rng& rng) {
+/// `observe(x, v)` sees the state at the start of each of the nsteps steps;
+/// on return x0 and v0 hold the final state, so a path can be continued.
+template <class Rng, class Observer = NoPathObserver>
+STICKSLIP_HD inline ExcursionOutcome inclusion_path(const InclusionConstants& c, double& x0, double& v0,
+                                                    std::uint64_t nsteps, Rng& rng,
+                                                    Observer&& observe = Observer{}) {
     double vsum = 0.0, v = v0, x = x0;
     std::uint64_t n = 0;
     if (c.white) {
@@ -171,6 +189,7 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_trajectory(const InclusionConstan
             const auto z = rng.normal2();
             const double zz[2] = {z.x, z.y};
             for (int k = 0; k < 2 && n < nsteps; ++k, ++n) {
+                observe(0.0, v);
                 vsum += v;
                 v = soft_threshold(c.keep * v + c.h_bias + c.h_amp * zz[k], c.h_friction);
             }
@@ -180,16 +199,26 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_trajectory(const InclusionConstan
             const auto z = rng.normal2();
             double x_next, f;
             inclusion_colored_step(c, x, v, z.x, z.y, x_next, f);
+            observe(x, v);
             vsum += v;
             v = soft_threshold(f, c.h_friction);
             x = x_next;
         }
     }
+    x0 = x;
+    v0 = v;
     ExcursionOutcome o;
     o.displacement = c.h * vsum;
     o.duration = c.h * static_cast<double>(nsteps);
     o.work = nsteps;
     return o;
+}
+
+/// Brute-force trajectory: inclusion_path from (x0, v0) without an observer.
+template <class Rng>
+STICKSLIP_HD inline ExcursionOutcome inclusion_trajectory(const InclusionConstants& c, double x0,
+                                                          double v0, std::uint64_t nsteps, Rng& rng) {
+    return inclusion_path(c, x0, v0, nsteps, rng);
 }
 
 } // namespace stickslip

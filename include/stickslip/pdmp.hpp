@@ -147,26 +147,41 @@ STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& r
 /// One half long excursion: dir = +1 from s+ = (x_{k+ +1}, +1, 0) to the first
 /// exact arrival at s- = (x_{k- -1}, -1, 0), however it arrives; dir = -1 the
 /// mirror image. Returns false when the event cap is reached.
-template <class Rng>
+/// Observer that ignores the path (the default; compiled away).
+struct NoSegmentObserver {
+    STICKSLIP_HD void operator()(const PdmpState& /*start*/, double /*t_start*/, double /*u_start*/,
+                                 double /*duration*/) const {}
+};
+
+/// `observe(start, t_start, u_start, duration)` sees every flow segment: the
+/// state at its start, its start time [s], the displacement there [m] and its
+/// length [s]; inside it X and the mode are constant and V, U follow pdmp_flow
+/// from `start`.
+template <class Rng, class Observer = NoSegmentObserver>
 STICKSLIP_HD inline bool pdmp_half(const PdmpConstants& c, int dir, Rng& rng, double& time,
-                                   double& disp, std::uint64_t& events) {
+                                   double& disp, std::uint64_t& events, Observer&& observe = Observer{}) {
     const double inf = std::numeric_limits<double>::infinity();
     PdmpState s{dir > 0 ? c.k_plus + 1 : c.k_minus - 1, dir, 0.0};
     const int target_i = dir > 0 ? c.k_minus - 1 : c.k_plus + 1;
     for (;;) {
         if (events >= c.max_events) return false;
+        const PdmpState start = s;
+        const double t_start = time, u_start = disp;
         pdmp_event(c, s, rng, time, disp, inf);
+        observe(start, t_start, u_start, time - t_start);
         ++events;
         if (s.v == 0.0 && s.y == -dir && s.i == target_i) return true;
     }
 }
 
 /// One long excursion (+HLE then -HLE) of the PDMP engine.
-template <class Rng>
-STICKSLIP_HD inline ExcursionOutcome pdmp_long_excursion(const PdmpConstants& c, Rng& rng) {
+template <class Rng, class Observer = NoSegmentObserver>
+STICKSLIP_HD inline ExcursionOutcome pdmp_long_excursion(const PdmpConstants& c, Rng& rng,
+                                                         Observer&& observe = Observer{}) {
     double time = 0.0, disp = 0.0;
     std::uint64_t events = 0;
-    const bool ok = pdmp_half(c, +1, rng, time, disp, events) && pdmp_half(c, -1, rng, time, disp, events);
+    const bool ok = pdmp_half(c, +1, rng, time, disp, events, observe) &&
+                    pdmp_half(c, -1, rng, time, disp, events, observe);
     ExcursionOutcome o;
     o.displacement = disp;
     o.duration = time;
@@ -190,20 +205,35 @@ STICKSLIP_HD inline PdmpState pdmp_initial_state(const PdmpConstants& c, double 
     return s;
 }
 
-/// Brute-force trajectory on [0, horizon] (Algorithm 2, with the displacement
-/// over each inter-event interval). Returns U(horizon).
-template <class Rng>
-STICKSLIP_HD inline ExcursionOutcome pdmp_trajectory(const PdmpConstants& c, double x0, double v0,
-                                                     double horizon, Rng& rng) {
-    PdmpState s = pdmp_initial_state(c, x0, v0);
+/// Path on [0, horizon] from state s (Algorithm 2, with the displacement over
+/// each inter-event interval); `observe` sees every flow segment, the last one
+/// cut at the horizon. Returns U(horizon); s holds the final state.
+template <class Rng, class Observer = NoSegmentObserver>
+STICKSLIP_HD inline ExcursionOutcome pdmp_path(const PdmpConstants& c, PdmpState& s, double horizon, Rng& rng,
+                                               Observer&& observe = Observer{}) {
     double time = 0.0, disp = 0.0;
     std::uint64_t events = 0;
-    while (pdmp_event(c, s, rng, time, disp, horizon)) ++events;
+    for (;;) {
+        const PdmpState start = s;
+        const double t_start = time, u_start = disp;
+        const bool more = pdmp_event(c, s, rng, time, disp, horizon);
+        observe(start, t_start, u_start, time - t_start);
+        if (!more) break;
+        ++events;
+    }
     ExcursionOutcome o;
     o.displacement = disp;
     o.duration = horizon;
     o.work = events + 1;
     return o;
+}
+
+/// Brute-force trajectory from (x0, v0): pdmp_path without an observer.
+template <class Rng>
+STICKSLIP_HD inline ExcursionOutcome pdmp_trajectory(const PdmpConstants& c, double x0, double v0,
+                                                     double horizon, Rng& rng) {
+    PdmpState s = pdmp_initial_state(c, x0, v0);
+    return pdmp_path(c, s, horizon, rng);
 }
 
 } // namespace stickslip

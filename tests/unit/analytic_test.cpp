@@ -1,11 +1,18 @@
 // Exact white-noise references (analytic.hpp, MODEL.md sections 7 and 9): the
 // closed forms for pure dry friction, the viscous limit, the normalisation of
 // Hayakawa's density, unit scaling, and an independent grid quadrature of the
-// M0/D formulas for a case with every force present.
+// M0/D formulas for a case with every force present. The transient closed forms
+// of Touchette et al. are checked against the paper's Table I and against each
+// other by quadrature (normalisation, first moment, Chapman-Kolmogorov,
+// autocorrelation from the first moment, Green-Kubo), which no shared typo
+// could pass.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <boost/math/quadrature/exp_sinh.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -251,4 +258,280 @@ TEST(WhiteNoiseReference, NoStationaryStateThrowsBias) {
     } catch (const ss::InvalidParameter& e) {
         EXPECT_EQ(e.parameter(), "noise");
     }
+}
+
+// ---- HayakawaDensity ---------------------------------------------------------
+
+namespace {
+
+std::vector<ss::ModelParams> hayakawa_cases() {
+    std::vector<ss::ModelParams> cases(4); // Fig. 2 drift and friction (tau ignored)
+    cases[1].bias = 6.0;                   // beyond friction: the mode moves off 0
+    cases[2].bias = -1.0;
+    cases[2].relaxation = 0.5;
+    cases[2].noise = 1.0;
+    cases[3] = dry(3.84, 5.0, 0.5 * 3.84); // no drag, g = 0.5
+    return cases;
+}
+
+double gk(const std::function<double(double)>& f, double a, double b) {
+    return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(f, a, b, 20, 1e-14);
+}
+
+} // namespace
+
+TEST(HayakawaDensity, AgreesWithTheFreeFunctionsAndTheReference) {
+    for (const ss::ModelParams& p : hayakawa_cases()) {
+        const std::string where = "bias " + std::to_string(p.bias) + " relaxation " + std::to_string(p.relaxation);
+        const ss::HayakawaDensity d(p);
+        const ss::WhiteNoiseReference r = ss::white_noise_reference(p);
+        EXPECT_TRUE(rel_close("mean " + where, d.mean(), r.mobility, 1e-10));
+        EXPECT_TRUE(rel_close("variance " + where, d.variance(), r.variance, 1e-10));
+        const double sd = std::sqrt(d.variance());
+        for (double z : {-4.0, -1.0, -0.01, 0.0, 0.3, 2.0, 7.0}) {
+            const double v = d.mean() + z * sd;
+            EXPECT_TRUE(rel_close("density " + where, d(v), ss::hayakawa_density(p, v), 1e-13)) << v;
+            EXPECT_NEAR(d.potential(v) - d.potential(d.mean()),
+                        ss::hayakawa_potential(p, v) - ss::hayakawa_potential(p, d.mean()), 1e-11)
+                << where << " v " << v;
+            EXPECT_GE(d.potential(v), 0.0);
+        }
+        EXPECT_NEAR(d.potential(d.mode()), 0.0, 1e-14) << where;
+    }
+}
+
+TEST(HayakawaDensity, ProbabilityIsExactOnBinsAnywhere) {
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const ss::ModelParams& p : hayakawa_cases()) {
+        const std::string where = "bias " + std::to_string(p.bias) + " relaxation " + std::to_string(p.relaxation);
+        const ss::HayakawaDensity d(p);
+        EXPECT_NEAR(d.probability(-inf, inf), 1.0, 1e-13) << where;
+        const double sd = std::sqrt(d.variance()), m = d.mean();
+        // Bins in the bulk, across the kink at 0 and the mode, and deep in both tails.
+        const std::vector<std::pair<double, double>> bins = {
+            {m - 0.1 * sd, m + 0.05 * sd}, {-0.03 * sd, 0.02 * sd}, {d.mode() - 0.2 * sd, d.mode() + 0.3 * sd},
+            {m + 3 * sd, m + 3.5 * sd},    {m - 9 * sd, m - 8 * sd}, {m + 12 * sd, m + 13 * sd}, {m - sd, m + sd}};
+        for (auto [a, b] : bins) {
+            // Independent: adaptive Gauss-Kronrod of the density, split at the kink.
+            double want = 0.0;
+            if (a < 0 && b > 0)
+                want = gk(d, a, 0.0) + gk(d, 0.0, b);
+            else
+                want = gk(d, a, b);
+            EXPECT_TRUE(rel_close("P[" + std::to_string(a) + ", " + std::to_string(b) + "] " + where,
+                                  d.probability(a, b), want, 1e-12));
+            EXPECT_DOUBLE_EQ(d.probability(b, a), -d.probability(a, b));
+        }
+        // Additive over a partition of the line.
+        double total = d.probability(-inf, m - 2 * sd) + d.probability(m + 2 * sd, inf);
+        for (int k = 0; k < 40; ++k) total += d.probability(m - 2 * sd + 0.1 * k * sd, m - 2 * sd + 0.1 * (k + 1) * sd);
+        EXPECT_NEAR(total, 1.0, 1e-13) << where;
+    }
+    // Pure dry friction, nondimensional: P[a, b] = (e^{-2a} - e^{-2b})/2 for 0 <= a < b.
+    const ss::HayakawaDensity dd(dry(1.0, 1.0, 0.0));
+    EXPECT_TRUE(rel_close("P[0.5, 0.6]", dd.probability(0.5, 0.6), 0.5 * (std::exp(-1.0) - std::exp(-1.2)), 1e-14));
+    EXPECT_TRUE(rel_close("P[10, 11]", dd.probability(10, 11), 0.5 * (std::exp(-20.0) - std::exp(-22.0)), 1e-13));
+    EXPECT_NEAR(dd.mean(), 0.0, 1e-15);
+    EXPECT_TRUE(rel_close("variance", dd.variance(), 0.5, 1e-13));
+}
+
+TEST(HayakawaDensity, RejectsParametersWithoutStationaryState) {
+    try {
+        ss::HayakawaDensity d(dry(1.0, 1.0, 1.0));
+        ADD_FAILURE() << "no error";
+    } catch (const ss::InvalidParameter& e) {
+        EXPECT_EQ(e.parameter(), "bias") << e.what();
+    }
+    ss::ModelParams bad = dry(1.0, 1.0, 0.0);
+    bad.friction = 0.0;
+    EXPECT_THROW(ss::HayakawaDensity{bad}, ss::InvalidParameter);
+    EXPECT_THROW(ss::HayakawaDensity(dry(1.0, 1.0, 0.0)).probability(std::nan(""), 1.0), ss::InvalidParameter);
+}
+
+// ---- Touchette, Van der Straeten and Just: pure dry friction -------------------
+
+TEST(Touchette, FirstMomentReproducesTableI) {
+    // MODEL.md section 9: E[V(t)|v0 = 1], Delta = Gamma = 1.
+    const ss::ModelParams p = dry(1.0, 1.0, 0.0);
+    const std::vector<std::pair<double, double>> table = {{0.05, 0.950000}, {0.125, 0.875248}, {0.25, 0.757249},
+                                                          {0.5, 0.567963},  {1.0, 0.336204},   {2.5, 0.090194}};
+    for (auto [t, want] : table) EXPECT_NEAR(ss::dry_friction_first_moment(p, t, 1.0), want, 1e-6) << "t " << t;
+    EXPECT_EQ(ss::dry_friction_first_moment(p, 0.0, 1.0), 1.0);
+    EXPECT_EQ(ss::dry_friction_first_moment(p, 0.0, -2.5), -2.5);
+    // Odd in v0; before the velocity can reach 0 it decreases at the friction rate.
+    EXPECT_DOUBLE_EQ(ss::dry_friction_first_moment(p, 0.7, -1.3), -ss::dry_friction_first_moment(p, 0.7, 1.3));
+    EXPECT_EQ(ss::dry_friction_first_moment(p, 0.7, 0.0), 0.0);
+    EXPECT_NEAR(ss::dry_friction_first_moment(p, 0.01, 3.0), 2.99, 1e-13);
+}
+
+TEST(Touchette, AutocorrelationStartsAtTheVarianceAndIntegratesToD) {
+    const ss::ModelParams p = dry(1.0, 1.0, 0.0);
+    EXPECT_NEAR(ss::dry_friction_autocorrelation(p, 0.0), 0.5, 1e-15);
+    auto c = [&](double t) { return ss::dry_friction_autocorrelation(p, t); };
+    // Green-Kubo: D = 2 int_0^inf C (the stationary mean is 0).
+    const double integral = boost::math::quadrature::exp_sinh<double>().integrate(c, 0.0, std::numeric_limits<double>::infinity(), 1e-13);
+    EXPECT_NEAR(2.0 * integral, 1.25, 1e-8);
+    EXPECT_DOUBLE_EQ(ss::dry_friction_autocorrelation(p, -0.8), ss::dry_friction_autocorrelation(p, 0.8));
+    // Decreasing and positive.
+    double previous = 0.5;
+    for (double t : {0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 40.0}) {
+        const double now = c(t);
+        EXPECT_GT(now, 0.0) << t;
+        EXPECT_LT(now, previous) << t;
+        previous = now;
+    }
+}
+
+TEST(Touchette, PropagatorIsNormalisedAndItsMeanIsTheFirstMoment) {
+    const ss::ModelParams p = dry(1.0, 1.0, 0.0);
+    for (double v0 : {1.0, -0.4, 0.0, 3.0}) {
+        for (double t : {0.01, 0.3, 1.0, 4.0}) {
+            auto dens = [&](double v) { return ss::dry_friction_propagator(p, v, t, v0); };
+            const double reach = std::fabs(v0) + t + 10.0 * std::sqrt(t) + 25.0;
+            // Split at the kink, at the start, and around the drifting Gaussian bump.
+            std::vector<double> cuts = {-reach, 0.0, v0, reach};
+            const double centre = v0 - std::copysign(t, v0);
+            for (double k : {-6.0, -2.0, 2.0, 6.0}) cuts.push_back(centre + k * std::sqrt(t));
+            std::sort(cuts.begin(), cuts.end());
+            double mass = 0.0, mean = 0.0;
+            for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+                if (cuts[k + 1] <= cuts[k]) continue;
+                mass += gk(dens, cuts[k], cuts[k + 1]);
+                mean += gk([&](double v) { return v * dens(v); }, cuts[k], cuts[k + 1]);
+            }
+            EXPECT_NEAR(mass, 1.0, 1e-8) << "v0 " << v0 << " t " << t;
+            EXPECT_NEAR(mean, ss::dry_friction_first_moment(p, t, v0), 1e-8) << "v0 " << v0 << " t " << t;
+        }
+    }
+}
+
+TEST(Touchette, PropagatorObeysChapmanKolmogorovAndRelaxesToHayakawa) {
+    const ss::ModelParams p = dry(1.0, 1.0, 0.0);
+    const double v0 = 0.8, t1 = 0.3, t2 = 0.5;
+    for (double v : {-1.0, 0.0, 0.25, 1.5}) {
+        auto integrand = [&](double u) {
+            return ss::dry_friction_propagator(p, v, t2, u) * ss::dry_friction_propagator(p, u, t1, v0);
+        };
+        double composed = 0.0;
+        const std::vector<double> cuts = {-30.0, std::min(0.0, v), std::max(0.0, v), v0 - t1, v0, 30.0};
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+            if (cuts[k + 1] > cuts[k]) composed += gk(integrand, cuts[k], cuts[k + 1]);
+        EXPECT_TRUE(rel_close("p(v, t1 + t2 | v0) at v = " + std::to_string(v), composed,
+                              ss::dry_friction_propagator(p, v, t1 + t2, v0), 1e-9));
+    }
+    for (double v : {-2.0, 0.0, 0.7}) EXPECT_NEAR(ss::dry_friction_propagator(p, v, 80.0, 1.0), std::exp(-2 * std::fabs(v)), 1e-12);
+}
+
+TEST(Touchette, AutocorrelationIsTheStationaryAverageOfTheFirstMoment) {
+    // <V(t)V(0)> = int v0 E[V(t)|v0] p_s(v0) dv0 with p_s = e^{-2|v0|} (odd times odd: even).
+    const ss::ModelParams p = dry(1.0, 1.0, 0.0);
+    for (double t : {0.05, 0.5, 2.0, 7.0}) {
+        auto integrand = [&](double v0) { return 2.0 * v0 * ss::dry_friction_first_moment(p, t, v0) * std::exp(-2 * v0); };
+        const double want = gk(integrand, 0.0, 1.0) + gk(integrand, 1.0, 5.0) + gk(integrand, 5.0, 40.0);
+        EXPECT_TRUE(rel_close("C(" + std::to_string(t) + ")", ss::dry_friction_autocorrelation(p, t), want, 1e-10));
+    }
+}
+
+TEST(Touchette, StableAtExtremeTimesAndVelocities) {
+    const ss::ModelParams p = dry(1.0, 1.0, 0.0);
+    // References from the same formulas in 120-digit arithmetic (mpmath).
+    EXPECT_TRUE(rel_close("E(1e-8 | 50)", ss::dry_friction_first_moment(p, 1e-8, 50.0), 49.99999999, 1e-15));
+    EXPECT_TRUE(rel_close("E(200 | 50)", ss::dry_friction_first_moment(p, 200.0, 50.0), 1.1536987859264938e-26, 1e-11));
+    EXPECT_TRUE(rel_close("E(200 | 1)", ss::dry_friction_first_moment(p, 200.0, 1.0), 5.526616229073464e-47, 1e-11));
+    EXPECT_TRUE(rel_close("E(1000 | 1)", ss::dry_friction_first_moment(p, 1000.0, 1.0), 9.7098643958588041e-222, 1e-9));
+    EXPECT_TRUE(rel_close("C(1e-8)", ss::dry_friction_autocorrelation(p, 1e-8), 0.49999999500000005, 1e-15));
+    EXPECT_TRUE(rel_close("C(99.999)", ss::dry_friction_autocorrelation(p, 99.999), 1.1001934917607344e-24, 1e-11));
+    EXPECT_TRUE(rel_close("C(100.001)", ss::dry_friction_autocorrelation(p, 100.001), 1.0990632190676439e-24, 1e-11));
+    EXPECT_TRUE(rel_close("C(200)", ss::dry_friction_autocorrelation(p, 200.0), 7.9210319879456919e-47, 1e-11));
+    EXPECT_TRUE(rel_close("C(1000)", ss::dry_friction_autocorrelation(p, 1000.0), 1.4210555763165202e-221, 1e-9));
+    EXPECT_TRUE(rel_close("p(50, 1e-8 | 50)", ss::dry_friction_propagator(p, 50.0, 1e-8, 50.0), 3989.4227840672128, 1e-12));
+    EXPECT_TRUE(rel_close("p(0, 200 | 50)", ss::dry_friction_propagator(p, 0.0, 200.0, 50.0), 1.0, 1e-12));
+    EXPECT_TRUE(rel_close("p(-3, 200 | 50)", ss::dry_friction_propagator(p, -3.0, 200.0, 50.0), 0.0024787521766663584, 1e-12));
+    for (double t : {1e-8, 1e-3, 1.0, 200.0, 5000.0}) {
+        for (double v0 : {-300.0, -50.0, 0.0, 1e-9, 50.0, 300.0}) {
+            const double e = ss::dry_friction_first_moment(p, t, v0);
+            EXPECT_TRUE(std::isfinite(e)) << t << " " << v0;
+            EXPECT_LE(std::fabs(e), std::fabs(v0)) << t << " " << v0;
+            for (double v : {-400.0, -1.0, 0.0, 49.0, 400.0}) {
+                const double d = ss::dry_friction_propagator(p, v, t, v0);
+                EXPECT_TRUE(std::isfinite(d) && d >= 0.0) << v << " " << t << " " << v0;
+            }
+        }
+        EXPECT_TRUE(std::isfinite(ss::dry_friction_autocorrelation(p, t)));
+    }
+    EXPECT_EQ(ss::dry_friction_autocorrelation(p, 1e5), 0.0);
+}
+
+TEST(Touchette, PhysicalUnitsAgreeWithTheNondimensionalTwin) {
+    const ss::ModelParams si = dry(3.84, 5.0, 0.0), nd = dry(1.0, 1.0, 0.0);
+    const double vel = 5.0 / 3.84, time = 5.0 / (3.84 * 3.84);
+    EXPECT_TRUE(rel_close("C(0) = Gamma^2/(2 Delta^2)", ss::dry_friction_autocorrelation(si, 0.0), 0.5 * vel * vel, 1e-14));
+    for (double t : {0.02, 0.4, 3.0}) {
+        EXPECT_TRUE(rel_close("C", ss::dry_friction_autocorrelation(si, t * time),
+                              ss::dry_friction_autocorrelation(nd, t) * vel * vel, 1e-13));
+        for (double v0 : {-0.6, 1.0, 4.0}) {
+            EXPECT_TRUE(rel_close("E", ss::dry_friction_first_moment(si, t * time, v0 * vel),
+                                  ss::dry_friction_first_moment(nd, t, v0) * vel, 1e-13));
+            for (double v : {-1.0, 0.0, 0.5, 2.0})
+                EXPECT_TRUE(rel_close("p", ss::dry_friction_propagator(si, v * vel, t * time, v0 * vel),
+                                      ss::dry_friction_propagator(nd, v, t, v0) / vel, 1e-13));
+        }
+    }
+    // D of the white-noise reference from the SI autocorrelation (Green-Kubo).
+    auto c = [&](double t) { return ss::dry_friction_autocorrelation(si, t); };
+    const double d = 2.0 * boost::math::quadrature::exp_sinh<double>().integrate(c, 0.0, std::numeric_limits<double>::infinity(), 1e-13);
+    EXPECT_TRUE(rel_close("D", d, ss::white_noise_reference(si).diffusivity, 1e-8));
+}
+
+TEST(Touchette, RejectsInvalidInput) {
+    const ss::ModelParams p = dry(1.0, 1.0, 0.0);
+    auto expect_parameter = [](const std::string& name, auto&& call) {
+        try {
+            call();
+            ADD_FAILURE() << "no error, expected one for " << name;
+        } catch (const ss::InvalidParameter& e) {
+            EXPECT_EQ(e.parameter(), name) << e.what();
+        }
+    };
+    ss::ModelParams drag = p;
+    drag.relaxation = 2.0;
+    ss::ModelParams biased = p;
+    biased.bias = 0.1;
+    for (const auto& [q, name] : {std::pair{drag, std::string("relaxation")}, std::pair{biased, std::string("bias")}}) {
+        expect_parameter(name, [&] { ss::dry_friction_first_moment(q, 1.0, 1.0); });
+        expect_parameter(name, [&] { ss::dry_friction_autocorrelation(q, 1.0); });
+        expect_parameter(name, [&] { ss::dry_friction_propagator(q, 0.0, 1.0, 1.0); });
+    }
+    const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+    expect_parameter("time", [&] { ss::dry_friction_first_moment(p, -1e-3, 1.0); });
+    expect_parameter("time", [&] { ss::dry_friction_first_moment(p, nan, 1.0); });
+    expect_parameter("time", [&] { ss::dry_friction_propagator(p, 0.0, 0.0, 1.0); });
+    expect_parameter("time", [&] { ss::dry_friction_propagator(p, 0.0, -1.0, 1.0); });
+    expect_parameter("time", [&] { ss::dry_friction_autocorrelation(p, inf); });
+    expect_parameter("v0", [&] { ss::dry_friction_first_moment(p, 1.0, inf); });
+    expect_parameter("v0", [&] { ss::dry_friction_propagator(p, 0.0, 1.0, nan); });
+    expect_parameter("v", [&] { ss::dry_friction_propagator(p, nan, 1.0, 0.0); });
+    ss::ModelParams bad = p;
+    bad.noise = 0.0;
+    expect_parameter("noise", [&] { ss::dry_friction_first_moment(bad, 1.0, 1.0); });
+    // tau is ignored: these are white-noise references.
+    ss::ModelParams colored = p;
+    colored.tau = 0.5;
+    EXPECT_EQ(ss::dry_friction_first_moment(colored, 0.5, 1.0), ss::dry_friction_first_moment(p, 0.5, 1.0));
+}
+
+TEST(AnalyticViscous, DiffusivityIsTheZeroFrictionLimit) {
+    ss::ModelParams p;
+    p.relaxation = 0.05;
+    p.noise = 1.0;
+    EXPECT_DOUBLE_EQ(ss::viscous_diffusivity(p), 0.05 * 0.05 * 1.0);
+    p.friction = 1e-6; // negligible, as in WhiteNoiseReference.ViscousLimit
+    p.bias = 0.3;
+    EXPECT_TRUE(rel_close("D", ss::white_noise_reference(p).diffusivity, ss::viscous_diffusivity(p), 1e-5));
+    ss::ModelParams none = p;
+    none.relaxation = std::numeric_limits<double>::infinity();
+    EXPECT_THROW(ss::viscous_diffusivity(none), ss::InvalidParameter);
+    none.relaxation = 1.0;
+    none.noise = -1.0;
+    EXPECT_THROW(ss::viscous_diffusivity(none), ss::InvalidParameter);
 }

@@ -1,0 +1,197 @@
+// stickslip/observables.hpp -- velocity statistics from both engines, with
+// error bars (MODEL.md section 1, "quantities of interest").
+//
+// Stationary quantities (velocity density, atom at V = 0, autocorrelation,
+// normalised covariance) are renewal-reward ratios over long excursions: for a
+// path functional g, lim (1/T) int_0^T g(s) ds = E[int_0^{t1} g(s) ds] / E[t1],
+// because the process regenerates at the start of every excursion. There is
+// no burn-in and no initial-condition bias; the interval comes from the delta
+// method (RatioMoments). The excursions are exactly those of `diffusivity`
+// with the same seed (same streams, same stop rule), so D, M0 and E[t1] come
+// for free and agree with it bit for bit.
+//
+// Autocorrelation: int_0^{t1} V(s) V(s + r) ds needs the path up to t1 + r,
+// past the end of the excursion. The path after a regeneration is a fresh copy
+// of the process started at the regeneration state, so each excursion is
+// continued for max lag with its own stream; the estimator stays exact.
+//
+// Transient quantities (p(v,t|v_i), E[V(t)|v_i]) are plain means over
+// independent trajectories from V(0) = v_i with X(0) drawn from its stationary
+// law N(0, 1/tau) (the paper's Fig. 7 / Table I set-up), or a given X(0).
+//
+// Sampling: the inclusion engine observes V at the start of every step
+// (weight dt, the same left-point rule as the displacement). The PDMP engine is
+// exact between events; its path is sampled on a grid of spacing sample_dt
+// (the integrals become Riemann sums, error O(sample_dt)). Transient times are
+// exact for the PDMP and rounded to whole steps for the inclusion engine.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "diffusivity.hpp"
+#include "estimators.hpp"
+#include "excursion.hpp"
+#include "params.hpp"
+#include "runner.hpp"
+
+namespace stickslip {
+
+/// Velocity bins [m/s]: `count` equal bins on [lo, hi]. lo == hi == 0 chooses
+/// the range: for the stationary density, the velocities seen by the first 256
+/// excursions (same streams; so deterministic) padded by 10% on each side; for
+/// transient densities, the white-noise (Hayakawa) mean -+ 6 standard
+/// deviations (or -+ 6 noise/friction), widened to hold v0.
+struct VelocityBins {
+    double lo = 0.0, hi = 0.0;
+    int count = 80;
+};
+
+/// A density histogram with error bars. `density[k]` estimates the density of
+/// the continuous part of the law of V on [edges[k], edges[k+1]) [s/m]: the
+/// atom at V = 0 is excluded and reported in `stuck` (probability), so that
+/// sum(density * width) + stuck + below + above = 1.
+struct VelocityHistogram {
+    std::vector<double> edges;    ///< count + 1 bin edges [m/s]
+    std::vector<Estimate> density; ///< [s/m]
+    Estimate stuck;               ///< P(V = 0): the object sticks (colored noise only)
+    Estimate below, above;        ///< probability of V < lo and V >= hi (V != 0)
+};
+
+// ---- stationary density --------------------------------------------------
+
+struct StationaryDensityRequest {
+    ModelParams params;
+    EngineSettings engine;
+    std::uint64_t excursions = 10000;
+    VelocityBins bins;
+    /// PDMP sampling interval [s]; 0 uses engine.dt. Ignored by the inclusion engine.
+    double sample_dt = 0.0;
+    double level = 0.95;
+    RunControl control;
+    bool allow_capped = false;
+};
+
+struct StationaryDensityResult {
+    StationaryDensityRequest request;
+    ResolvedEngine resolved;
+    VelocityHistogram histogram;
+    Estimate mean;     ///< stationary E[V] = M0 [m/s]
+    Estimate variance; ///< stationary Var(V) [m^2/s^2]
+    LongExcursionEstimates estimates; ///< D, M0, E[t1] of the same excursions
+    RunTotals totals;
+    std::vector<std::string> warnings;
+};
+
+void validate(const StationaryDensityRequest& req);
+StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req);
+
+// ---- stationary autocorrelation ---------------------------------------------
+
+struct CorrelationRequest {
+    ModelParams params;
+    EngineSettings engine;
+    std::uint64_t excursions = 10000;
+    double max_lag = 0.0; ///< largest lag r [s]; 0 chooses 5 time units noise/friction^2
+    int lags = 50;        ///< lags 0, max_lag/lags, ..., max_lag (rounded to the sampling grid)
+    double sample_dt = 0.0; ///< PDMP sampling interval [s]; 0 uses engine.dt
+    double level = 0.95;
+    RunControl control;
+    bool allow_capped = false;
+};
+
+struct CorrelationResult {
+    CorrelationRequest request;
+    ResolvedEngine resolved;
+    std::vector<double> lag;               ///< r [s] (multiples of the sampling interval)
+    std::vector<Estimate> autocorrelation; ///< <V(0) V(r)> [m^2/s^2]
+    std::vector<Estimate> covariance;      ///< h(r) = <V(0)V(r)> - M0^2 [m^2/s^2]
+    std::vector<Estimate> normalised;      ///< h(r)/h(0) [1]
+    Estimate mean;                         ///< M0 [m/s]
+    LongExcursionEstimates estimates;
+    RunTotals totals;
+    std::vector<std::string> warnings;
+};
+
+void validate(const CorrelationRequest& req);
+CorrelationResult compute_correlation(const CorrelationRequest& req);
+
+// ---- transient statistics ------------------------------------------------------
+
+struct TransientRequest {
+    ModelParams params;
+    EngineSettings engine;
+    double v0 = 0.0; ///< initial velocity v_i [m/s]
+    /// Initial noise X(0) [s^-1/2]; NaN draws it from the stationary law
+    /// N(0, 1/tau) independently for each trajectory. Ignored for white noise.
+    double x0 = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> times;       ///< t >= 0 [s], any order
+    std::uint64_t trajectories = 10000;
+    bool with_density = false;       ///< also histogram V(t) at every time
+    VelocityBins bins;
+    double level = 0.95;
+    RunControl control;
+};
+
+struct TransientResult {
+    TransientRequest request;
+    ResolvedEngine resolved;
+    std::vector<double> time;          ///< times actually used [s] (inclusion: whole steps), sorted
+    std::vector<Estimate> first_moment;  ///< E[V(t) | v_i] [m/s]
+    std::vector<Estimate> second_moment; ///< E[V(t)^2 | v_i] [m^2/s^2]
+    std::vector<Estimate> stuck;         ///< P(V(t) = 0)
+    std::vector<VelocityHistogram> density; ///< per time, when requested
+    RunTotals totals;
+    std::vector<std::string> warnings;
+};
+
+void validate(const TransientRequest& req);
+TransientResult compute_transient(const TransientRequest& req);
+
+// ---- sample paths ------------------------------------------------------------
+
+/// One recorded path: columns of equal length.
+struct SamplePath {
+    std::vector<double> t; ///< time [s]
+    std::vector<double> x; ///< the paper's noise X [s^-1/2] (0 for white noise)
+    std::vector<int> mode; ///< -1 / 0 / +1: negative-dynamic / static / positive-dynamic
+    std::vector<double> v; ///< velocity [m/s]
+    std::vector<double> u; ///< displacement [m]
+};
+
+struct TrajectoryRequest {
+    ModelParams params;
+    EngineSettings engine;
+    /// Excursion mode (paths == 0): long excursion number `index` of stream
+    /// `control.seed`, the very excursion `diffusivity` runs with that index.
+    std::uint64_t index = 0;
+    /// Path mode (paths > 0): this many independent paths on [0, horizon] from
+    /// (x0, v0), x0 NaN = the paper's start x* (PDMP: first lattice point above).
+    std::uint64_t paths = 0;
+    double horizon = 2.0; ///< [s], path mode
+    double x0 = std::numeric_limits<double>::quiet_NaN();
+    double v0 = 0.0;
+    /// Recording interval [s]: 0 records every step (inclusion) or event (PDMP)
+    /// in excursion mode, and horizon/1000 in path mode.
+    double every = 0.0;
+    std::uint64_t max_points = 5'000'000; ///< refuse to record more points than this per path
+    RunControl control;
+};
+
+struct TrajectoryResult {
+    TrajectoryRequest request;
+    ResolvedEngine resolved;
+    std::vector<SamplePath> paths;
+    ExcursionOutcome excursion; ///< excursion mode: its U, t and work
+    std::vector<std::string> warnings;
+};
+
+void validate(const TrajectoryRequest& req);
+TrajectoryResult compute_trajectory(const TrajectoryRequest& req);
+
+/// The bins actually used for a request (resolves automatic ranges).
+VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b);
+
+} // namespace stickslip

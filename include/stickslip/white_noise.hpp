@@ -1,0 +1,49 @@
+// stickslip/white_noise.hpp -- every exact white-noise reference for one
+// parameter set, in one call (what `stickslip analytic` prints).
+//
+// Stationary mobility, diffusivity and variance come from the quadrature of
+// analytic.hpp for any b(v). Transient quantities at given times, the first
+// moment E[V(t) | v0] and the stationary autocorrelation <V(t) V(0)>, use the
+// closed forms of Touchette, Van der Straeten and Just (2010) for pure dry
+// friction (relaxation inf, bias 0), and otherwise the Fokker-Planck solver of
+// fokker_planck.hpp; `method` names which one was used. The same goes for the
+// transition density p(v, t | v0) at given velocities (Touchette's (2.10)).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analytic.hpp"
+#include "params.hpp"
+
+namespace stickslip {
+
+struct WhiteNoiseRequest {
+    ModelParams params;        ///< tau is ignored (white noise)
+    double v0 = 0.0;           ///< initial velocity of the first moment [m/s]
+    std::vector<double> times; ///< t >= 0 [s]; empty: stationary values only
+    /// Velocities [m/s] at which to evaluate the stationary (Hayakawa) density
+    /// and, for every time t > 0, the transition density p(v, t | v0).
+    std::vector<double> velocities;
+};
+
+struct WhiteNoiseResult {
+    WhiteNoiseRequest request;
+    WhiteNoiseReference reference;       ///< M0 [m/s], D [m^2/s], Var(V) [m^2/s^2]
+    std::vector<double> first_moment;    ///< E[V(t) | v0] [m/s], aligned with request.times
+    std::vector<double> autocorrelation; ///< <V(t) V(0)> [m^2/s^2], aligned with request.times
+    std::vector<double> stationary_density; ///< Hayakawa p(v) [s/m] at request.velocities
+    /// p(v, t | v0) [s/m]: one row per time (t = 0 rows are empty: a delta
+    /// function), one column per velocity.
+    std::vector<std::vector<double>> transient_density;
+    std::string method;                  ///< "closed form" or "fokker-planck"
+    std::vector<std::string> warnings;
+};
+
+/// True for pure dry friction (relaxation inf, bias 0): closed forms exist.
+bool is_pure_dry_friction(const ModelParams& p);
+
+void validate(const WhiteNoiseRequest& req);
+WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req);
+
+} // namespace stickslip

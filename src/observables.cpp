@@ -1,0 +1,713 @@
+// Velocity statistics from both engines (observables.hpp explains the
+// estimators). Every observable is a path functional accumulated by an observer
+// passed to the engines' own kernels, so the excursions are exactly those of
+// `diffusivity`.
+#include "stickslip/observables.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "block_runner.hpp"
+#include "format.hpp"
+#include "run_checks.hpp"
+#include "stickslip/analytic.hpp"
+#include "stickslip/inclusion.hpp"
+#include "stickslip/pdmp.hpp"
+#include "stickslip/rng.hpp"
+
+namespace stickslip {
+
+namespace {
+
+constexpr int kMaxBins = 100000;
+constexpr int kMaxLags = 2000;
+constexpr std::uint64_t kMaxLagSamples = 100'000'000; // ring buffer of the autocorrelation
+
+void check_level(double level) { normal_quantile_two_sided(level); }
+
+void check_bins(const VelocityBins& b) {
+    if (b.count < 1 || b.count > kMaxBins)
+        throw InvalidParameter("bins", "bins must be between 1 and " + std::to_string(kMaxBins) + " (got " +
+                                           std::to_string(b.count) + ")");
+    if (!std::isfinite(b.lo) || !std::isfinite(b.hi) || (b.lo >= b.hi && !(b.lo == 0 && b.hi == 0)))
+        throw InvalidParameter("range", "velocity range must be finite with lo < hi (or both 0 for automatic), got [" +
+                                            detail::format_number(b.lo) + ", " + detail::format_number(b.hi) + "]");
+}
+
+void check_count(const char* name, std::uint64_t n, std::uint64_t min) {
+    if (n < min)
+        throw InvalidParameter(name, std::string(name) + " must be >= " + std::to_string(min) + " (got " +
+                                         std::to_string(n) + ")");
+}
+
+/// Sampling interval of a path observable [s].
+double sampling_interval(const EngineSettings& s, double sample_dt) {
+    if (!std::isfinite(sample_dt) || sample_dt < 0)
+        throw InvalidParameter("sample-dt", "sample-dt must be a finite number >= 0 (s), got " +
+                                                detail::format_number(sample_dt));
+    if (s.engine == Engine::Inclusion) return s.dt;
+    return sample_dt > 0 ? sample_dt : s.dt;
+}
+
+/// Sorts a velocity into the histogram layout [bins..., stuck, below, above].
+struct BinIndex {
+    double lo, hi, inv_width;
+    int count;
+    explicit BinIndex(const VelocityBins& b)
+        : lo(b.lo), hi(b.hi), inv_width(b.count / (b.hi - b.lo)), count(b.count) {}
+    int operator()(double v) const {
+        if (v == 0.0) return count;
+        if (v < lo) return count + 1;
+        if (v >= hi) return count + 2;
+        const int k = static_cast<int>((v - lo) * inv_width);
+        return std::min(k, count - 1);
+    }
+};
+
+VelocityHistogram make_histogram(const VelocityBins& b, const RatioMoments& m, std::size_t first, double level) {
+    VelocityHistogram h;
+    const double width = (b.hi - b.lo) / b.count;
+    h.edges.resize(static_cast<std::size_t>(b.count) + 1);
+    for (int k = 0; k <= b.count; ++k) h.edges[static_cast<std::size_t>(k)] = b.lo + width * k;
+    h.edges.back() = b.hi;
+    h.density.reserve(static_cast<std::size_t>(b.count));
+    for (int k = 0; k < b.count; ++k) {
+        Estimate e = m.estimate(first + static_cast<std::size_t>(k), level);
+        e.value /= width;
+        e.std_error /= width;
+        e.lo /= width;
+        e.hi /= width;
+        h.density.push_back(e);
+    }
+    const std::size_t base = first + static_cast<std::size_t>(b.count);
+    h.stuck = m.estimate(base, level);
+    h.below = m.estimate(base + 1, level);
+    h.above = m.estimate(base + 2, level);
+    return h;
+}
+
+/// Samples a PDMP path on the grid n * dt (n = 0, 1, ...): f(x, mode, v, u) at
+/// every grid time inside each observed segment. `offset` is the absolute time
+/// of the path's own time 0 (for continuing a path after a regeneration).
+template <class F>
+struct PdmpGridSampler {
+    const PdmpConstants& c;
+    double dt;
+    F f;
+    std::uint64_t next = 0;
+    double offset = 0.0;
+    std::uint64_t stop_at = ~std::uint64_t{0}; ///< no samples at or beyond this index
+
+    void operator()(const PdmpState& s, double t0, double u0, double dur) {
+        const double end = offset + t0 + dur;
+        while (next < stop_at) {
+            const double g = static_cast<double>(next) * dt;
+            if (!(g < end)) break;
+            double v = 0.0, u = u0;
+            pdmp_flow(c, s.i, s.y, s.v, g - offset - t0, v, u);
+            f(c.delta * s.i, s.y, v, u);
+            ++next;
+        }
+    }
+};
+
+template <class F>
+PdmpGridSampler<F> grid_sampler(const PdmpConstants& c, double dt, F f) {
+    return PdmpGridSampler<F>{c, dt, std::move(f)};
+}
+
+int mode_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+
+/// Standard deviation used by automatic ranges [m/s].
+void auto_range(const ModelParams& p, double& lo, double& hi) {
+    if (has_stationary_state(p)) {
+        const WhiteNoiseReference w = white_noise_reference(p);
+        const double sd = std::sqrt(w.variance);
+        lo = w.mobility - 6 * sd;
+        hi = w.mobility + 6 * sd;
+    } else {
+        const double s = 6 * p.noise / p.friction;
+        lo = -s;
+        hi = s;
+    }
+}
+
+} // namespace
+
+VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b) {
+    check_bins(b);
+    VelocityBins r = b;
+    if (b.lo == 0 && b.hi == 0) auto_range(p, r.lo, r.hi);
+    return r;
+}
+
+// ---- stationary density ------------------------------------------------------
+
+void validate(const StationaryDensityRequest& req) {
+    resolve_engine(req.params, req.engine);
+    check_level(req.level);
+    check_count("excursions", req.excursions, 2);
+    check_bins(req.bins);
+    sampling_interval(req.engine, req.sample_dt);
+}
+
+namespace {
+
+/// Velocity range seen by the first excursions (a deterministic pilot of the
+/// same streams): automatic histogram ranges that fit colored noise, whose
+/// velocities are far smaller than the white-noise spread.
+bool pilot_range(const StationaryDensityRequest& req, double dt, double& lo, double& hi) {
+    struct Range {
+        double lo = 0, hi = 0;
+    };
+    RunControl ctl = req.control;
+    ctl.progress = nullptr;
+    Range total;
+    auto make = [] { return Range{}; };
+    auto merge = [](Range& a, const Range& b) {
+        a.lo = std::min(a.lo, b.lo);
+        a.hi = std::max(a.hi, b.hi);
+    };
+    const std::uint64_t n = std::min<std::uint64_t>(req.excursions, 256);
+    const std::uint64_t seed = req.control.seed;
+    if (req.engine.engine == Engine::Pdmp) {
+        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+        detail::run_blocks(
+            n, ctl, make,
+            [&](std::uint64_t k, Range& r) {
+                auto sampler = grid_sampler(c, dt, [&](double, int, double v, double) {
+                    r.lo = std::min(r.lo, v);
+                    r.hi = std::max(r.hi, v);
+                });
+                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                return pdmp_long_excursion(c, rng, sampler);
+            },
+            merge, total);
+    } else {
+        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+        detail::run_blocks(
+            n, ctl, make,
+            [&](std::uint64_t k, Range& r) {
+                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                return inclusion_long_excursion(c, rng, [&](double, double v) {
+                    r.lo = std::min(r.lo, v);
+                    r.hi = std::max(r.hi, v);
+                });
+            },
+            merge, total);
+    }
+    if (!(total.hi > total.lo)) return false;
+    const double pad = 0.1 * (total.hi - total.lo);
+    lo = total.lo - pad;
+    hi = total.hi + pad;
+    return true;
+}
+
+} // namespace
+
+StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req) {
+    validate(req);
+    StationaryDensityResult out;
+    out.request = req;
+    out.resolved = resolve_engine(req.params, req.engine);
+    const double dt = sampling_interval(req.engine, req.sample_dt);
+    VelocityBins bins = resolve_bins(req.params, req.bins);
+    if (req.bins.lo == 0 && req.bins.hi == 0) pilot_range(req, dt, bins.lo, bins.hi);
+    out.request.bins = bins;
+    const BinIndex index(bins);
+    const std::size_t nh = static_cast<std::size_t>(bins.count) + 3;
+    const std::uint64_t seed = req.control.seed;
+
+    struct Acc {
+        RatioMoments hist; // [bins..., stuck, below, above] / t
+        RatioMoments mom;  // [V, V^2] / t
+    };
+    auto make = [nh] { return Acc{RatioMoments(nh, false), RatioMoments(2, true)}; };
+    auto merge = [](Acc& a, const Acc& b) {
+        a.hist.merge(b.hist);
+        a.mom.merge(b.mom);
+    };
+    // Per-excursion sums in units of the sampling interval (it cancels in every ratio).
+    auto finish = [](Acc& acc, std::vector<double>& y, double m[2], std::uint64_t samples) {
+        acc.hist.add(y.data(), static_cast<double>(samples));
+        acc.mom.add(m, static_cast<double>(samples));
+    };
+    Acc total;
+    if (req.engine.engine == Engine::Pdmp) {
+        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+        out.totals = detail::run_blocks(
+            req.excursions, req.control, make,
+            [&](std::uint64_t k, Acc& acc) {
+                thread_local std::vector<double> y;
+                y.assign(nh, 0.0);
+                double m[2] = {0.0, 0.0};
+                std::uint64_t samples = 0;
+                auto sampler = grid_sampler(c, dt, [&](double, int, double v, double) {
+                    y[static_cast<std::size_t>(index(v))] += 1.0;
+                    m[0] += v;
+                    m[1] += v * v;
+                    ++samples;
+                });
+                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
+                if (!o.capped && samples > 0) finish(acc, y, m, samples);
+                return o;
+            },
+            merge, total);
+    } else {
+        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+        out.totals = detail::run_blocks(
+            req.excursions, req.control, make,
+            [&](std::uint64_t k, Acc& acc) {
+                thread_local std::vector<double> y;
+                y.assign(nh, 0.0);
+                double m[2] = {0.0, 0.0};
+                std::uint64_t samples = 0;
+                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                const ExcursionOutcome o = inclusion_long_excursion(c, rng, [&](double, double v) {
+                    y[static_cast<std::size_t>(index(v))] += 1.0;
+                    m[0] += v;
+                    m[1] += v * v;
+                    ++samples;
+                });
+                if (!o.capped && samples > 0) finish(acc, y, m, samples);
+                return o;
+            },
+            merge, total);
+    }
+    detail::finish_long_excursion_run(req.params, req.engine, out.resolved, out.totals, req.allow_capped,
+                                      out.warnings);
+    out.estimates = estimate_long_excursion(out.totals.moments, req.level);
+    out.histogram = make_histogram(bins, total.hist, 0, req.level);
+    out.mean = total.mom.estimate(0, req.level);
+    // Var = R_2 - R_1^2; gradient (-2 R_1, 1).
+    const double r1 = total.mom.ratio(0), r2 = total.mom.ratio(1);
+    const double g0 = -2 * r1;
+    const double var_se = std::sqrt(std::fmax(g0 * g0 * total.mom.ratio_covariance(0, 0) +
+                                                  2 * g0 * total.mom.ratio_covariance(0, 1) +
+                                                  total.mom.ratio_covariance(1, 1),
+                                              0.0));
+    out.variance = make_interval(r2 - r1 * r1, var_se, req.level);
+    const double outside = out.histogram.below.value + out.histogram.above.value;
+    if (outside > 1e-3)
+        out.warnings.push_back("probability " + detail::format_number(outside) +
+                               " of V lies outside the histogram range; widen --range");
+    if (req.engine.engine == Engine::Pdmp)
+        out.warnings.push_back("pdmp path sampled every " + detail::format_number(dt) +
+                               " s (--sample-dt): time averages are Riemann sums on that grid");
+    return out;
+}
+
+// ---- autocorrelation -------------------------------------------------------------
+
+void validate(const CorrelationRequest& req) {
+    resolve_engine(req.params, req.engine);
+    check_level(req.level);
+    check_count("excursions", req.excursions, 2);
+    if (req.lags < 1 || req.lags > kMaxLags)
+        throw InvalidParameter("lags", "lags must be between 1 and " + std::to_string(kMaxLags));
+    if (!std::isfinite(req.max_lag) || req.max_lag < 0)
+        throw InvalidParameter("max-lag", "max-lag must be a finite number >= 0 (s), got " +
+                                              detail::format_number(req.max_lag));
+    const double dt = sampling_interval(req.engine, req.sample_dt);
+    const double max_lag = req.max_lag > 0 ? req.max_lag : 5 * scales_of(req.params).time;
+    if (max_lag / dt > static_cast<double>(kMaxLagSamples))
+        throw InvalidParameter("max-lag", "max-lag / sampling interval exceeds " + std::to_string(kMaxLagSamples) +
+                                              " samples; use a coarser --sample-dt or a shorter --max-lag");
+}
+
+CorrelationResult compute_correlation(const CorrelationRequest& req) {
+    validate(req);
+    CorrelationResult out;
+    out.request = req;
+    out.resolved = resolve_engine(req.params, req.engine);
+    const double dt = sampling_interval(req.engine, req.sample_dt);
+    const double max_lag = req.max_lag > 0 ? req.max_lag : 5 * scales_of(req.params).time;
+    out.request.max_lag = max_lag;
+    // Lags on the sampling grid, distinct, increasing, starting at 0.
+    std::vector<std::uint64_t> lag_steps;
+    for (int j = 0; j <= req.lags; ++j) {
+        const auto l = static_cast<std::uint64_t>(std::llround(max_lag * j / req.lags / dt));
+        if (lag_steps.empty() || l > lag_steps.back()) lag_steps.push_back(l);
+    }
+    const std::size_t nl = lag_steps.size();
+    const std::uint64_t lmax = lag_steps.back();
+    const std::uint64_t ring = lmax + 1;
+    for (auto l : lag_steps) out.lag.push_back(static_cast<double>(l) * dt);
+    const std::size_t dim = nl + 1; // [lag products..., V]
+    const std::uint64_t seed = req.control.seed;
+
+    // Per-excursion state of the lag products: ring buffer of past samples.
+    struct LagState {
+        std::vector<double> buf, y;
+        std::uint64_t m = 0;          // samples seen
+        std::uint64_t limit = ~0ull;  // start indices must be < limit (excursion length once known)
+    };
+    auto push = [&lag_steps, nl, ring](LagState& st, double v) {
+        st.buf[st.m % ring] = v;
+        for (std::size_t j = 0; j < nl; ++j) {
+            const std::uint64_t l = lag_steps[j];
+            if (st.m < l) break;
+            const std::uint64_t start = st.m - l;
+            if (start < st.limit) st.y[j] += st.buf[start % ring] * v;
+        }
+        if (st.m < st.limit) st.y[nl] += v;
+        ++st.m;
+    };
+    auto make = [dim] { return RatioMoments(dim, true); };
+    auto merge = [](RatioMoments& a, const RatioMoments& b) { a.merge(b); };
+    RatioMoments total;
+    auto reset = [&](LagState& st) {
+        st.buf.assign(ring, 0.0);
+        st.y.assign(dim, 0.0);
+        st.m = 0;
+        st.limit = ~0ull;
+    };
+    if (req.engine.engine == Engine::Pdmp) {
+        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+        out.totals = detail::run_blocks(
+            req.excursions, req.control, make,
+            [&](std::uint64_t k, RatioMoments& acc) {
+                thread_local LagState st;
+                reset(st);
+                auto sampler = grid_sampler(c, dt, [&](double, int, double v, double) { push(st, v); });
+                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
+                if (o.capped || st.m == 0) return o;
+                // Continue from the regeneration state s+ until every lag of every start is seen.
+                st.limit = st.m;
+                sampler.offset = o.duration;
+                sampler.stop_at = st.limit + lmax;
+                PdmpState s{c.k_plus + 1, +1, 0.0};
+                const double horizon = static_cast<double>(st.limit + lmax + 1) * dt - o.duration;
+                const ExcursionOutcome more = pdmp_path(c, s, horizon, rng, sampler);
+                ExcursionOutcome res = o;
+                res.work += more.work;
+                acc.add(st.y.data(), static_cast<double>(st.limit));
+                return res;
+            },
+            merge, total);
+    } else {
+        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+        out.totals = detail::run_blocks(
+            req.excursions, req.control, make,
+            [&](std::uint64_t k, RatioMoments& acc) {
+                thread_local LagState st;
+                reset(st);
+                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                auto observe = [&](double, double v) { push(st, v); };
+                const ExcursionOutcome o = inclusion_long_excursion(c, rng, observe);
+                if (o.capped || st.m == 0) return o;
+                st.limit = st.m;
+                double x = c.white ? 0.0 : c.x_up, v = c.white ? c.level : 0.0; // next excursion's start
+                inclusion_path(c, x, v, lmax, rng, observe);
+                ExcursionOutcome res = o;
+                res.work += lmax;
+                acc.add(st.y.data(), static_cast<double>(st.limit));
+                return res;
+            },
+            merge, total);
+    }
+    detail::finish_long_excursion_run(req.params, req.engine, out.resolved, out.totals, req.allow_capped,
+                                      out.warnings);
+    out.estimates = estimate_long_excursion(out.totals.moments, req.level);
+    const std::size_t iu = nl;
+    const double m = total.ratio(iu);
+    out.mean = total.estimate(iu, req.level);
+    auto cov = [&](std::size_t a, std::size_t b) { return total.ratio_covariance(a, b); };
+    const double h0 = total.ratio(0) - m * m;
+    for (std::size_t j = 0; j < nl; ++j) {
+        out.autocorrelation.push_back(total.estimate(j, req.level));
+        const double hj = total.ratio(j) - m * m;
+        // h_j = R_j - R_U^2: gradient 1 on j, -2m on U.
+        const double var_h = cov(j, j) - 4 * m * cov(j, iu) + 4 * m * m * cov(iu, iu);
+        out.covariance.push_back(make_interval(hj, std::sqrt(std::fmax(var_h, 0.0)), req.level));
+        // rho_j = h_j / h_0: gradient 1/h0 on j, -h_j/h0^2 on 0, 2m (h_j - h0)/h0^2 on U.
+        const double gj = 1 / h0, g0 = -hj / (h0 * h0), gu = 2 * m * (hj - h0) / (h0 * h0);
+        double var_r;
+        if (j == 0) {
+            var_r = 0.0; // identically 1
+        } else {
+            var_r = gj * gj * cov(j, j) + g0 * g0 * cov(0, 0) + gu * gu * cov(iu, iu) + 2 * gj * g0 * cov(j, 0) +
+                    2 * gj * gu * cov(j, iu) + 2 * g0 * gu * cov(0, iu);
+        }
+        out.normalised.push_back(make_interval(hj / h0, std::sqrt(std::fmax(var_r, 0.0)), req.level));
+    }
+    if (req.engine.engine == Engine::Pdmp)
+        out.warnings.push_back("pdmp path sampled every " + detail::format_number(dt) +
+                               " s (--sample-dt): lags and time averages live on that grid");
+    return out;
+}
+
+// ---- transient ----------------------------------------------------------------------
+
+void validate(const TransientRequest& req) {
+    resolve_engine(req.params, req.engine);
+    check_level(req.level);
+    check_count("trajectories", req.trajectories, 2);
+    if (req.times.empty()) throw InvalidParameter("times", "times must list at least one time t >= 0 (s)");
+    if (req.times.size() > 10000) throw InvalidParameter("times", "at most 10000 times");
+    for (double t : req.times)
+        if (!std::isfinite(t) || t < 0)
+            throw InvalidParameter("times", "times must be finite and >= 0 (s), got " + detail::format_number(t));
+    if (!std::isfinite(req.v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+    if (std::isinf(req.x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+    if (req.with_density) check_bins(req.bins);
+    const double tmax = *std::max_element(req.times.begin(), req.times.end());
+    if (req.engine.engine == Engine::Inclusion && tmax / req.engine.dt > 1e13)
+        throw InvalidParameter("times", "largest time / dt exceeds 1e13 steps");
+}
+
+TransientResult compute_transient(const TransientRequest& req) {
+    validate(req);
+    TransientResult out;
+    out.request = req;
+    out.resolved = resolve_engine(req.params, req.engine);
+    out.resolved.stop_rule = "none";
+    std::vector<double> times = req.times;
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    const std::size_t nt = times.size();
+    VelocityBins bins = req.bins;
+    if (req.with_density) {
+        // Automatic range: the start and the stationary spread, whichever is wider.
+        bins = resolve_bins(req.params, req.bins);
+        if (req.bins.lo == 0 && req.bins.hi == 0) {
+            const double pad = 0.05 * (bins.hi - bins.lo);
+            bins.lo = std::min(bins.lo, req.v0 - pad);
+            bins.hi = std::max(bins.hi, req.v0 + pad);
+        }
+        out.request.bins = bins;
+    }
+    const std::size_t nh = req.with_density ? static_cast<std::size_t>(bins.count) + 3 : 0;
+    // Layout per trajectory: [V(t_j)], [V(t_j)^2], [V(t_j) == 0], then per time the histogram.
+    const std::size_t dim = 3 * nt + nt * nh;
+    const BinIndex index(req.with_density ? bins : VelocityBins{0, 1, 1});
+    const std::uint64_t seed = req.control.seed;
+    const bool draw_x = std::isnan(req.x0) && !req.params.white();
+    const double x_sd = req.params.white() ? 0.0 : 1.0 / std::sqrt(req.params.tau);
+
+    auto record = [&](std::vector<double>& y, std::size_t j, double v) {
+        y[j] = v;
+        y[nt + j] = v * v;
+        y[2 * nt + j] = v == 0.0 ? 1.0 : 0.0;
+        if (nh) y[3 * nt + j * nh + static_cast<std::size_t>(index(v))] = 1.0;
+    };
+    auto make = [dim] { return RatioMoments(dim, false); };
+    auto merge = [](RatioMoments& a, const RatioMoments& b) { a.merge(b); };
+    RatioMoments total;
+    if (req.engine.engine == Engine::Pdmp) {
+        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+        out.time = times;
+        const double horizon = times.back();
+        out.totals = detail::run_blocks(
+            req.trajectories, req.control, make,
+            [&](std::uint64_t k, RatioMoments& acc) {
+                thread_local std::vector<double> y;
+                y.assign(dim, 0.0);
+                CounterRng rng(seed, StreamPurpose::Observable, k);
+                const double x0 = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
+                PdmpState s = pdmp_initial_state(c, x0, req.v0);
+                std::size_t j = 0;
+                while (j < nt && times[j] == 0.0) record(y, j++, req.v0);
+                ExcursionOutcome o;
+                o.duration = horizon;
+                if (horizon > 0) {
+                    o = pdmp_path(c, s, horizon, rng, [&](const PdmpState& st, double t0, double, double dur) {
+                        while (j < nt && times[j] < t0 + dur) {
+                            double v = 0.0, du = 0.0;
+                            pdmp_flow(c, st.i, st.y, st.v, times[j] - t0, v, du);
+                            record(y, j++, v);
+                        }
+                    });
+                }
+                while (j < nt) record(y, j++, s.v);
+                acc.add(y.data(), 1.0);
+                return o;
+            },
+            merge, total);
+    } else {
+        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+        std::vector<std::uint64_t> steps(nt);
+        for (std::size_t j = 0; j < nt; ++j) steps[j] = static_cast<std::uint64_t>(std::llround(times[j] / c.h));
+        for (std::size_t j = 0; j < nt; ++j) out.time.push_back(static_cast<double>(steps[j]) * c.h);
+        if (std::adjacent_find(steps.begin(), steps.end()) != steps.end())
+            out.warnings.push_back("some times round to the same step of dt; their rows are identical");
+        for (std::size_t j = 0; j < nt; ++j)
+            if (std::fabs(out.time[j] - times[j]) > 1e-9 * std::max(times[j], c.h)) {
+                out.warnings.push_back("times rounded to whole steps of dt = " + detail::format_number(c.h) + " s");
+                break;
+            }
+        const std::uint64_t nmax = steps.back();
+        out.totals = detail::run_blocks(
+            req.trajectories, req.control, make,
+            [&](std::uint64_t k, RatioMoments& acc) {
+                thread_local std::vector<double> y;
+                y.assign(dim, 0.0);
+                CounterRng rng(seed, StreamPurpose::Observable, k);
+                double x = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
+                double v = req.v0;
+                std::size_t j = 0;
+                std::uint64_t n = 0;
+                const ExcursionOutcome o = inclusion_path(c, x, v, nmax, rng, [&](double, double vn) {
+                    while (j < nt && steps[j] == n) record(y, j++, vn);
+                    ++n;
+                });
+                while (j < nt) record(y, j++, v);
+                acc.add(y.data(), 1.0);
+                return o;
+            },
+            merge, total);
+    }
+    for (std::size_t j = 0; j < nt; ++j) {
+        out.first_moment.push_back(total.estimate(j, req.level));
+        out.second_moment.push_back(total.estimate(nt + j, req.level));
+        out.stuck.push_back(total.estimate(2 * nt + j, req.level));
+        if (nh) out.density.push_back(make_histogram(bins, total, 3 * nt + j * nh, req.level));
+    }
+    if (req.engine.engine == Engine::Pdmp && out.resolved.truncated_mass > 1e-9)
+        out.warnings.push_back("the pdmp lattice is truncated at L = " + detail::format_number(out.resolved.lattice_bound) +
+                               " s^-1/2; use a finer grid");
+    return out;
+}
+
+// ---- sample paths --------------------------------------------------------------------
+
+void validate(const TrajectoryRequest& req) {
+    resolve_engine(req.params, req.engine);
+    if (req.paths > 1000) throw InvalidParameter("paths", "paths must be at most 1000");
+    if (req.paths > 0 && (!std::isfinite(req.horizon) || req.horizon <= 0))
+        throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + detail::format_number(req.horizon));
+    if (!std::isfinite(req.every) || req.every < 0)
+        throw InvalidParameter("every", "every must be a finite number >= 0 (s), got " + detail::format_number(req.every));
+    if (!std::isfinite(req.v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+    if (std::isinf(req.x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+    if (req.index > max_sample_index) throw InvalidParameter("index", "index must be < 2^56");
+    if (req.paths > 0) {
+        const double every = req.every > 0 ? req.every : req.horizon / 1000;
+        if (req.horizon / every > static_cast<double>(req.max_points))
+            throw InvalidParameter("every", "time / every exceeds " + std::to_string(req.max_points) +
+                                                " points per path; record less often");
+        if (req.engine.engine == Engine::Inclusion && req.horizon / req.engine.dt > 1e13)
+            throw InvalidParameter("time", "time / dt exceeds 1e13 steps");
+    }
+}
+
+namespace {
+
+void append(SamplePath& p, double t, double x, int mode, double v, double u) {
+    p.t.push_back(t);
+    p.x.push_back(x);
+    p.mode.push_back(mode);
+    p.v.push_back(v);
+    p.u.push_back(u);
+}
+
+struct TooManyPoints {};
+
+} // namespace
+
+TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
+    validate(req);
+    TrajectoryResult out;
+    out.request = req;
+    out.resolved = resolve_engine(req.params, req.engine);
+    const std::uint64_t seed = req.control.seed;
+    auto guard = [&](const SamplePath& p) {
+        if (p.t.size() >= req.max_points) throw TooManyPoints{};
+    };
+    if (req.paths == 0) {
+        // One long excursion, the one `diffusivity` runs as number `index`.
+        SamplePath path;
+        CounterRng rng(seed, StreamPurpose::LongExcursion, req.index);
+        try {
+            if (req.engine.engine == Engine::Pdmp) {
+                const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+                if (req.every > 0) {
+                    auto sampler = grid_sampler(c, req.every, [&](double x, int y, double v, double u) {
+                        guard(path);
+                        append(path, static_cast<double>(path.t.size()) * req.every, x, y, v, u);
+                    });
+                    out.excursion = pdmp_long_excursion(c, rng, sampler);
+                } else {
+                    out.excursion = pdmp_long_excursion(c, rng, [&](const PdmpState& s, double t0, double u0, double) {
+                        guard(path);
+                        append(path, t0, c.delta * s.i, s.y, s.v, u0);
+                    });
+                }
+                if (!out.excursion.capped) // the regeneration state that ends it
+                    append(path, out.excursion.duration, c.delta * (c.k_plus + 1), 1, 0.0, out.excursion.displacement);
+            } else {
+                const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+                const auto stride =
+                    std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(req.every / c.h)));
+                std::uint64_t n = 0;
+                double u = 0.0;
+                out.excursion = inclusion_long_excursion(c, rng, [&](double x, double v) {
+                    if (n % stride == 0) {
+                        guard(path);
+                        append(path, static_cast<double>(n) * c.h, x, mode_of(v), v, u);
+                    }
+                    u += c.h * v;
+                    ++n;
+                });
+                if (!out.excursion.capped)
+                    append(path, out.excursion.duration, c.white ? 0.0 : c.x_up, c.white ? 1 : 0,
+                           c.white ? c.level : 0.0, out.excursion.displacement);
+            }
+        } catch (const TooManyPoints&) {
+            throw InvalidParameter("every", "the excursion has more than " + std::to_string(req.max_points) +
+                                                " recorded points; record less often (--every)");
+        }
+        if (out.excursion.capped)
+            out.warnings.push_back("the excursion hit the runaway guard (--max-steps) and is incomplete");
+        out.paths.push_back(std::move(path));
+        return out;
+    }
+    // Independent paths on [0, horizon], recorded every `every` seconds.
+    const double every = req.every > 0 ? req.every : req.horizon / 1000;
+    out.request.every = every;
+    double x0 = req.x0;
+    if (std::isnan(x0)) {
+        if (req.params.white()) x0 = 0.0;
+        else if (req.engine.engine == Engine::Pdmp) {
+            const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+            x0 = (c.k_plus + 1) * c.delta;
+        } else x0 = req.params.upper_threshold();
+    }
+    const auto npoints = static_cast<std::uint64_t>(std::floor(req.horizon / every * (1 + 1e-12))) + 1;
+    for (std::uint64_t k = 0; k < req.paths; ++k) {
+        SamplePath path;
+        CounterRng rng(seed, StreamPurpose::BruteForce, k);
+        if (req.engine.engine == Engine::Pdmp) {
+            const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+            PdmpState s = pdmp_initial_state(c, x0, req.v0);
+            auto sampler = grid_sampler(c, every, [&](double x, int y, double v, double u) {
+                append(path, static_cast<double>(path.t.size()) * every, x, y, v, u);
+            });
+            sampler.stop_at = npoints;
+            const double horizon = static_cast<double>(npoints - 1) * every;
+            const ExcursionOutcome o = pdmp_path(c, s, horizon, rng, sampler);
+            if (path.t.size() < npoints) append(path, horizon, c.delta * s.i, s.y, s.v, o.displacement);
+        } else {
+            const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+            const auto stride = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(every / c.h)));
+            const std::uint64_t nsteps = (npoints - 1) * stride;
+            double x = x0, v = req.v0, u = 0.0;
+            std::uint64_t n = 0;
+            inclusion_path(c, x, v, nsteps, rng, [&](double xn, double vn) {
+                if (n % stride == 0) append(path, static_cast<double>(n) * c.h, xn, mode_of(vn), vn, u);
+                u += c.h * vn;
+                ++n;
+            });
+            append(path, static_cast<double>(nsteps) * c.h, x, mode_of(v), v, u);
+            if (k == 0 && std::fabs(static_cast<double>(stride) * c.h - every) > 1e-9 * every)
+                out.warnings.push_back("recording interval rounded to " + std::to_string(stride) + " steps of dt");
+        }
+        out.paths.push_back(std::move(path));
+    }
+    return out;
+}
+
+} // namespace stickslip

@@ -1,0 +1,146 @@
+#include "stickslip/sweep.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "format.hpp"
+
+namespace stickslip {
+
+namespace {
+
+constexpr std::size_t kMaxPoints = 1u << 16; // sweep_index_stride * kMaxPoints = 2^56 sample indices
+
+DiffusivityRequest point_request(const SweepRequest& req, double noise, double tau, std::size_t k) {
+    DiffusivityRequest d;
+    d.params = req.params;
+    d.params.noise = noise;
+    d.params.tau = tau;
+    d.engine = req.engine;
+    d.excursions = req.excursions;
+    d.level = req.level;
+    d.estimator = req.estimator;
+    d.control = req.control;
+    d.control.first_index = req.control.first_index + k * sweep_index_stride;
+    d.allow_capped = req.allow_capped;
+    return d;
+}
+
+std::vector<double> sorted_unique(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+}
+
+} // namespace
+
+void validate(const SweepRequest& req) {
+    if (req.noises.empty()) throw InvalidParameter("noise", "the sweep needs at least one noise value");
+    if (req.taus.empty()) throw InvalidParameter("tau", "the sweep needs at least one tau value");
+    if (req.noises.size() * req.taus.size() > kMaxPoints)
+        throw InvalidParameter("noise", "at most 65536 sweep points");
+    if (req.excursions > sweep_index_stride) throw InvalidParameter("excursions", "at most 2^40 excursions per point");
+    if (req.control.first_index != 0) throw InvalidParameter("first-index", "a sweep starts at sample index 0");
+    for (double g : req.noises)
+        for (double t : req.taus) {
+            const std::string where = " (at noise " + detail::format_number(g) + ", tau " + detail::format_number(t) + ")";
+            try {
+                validate(point_request(req, g, t, 0));
+            } catch (const InvalidParameter& e) {
+                throw InvalidParameter(e.parameter(), e.what() + where);
+            }
+        }
+}
+
+SweepResult compute_sweep(const SweepRequest& req) {
+    validate(req);
+    const auto start = std::chrono::steady_clock::now();
+    SweepResult out;
+    out.request = req;
+    out.request.noises = sorted_unique(req.noises);
+    out.request.taus = sorted_unique(req.taus);
+    const auto& noises = out.request.noises;
+    const auto& taus = out.request.taus;
+    const std::size_t total = noises.size() * taus.size();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::size_t k = 0;
+    for (double tau : taus) {
+        const std::size_t first = out.points.size();
+        for (double noise : noises) {
+            DiffusivityRequest d = point_request(out.request, noise, tau, k);
+            d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
+            const DiffusivityResult r = compute_diffusivity(d);
+            SweepPoint p;
+            p.noise = noise;
+            p.tau = tau;
+            p.estimates = r.estimates;
+            p.stop_rule = r.resolved.stop_rule;
+            p.work = r.totals.work;
+            p.seconds = r.totals.seconds;
+            p.warnings = r.warnings;
+            out.points.push_back(p);
+            ++k;
+        }
+        // Local slopes from the neighbours; errors from the independent standard errors.
+        const std::size_t n = noises.size();
+        auto logd = [&](std::size_t i) { return std::log(out.points[first + i].estimates.diffusivity.value); };
+        auto sig = [&](std::size_t i) {
+            const auto& e = out.points[first + i].estimates.diffusivity;
+            return e.std_error / e.value;
+        };
+        for (std::size_t i = 0; i < n; ++i) {
+            if (n < 2) {
+                out.points[first + i].slope = make_interval(nan, nan, req.level);
+                continue;
+            }
+            const std::size_t a = i == 0 ? 0 : i - 1, b = i + 1 == n ? n - 1 : i + 1;
+            const double dx = std::log(noises[b]) - std::log(noises[a]);
+            const double s = (logd(b) - logd(a)) / dx;
+            const double se = std::hypot(sig(a), sig(b)) / dx;
+            out.points[first + i].slope = make_interval(s, se, req.level);
+        }
+        if (n >= 2) {
+            // Weighted least squares of log D on log Gamma.
+            double sw = 0, sx = 0, sy = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double w = 1 / (sig(i) * sig(i));
+                sw += w;
+                sx += w * std::log(noises[i]);
+                sy += w * logd(i);
+            }
+            const double xb = sx / sw, yb = sy / sw;
+            double sxx = 0, sxy = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double w = 1 / (sig(i) * sig(i)), x = std::log(noises[i]) - xb;
+                sxx += w * x * x;
+                sxy += w * x * (logd(i) - yb);
+            }
+            const double alpha = sxy / sxx;
+            double chi2 = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double r = (logd(i) - yb - alpha * (std::log(noises[i]) - xb)) / sig(i);
+                chi2 += r * r;
+            }
+            SweepExponent e;
+            e.tau = tau;
+            e.exponent = make_interval(alpha, std::sqrt(1 / sxx), req.level);
+            e.points = static_cast<int>(n);
+            e.chi2_per_dof = n > 2 ? chi2 / static_cast<double>(n - 2) : nan;
+            out.exponents.push_back(e);
+        }
+    }
+    for (const auto& p : out.points)
+        for (const auto& w : p.warnings)
+            if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
+                w.rfind("only ", 0) != 0)
+                out.warnings.push_back(w);
+    if (req.excursions < 5000)
+        out.warnings.push_back("fewer than 5000 excursions per point: the standard errors (and so the slope errors) "
+                               "are themselves uncertain");
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+} // namespace stickslip
