@@ -333,7 +333,11 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
     }
     const std::size_t nl = lag_steps.size();
     const std::uint64_t lmax = lag_steps.back();
-    const std::uint64_t ring = lmax + 1;
+    // Ring buffer of the last lmax + 1 samples; a power of two so that the
+    // index is a mask, not a division, in the per-sample loop over lags.
+    std::uint64_t ring = 1;
+    while (ring < lmax + 1) ring <<= 1;
+    const std::uint64_t mask = ring - 1;
     for (auto l : lag_steps) out.lag.push_back(static_cast<double>(l) * dt);
     const std::size_t dim = nl + 1; // [lag products..., V]
     const std::uint64_t seed = req.control.seed;
@@ -344,13 +348,13 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
         std::uint64_t m = 0;          // samples seen
         std::uint64_t limit = ~0ull;  // start indices must be < limit (excursion length once known)
     };
-    auto push = [&lag_steps, nl, ring](LagState& st, double v) {
-        st.buf[st.m % ring] = v;
+    auto push = [&lag_steps, nl, mask](LagState& st, double v) {
+        st.buf[st.m & mask] = v;
         for (std::size_t j = 0; j < nl; ++j) {
             const std::uint64_t l = lag_steps[j];
             if (st.m < l) break;
             const std::uint64_t start = st.m - l;
-            if (start < st.limit) st.y[j] += st.buf[start % ring] * v;
+            if (start < st.limit) st.y[j] += st.buf[start & mask] * v;
         }
         if (st.m < st.limit) st.y[nl] += v;
         ++st.m;
