@@ -74,10 +74,7 @@ std::string to_table(const DiffusivityResult& r) {
                                            : "dt " + g(q.engine.dt) + " s")
        << ", stop rule " << r.resolved.stop_rule << ", estimator " << to_string(q.estimator) << "\n";
     os << param_line(q.params, q.engine);
-    char head[200];
-    std::snprintf(head, sizeof head, "%-14s %13s  %-13s %-25s  %-7s %11s\n", "quantity", "value", "+- stderr",
-                  (" " + g(100 * q.level, 3) + "% interval").c_str(), "unit", "nondim");
-    os << "\n" << head;
+    os << "\n" << table_head(q.level);
     table_row(os, "diffusivity D", r.estimates.diffusivity, sc.diffusivity, "m^2/s");
     table_row(os, "mobility M0", r.estimates.mobility, sc.velocity, "m/s");
     table_row(os, "mean E[t1]", r.estimates.mean_duration, sc.time, "s", false);
@@ -100,10 +97,7 @@ std::string to_table(const BruteForceResult& r) {
        << ", horizon t = " << g(q.horizon) << " s, start x0 = " << g(r.start_noise) << " s^-1/2, v0 = " << g(q.v0)
        << " m/s\n";
     os << param_line(q.params, q.engine);
-    char head[200];
-    std::snprintf(head, sizeof head, "%-14s %13s  %-13s %-25s  %-7s %11s\n", "quantity", "value", "+- stderr",
-                  (" " + g(100 * q.level, 3) + "% interval").c_str(), "unit", "nondim");
-    os << "\n" << head;
+    os << "\n" << table_head(q.level);
     table_row(os, "D_t", r.estimates.diffusivity, sc.diffusivity, "m^2/s");
     table_row(os, "U(t)/t", r.estimates.mobility, sc.velocity, "m/s");
     os << "\n" << r.estimates.trajectories << " trajectories (seed " << q.control.seed << "), " << r.totals.work

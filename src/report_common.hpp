@@ -112,6 +112,17 @@ inline void table_row(std::ostringstream& os, const std::string& name, const Est
     os << buf;
 }
 
+/// Column titles of the estimate tables, with the interval's level.
+inline std::string table_head(double level) {
+    // Built with append: GCC 12 warns (-Wrestrict, a false positive) on " " + std::string.
+    std::string interval = "  ";
+    interval.append(g(100 * level, 3)).append("% interval");
+    char head[200];
+    std::snprintf(head, sizeof head, "%-14s %13s  %-13s %-25s  %-7s %11s\n", "quantity", "value", "+- stderr",
+                  interval.c_str() + 1, "unit", "nondim");
+    return head;
+}
+
 inline std::string param_line(const ModelParams& p, const EngineSettings& s) {
     std::ostringstream os;
     os << "friction " << g(p.friction) << " m/s^2, noise " << g(p.noise) << " m^2/s^3, tau " << g(p.tau)

@@ -1,0 +1,149 @@
+// Shared helpers of the CLI end-to-end tests: run the built binary
+// (STICKSLIP_CLI_PATH) in a child process with stdin from /dev/null and stdout
+// and stderr captured in temporary files.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <spawn.h>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+extern char** environ;
+
+namespace clitest {
+
+using nlohmann::json;
+using Args = std::vector<std::string>;
+
+struct Result {
+    int code = -1; ///< exit status; 128 + signal if killed
+    std::string out, err;
+};
+
+inline std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+inline std::string temp_file(const char* tag) {
+    std::string dir = ::testing::TempDir();
+    if (dir.empty()) dir = "/tmp/";
+    if (dir.back() != '/') dir += '/';
+    std::string path = dir + "stickslip_cli_" + tag + "_XXXXXX";
+    std::vector<char> buf(path.begin(), path.end());
+    buf.push_back('\0');
+    const int fd = ::mkstemp(buf.data());
+    if (fd < 0) throw std::runtime_error("mkstemp failed for " + path);
+    ::close(fd);
+    return std::string(buf.data());
+}
+
+/// Runs `stickslip args...` without a shell.
+inline Result run(const Args& args) {
+    const std::string out_path = temp_file("out"), err_path = temp_file("err");
+    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
+    argv_s.insert(argv_s.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_TRUNC, 0);
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_TRUNC, 0);
+    pid_t pid = -1;
+    const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    Result r;
+    if (rc != 0) {
+        ADD_FAILURE() << "cannot start " << argv[0] << ": " << std::strerror(rc);
+    } else {
+        int status = 0;
+        while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    }
+    r.out = slurp(out_path);
+    r.err = slurp(err_path);
+    std::remove(out_path.c_str());
+    std::remove(err_path.c_str());
+    return r;
+}
+
+inline std::string describe(const Args& args) {
+    std::string s = "stickslip";
+    for (const auto& a : args) s += " " + a;
+    return s;
+}
+
+inline bool has(const Args& args, const std::string& flag) {
+    for (const auto& a : args)
+        if (a == flag) return true;
+    return false;
+}
+
+/// Adds fast settings, right after the subcommand, unless the arguments set
+/// them already (CLI11 rejects repeated options), so that a case that wrongly
+/// passes validation still finishes quickly.
+inline Args fast(const Args& args) {
+    if (args.empty() || (args[0] != "diffusivity" && args[0] != "bruteforce")) return args;
+    Args extra;
+    const bool pdmp = has(args, "pdmp");
+    if (args[0] == "diffusivity" && !has(args, "--excursions")) extra.insert(extra.end(), {"--excursions", pdmp ? "300" : "200"});
+    if (args[0] == "bruteforce") {
+        if (!has(args, "--time")) extra.insert(extra.end(), {"--time", "1"});
+        if (!has(args, "--trajectories")) extra.insert(extra.end(), {"--trajectories", "100"});
+    }
+    if (!pdmp && !has(args, "--dt")) extra.insert(extra.end(), {"--dt", "1e-3"});
+    Args out{args[0]};
+    out.insert(out.end(), extra.begin(), extra.end());
+    out.insert(out.end(), args.begin() + 1, args.end());
+    return out;
+}
+
+/// Runs, expects exit 0, nothing on stderr, and one JSON object on stdout.
+inline std::optional<json> run_json(const Args& args) {
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 0) << describe(args) << "\nstderr: " << r.err;
+    EXPECT_EQ(r.err, "") << describe(args) << ": no progress or notes on stderr when it is not a terminal";
+    if (r.code != 0) return std::nullopt;
+    try {
+        return json::parse(r.out);
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << describe(args) << ": stdout is not JSON (" << e.what() << "):\n" << r.out;
+        return std::nullopt;
+    }
+}
+
+inline json without_work(json j) {
+    j.erase("work");
+    return j;
+}
+
+inline int count_lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+} // namespace clitest
