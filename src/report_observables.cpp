@@ -15,7 +15,7 @@ using namespace detail;
 namespace {
 
 std::string c(double x) {
-    if (std::isnan(x)) return "nan";
+    if (std::isnan(x)) return ""; // undefined (e.g. a slope from one point): an empty cell, never "nan"
     if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.12g", x);
@@ -579,8 +579,9 @@ std::string to_table(const SweepResult& r) {
     if (!r.exponents.empty()) {
         os << "\nfitted D ~ noise^alpha per tau (weighted least squares in log-log):\n";
         for (const auto& e : r.exponents) {
-            std::snprintf(buf, sizeof buf, "  tau %10.4g s: alpha = %.3f +- %.3f (chi2/dof %.2g over %d points)\n",
-                          e.tau, e.exponent.value, e.exponent.std_error, e.chi2_per_dof, e.points);
+            const std::string chi2 = std::isnan(e.chi2_per_dof) ? "-" : g(e.chi2_per_dof, 2);
+            std::snprintf(buf, sizeof buf, "  tau %10.4g s: alpha = %.3f +- %.3f (chi2/dof %s over %d points)\n",
+                          e.tau, e.exponent.value, e.exponent.std_error, chi2.c_str(), e.points);
             os << buf;
         }
     }
