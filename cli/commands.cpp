@@ -46,6 +46,15 @@ int to_int(const std::string& name, const std::string& s, int max) {
     return static_cast<int>(n);
 }
 
+/// The common tail of every simulating action: validate before any work, attach
+/// the progress line, compute, emit.
+template <class Request, class Compute>
+void finish(Output& out, Request& req, bool quiet, const char* what, Compute compute) {
+    validate(req);
+    req.control.progress = progress_line(quiet, what);
+    emit(out, compute(req));
+}
+
 // ---- diffusivity -----------------------------------------------------------------
 
 Action register_diffusivity(CLI::App& app) {
@@ -74,9 +83,7 @@ Action register_diffusivity(CLI::App& app) {
                 req.excursions = to_count("excursions", f->exc.excursions);
                 req.estimator = parse_estimator(f->estimator);
                 req.allow_capped = f->exc.allow_capped;
-                validate(req);
-                req.control.progress = progress_line(f->out.quiet, "excursions");
-                emit(out, compute_diffusivity(req));
+                finish(out, req, f->out.quiet, "excursions", compute_diffusivity);
             }};
 }
 
@@ -111,9 +118,7 @@ Action register_bruteforce(CLI::App& app) {
                 req.trajectories = to_count("trajectories", f->trajectories);
                 if (!f->x0.empty()) req.x0 = to_double("x0", f->x0);
                 req.v0 = to_double("v0", f->v0);
-                validate(req);
-                req.control.progress = progress_line(f->out.quiet, "trajectories");
-                emit(out, compute_bruteforce(req));
+                finish(out, req, f->out.quiet, "trajectories", compute_bruteforce);
             }};
 }
 
@@ -151,9 +156,7 @@ Action register_density(CLI::App& app) {
                 req.bins.count = to_int("bins", f->bins, 100000);
                 parse_range(f->range, req.bins);
                 req.sample_dt = to_double("sample-dt", f->sample_dt);
-                validate(req);
-                req.control.progress = progress_line(f->out.quiet, "excursions");
-                emit(out, compute_stationary_density(req));
+                finish(out, req, f->out.quiet, "excursions", compute_stationary_density);
             }};
 }
 
@@ -204,9 +207,7 @@ Action register_moments(CLI::App& app) {
                 req.with_density = f->density;
                 req.bins.count = to_int("bins", f->bins, 100000);
                 parse_range(f->range, req.bins);
-                validate(req);
-                req.control.progress = progress_line(f->out.quiet, "trajectories");
-                emit(out, compute_transient(req));
+                finish(out, req, f->out.quiet, "trajectories", compute_transient);
             }};
 }
 
@@ -243,9 +244,7 @@ Action register_correlation(CLI::App& app) {
                 req.max_lag = to_double("max-lag", f->max_lag);
                 req.lags = to_int("lags", f->lags, 100000);
                 req.sample_dt = to_double("sample-dt", f->sample_dt);
-                validate(req);
-                req.control.progress = progress_line(f->out.quiet, "excursions");
-                emit(out, compute_correlation(req));
+                finish(out, req, f->out.quiet, "excursions", compute_correlation);
             }};
 }
 

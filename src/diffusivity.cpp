@@ -84,6 +84,11 @@ void finish_long_excursion_run(const ModelParams& p, const EngineSettings& s, co
                            "is not << tau; report it with that caveat, not as a check");
 }
 
+void check_start(double x0, double v0) {
+    if (!std::isfinite(v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+    if (std::isinf(x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+}
+
 } // namespace detail
 
 void validate(const DiffusivityRequest& req) {
@@ -99,8 +104,7 @@ void validate(const BruteForceRequest& req) {
     if (req.trajectories < 2)
         throw InvalidParameter("trajectories",
                                "trajectories must be >= 2 (got " + std::to_string(req.trajectories) + ")");
-    if (!std::isfinite(req.v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
-    if (std::isinf(req.x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+    detail::check_start(req.x0, req.v0);
     if (req.engine.engine == Engine::Inclusion && req.horizon / req.engine.dt < 1)
         throw InvalidParameter("time", "time must be at least one step dt");
 }

@@ -15,4 +15,8 @@ namespace stickslip::detail {
 void finish_long_excursion_run(const ModelParams& p, const EngineSettings& s, const ResolvedEngine& resolved,
                                const RunTotals& totals, bool allow_capped, std::vector<std::string>& warnings);
 
+/// Checks a trajectory start: v0 [m/s] finite ("v0"); x0 [s^-1/2] finite or
+/// NaN, which means "the default start" ("x0").
+void check_start(double x0, double v0);
+
 } // namespace stickslip::detail
