@@ -22,6 +22,9 @@ PACKAGES=(
   python3             # Debian's /usr/bin/python3: figures and validation scripts
   python3-numpy       # arrays for the figures, the NumPy baseline of bench/
   python3-matplotlib  # the paper's figures (scripts/figures)
+  python3-dev         # Python headers for the `stickslip` Python module
+  pybind11-dev        # pybind11: the Python module
+  python3-pip         # `pip install .` of the Python module
 )
 
 if [[ "${STICKSLIP_SKIP_DEPS:-0}" == 1 ]]; then
