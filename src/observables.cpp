@@ -317,7 +317,7 @@ void validate(const CorrelationRequest& req) {
     const double max_lag = req.max_lag > 0 ? req.max_lag : 5 * scales_of(req.params).time;
     if (max_lag / dt > static_cast<double>(kMaxLagSamples))
         throw InvalidParameter("max-lag", "max-lag / sampling interval exceeds " + std::to_string(kMaxLagSamples) +
-                                              " samples; use a coarser --sample-dt or a shorter --max-lag");
+                                              " samples; use a shorter --max-lag (pdmp: or a coarser --sample-dt)");
 }
 
 CorrelationResult compute_correlation(const CorrelationRequest& req) {

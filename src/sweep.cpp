@@ -71,7 +71,13 @@ SweepResult compute_sweep(const SweepRequest& req) {
         for (double noise : noises) {
             DiffusivityRequest d = point_request(out.request, noise, tau, k);
             d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
-            const DiffusivityResult r = compute_diffusivity(d);
+            DiffusivityResult r;
+            try {
+                r = compute_diffusivity(d);
+            } catch (const CappedExcursions& e) {
+                throw CappedExcursions(std::string(e.what()) + " [at noise " + detail::format_number(noise) +
+                                       ", tau " + detail::format_number(tau) + "]");
+            }
             SweepPoint p;
             p.noise = noise;
             p.tau = tau;

@@ -1,0 +1,42 @@
+// Internal header of the `stickslip` Python module (pybind11): the pieces the
+// translation units share. The module is a thin layer over the library: every
+// computation goes through the same request/compute/report functions as the
+// CLI, so results (and their JSON, via report.hpp) are the CLI's.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <vector>
+
+#include "stickslip/estimators.hpp"
+#include "stickslip/params.hpp"
+
+namespace stickslip::python {
+
+namespace py = pybind11;
+
+/// A copy of `v` as a new 1-D NumPy array (float64, or int64 for ints).
+py::array_t<double> to_array(const std::vector<double>& v);
+py::array_t<std::int64_t> to_array(const std::vector<int>& v);
+
+/// json.loads(text).
+py::object json_loads(const std::string& text);
+
+/// A run of estimates with the same confidence level, shown to Python as
+/// arrays (`value`, `stderr`, `lo`, `hi`, `ci` of shape (n, 2)).
+struct EstimateSeries {
+    std::vector<Estimate> items;
+    double level = 0.95;
+};
+
+/// Python repr of a float ("inf" written as float('inf')).
+std::string float_repr(double x);
+
+void bind_core(py::module_& m);     // exceptions, Params, Scales, Estimate, EstimateSeries, EngineSettings
+void bind_results(py::module_& m);  // simulations and their result classes
+void bind_analytic(py::module_& m); // closed forms and white-noise references
+
+} // namespace stickslip::python
