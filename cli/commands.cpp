@@ -49,9 +49,9 @@ int to_int(const std::string& name, const std::string& s, int max) {
 /// The common tail of every simulating action: validate before any work, attach
 /// the progress line, compute, emit.
 template <class Request, class Compute>
-void finish(Output& out, Request& req, bool quiet, const char* what, Compute compute) {
+void finish(Output& out, Request& req, bool quiet, const char* what, Compute compute, double level = 0.0) {
     validate(req);
-    req.control.progress = progress_line(quiet, what);
+    req.control.progress = progress_line(quiet, what, level);
     emit(out, compute(req));
 }
 
@@ -62,7 +62,7 @@ Action register_diffusivity(CLI::App& app) {
         ModelFlags model;
         OutputFlags out;
         ExcursionFlags exc;
-        std::string estimator = "renewal";
+        std::string estimator = "renewal", rel_precision = "0", max_excursions = "1e8";
     };
     auto f = std::make_shared<Flags>();
     auto* sub = app.add_subcommand(
@@ -74,6 +74,11 @@ Action register_diffusivity(CLI::App& app) {
     add_value(sub, "--estimator", f->estimator, "renewal|paper",
               "renewal (default, correct) or paper (eq. 12, Var U/E t: biased when M0 != 0; for reproducing the "
               "paper's numbers only)");
+    add_value(sub, "--rel-precision", f->rel_precision, "NUM",
+              "precision on demand: run in batches (the first of --excursions) until the interval half-width of D "
+              "is at most this fraction of D, e.g. 0.01; 0 = off. The stopping time depends on the data, so the "
+              "interval's coverage is slightly below --level");
+    add_value(sub, "--max-excursions", f->max_excursions, "INT", "cap of --rel-precision: most excursions in all");
     add_output_flags(sub, f->out);
     sub->footer(kConventions);
     return {sub, [f] {
@@ -83,7 +88,9 @@ Action register_diffusivity(CLI::App& app) {
                 req.excursions = to_count("excursions", f->exc.excursions);
                 req.estimator = parse_estimator(f->estimator);
                 req.allow_capped = f->exc.allow_capped;
-                finish(out, req, f->out.quiet, "excursions", compute_diffusivity);
+                req.rel_precision = to_double("rel-precision", f->rel_precision);
+                req.max_excursions = to_count("max-excursions", f->max_excursions);
+                finish(out, req, f->out.quiet, "excursions", compute_diffusivity, req.level);
             }};
 }
 

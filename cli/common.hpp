@@ -89,8 +89,10 @@ void emit(Output& out, const Result& r) {
     else out.commit(to_table(r), {});
 }
 
-/// Progress line on stderr, only when it is a terminal and not --quiet.
-std::function<bool(const Progress&)> progress_line(bool quiet, const std::string& what);
+/// Progress line on stderr, only when it is a terminal and not --quiet:
+/// samples done of total, rate, time left; with level > 0 (long excursions)
+/// also the current D and the relative half-width of its interval.
+std::function<bool(const Progress&)> progress_line(bool quiet, const std::string& what, double level = 0.0);
 
 /// The conventions footer of every --help.
 extern const char* const kConventions;

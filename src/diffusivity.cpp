@@ -2,7 +2,9 @@
 #include "run_checks.hpp"
 #include "stickslip/diffusivity.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "stickslip/inclusion.hpp"
 #include "stickslip/pdmp.hpp"
@@ -95,7 +97,71 @@ void validate(const DiffusivityRequest& req) {
     check_common(req.params, req.engine, req.level);
     if (req.excursions < 2)
         throw InvalidParameter("excursions", "excursions must be >= 2 (got " + std::to_string(req.excursions) + ")");
+    if (!std::isfinite(req.rel_precision) || req.rel_precision < 0 || req.rel_precision >= 1)
+        throw InvalidParameter("rel-precision", "rel-precision must be in [0, 1) (0 = off), got " +
+                                                    detail::format_number(req.rel_precision));
+    if (req.rel_precision > 0 && req.max_excursions < req.excursions)
+        throw InvalidParameter("max-excursions", "max-excursions must be >= excursions (got " +
+                                                     std::to_string(req.max_excursions) + ")");
 }
+
+namespace {
+
+std::uint64_t round_up_to_blocks(std::uint64_t n) { return (n + block_size - 1) / block_size * block_size; }
+
+/// Precision on demand (DiffusivityRequest::rel_precision): batches of long
+/// excursions at consecutive, block-aligned sample indices until the target.
+RunTotals run_to_precision(const DiffusivityRequest& req, PrecisionOutcome& outcome) {
+    RunTotals total;
+    outcome.target = req.rel_precision;
+    outcome.reached = false;
+    outcome.batches = 0;
+    std::uint64_t batch = std::min(round_up_to_blocks(req.excursions), req.max_excursions);
+    std::uint64_t projected = batch;
+    for (;;) {
+        RunControl ctl = req.control;
+        ctl.first_index = req.control.first_index + total.requested;
+        if (req.control.progress) {
+            ctl.progress = [&](const Progress& p) {
+                BivariateMoments merged = total.moments;
+                if (p.moments) merged.merge(*p.moments);
+                Progress q{total.requested + p.done, projected, total.seconds + p.seconds, &merged};
+                return req.control.progress(q);
+            };
+        }
+        const RunTotals t = run_long_excursions(req.params, req.engine, batch, ctl);
+        total.moments.merge(t.moments);
+        total.requested += t.requested;
+        total.capped += t.capped;
+        total.work += t.work;
+        total.seconds += t.seconds;
+        total.threads = t.threads;
+        ++outcome.batches;
+        if (total.capped > 0 && !req.allow_capped) break; // reported by the caller
+        std::uint64_t needed = batch;
+        if (total.moments.count() >= 2) {
+            const auto est = estimate_long_excursion(total.moments, req.level, req.estimator);
+            const double d = est.diffusivity.value;
+            outcome.relative_half_width = d > 0 ? (est.diffusivity.hi - d) / d : std::numeric_limits<double>::infinity();
+            if (outcome.relative_half_width <= req.rel_precision) {
+                outcome.reached = true;
+                break;
+            }
+            // Half-width ~ 1/sqrt(N): N_needed = N (rel/target)^2, with 10% to spare.
+            const double n = static_cast<double>(total.moments.count());
+            const double ratio = outcome.relative_half_width / req.rel_precision;
+            const double more = std::isfinite(ratio) ? n * (1.1 * ratio * ratio - 1.0) : 4.0 * n;
+            needed = static_cast<std::uint64_t>(std::clamp(more, 1.0, 4.0 * static_cast<double>(total.requested)));
+        }
+        if (total.requested >= req.max_excursions) break;
+        batch = std::min(round_up_to_blocks(std::max<std::uint64_t>(needed, block_size)),
+                         req.max_excursions - total.requested);
+        projected = total.requested + batch;
+    }
+    return total;
+}
+
+} // namespace
 
 void validate(const BruteForceRequest& req) {
     check_common(req.params, req.engine, req.level);
@@ -114,10 +180,16 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
     DiffusivityResult out;
     out.request = req;
     out.resolved = resolve_engine(req.params, req.engine);
-    out.totals = run_long_excursions(req.params, req.engine, req.excursions, req.control);
+    if (req.rel_precision > 0) out.totals = run_to_precision(req, out.precision);
+    else out.totals = run_long_excursions(req.params, req.engine, req.excursions, req.control);
     detail::finish_long_excursion_run(req.params, req.engine, out.resolved, out.totals, req.allow_capped,
                                       out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
+    if (req.rel_precision > 0 && !out.precision.reached)
+        out.warnings.push_back("precision target not reached: relative half-width " +
+                               detail::format_number(out.precision.relative_half_width, 3) + " > " +
+                               detail::format_number(req.rel_precision, 3) + " after " +
+                               std::to_string(out.totals.requested) + " excursions (--max-excursions)");
     if (req.estimator == Estimator::Paper &&
         (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
         out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");

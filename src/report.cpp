@@ -34,6 +34,15 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     j["mean_duration"] = estimate_json(r.estimates.mean_duration, false);
     j["completed"] = r.estimates.excursions;
     j["capped"] = r.totals.capped;
+    if (q.rel_precision > 0) {
+        ordered_json pr;
+        pr["target"] = r.precision.target;
+        pr["relative_half_width"] = r.precision.relative_half_width;
+        pr["reached"] = r.precision.reached;
+        pr["batches"] = r.precision.batches;
+        pr["max_excursions"] = q.max_excursions;
+        j["precision"] = pr;
+    }
     j["engine_details"] = resolved_json(r.resolved, q.params, q.engine);
     add_work_and_notes(j, q.engine, r.totals, r.warnings);
     return dump(j, indent);

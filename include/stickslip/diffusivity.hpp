@@ -24,6 +24,24 @@ struct DiffusivityRequest {
     Estimator estimator = Estimator::RenewalReward;
     RunControl control;
     bool allow_capped = false; ///< if false, capped excursions make the result an error
+    /// Precision on demand: when > 0, run in batches until the interval's
+    /// half-width is at most rel_precision * D, or max_excursions have run.
+    /// The first batch has `excursions`; each later one is sized from the
+    /// current half-width (half-width ~ 1/sqrt(N)), at most 4x what has run.
+    /// Batches start at block-aligned sample indices, so the result is
+    /// deterministic and thread-invariant. Caveat (sequential stopping): N
+    /// depends on the data, so the interval's coverage is slightly below its
+    /// nominal level; with few, large batches the effect is small.
+    double rel_precision = 0.0;
+    std::uint64_t max_excursions = 100'000'000; ///< cap of the precision-on-demand mode
+};
+
+/// How a precision-on-demand run ended.
+struct PrecisionOutcome {
+    double target = 0.0;              ///< requested relative half-width (0: mode off)
+    double relative_half_width = 0.0; ///< achieved (hi - D) / D
+    bool reached = true;
+    int batches = 1;
 };
 
 /// Engine details resolved for a run, reported alongside the estimates.
@@ -45,6 +63,7 @@ struct DiffusivityResult {
     ResolvedEngine resolved;
     LongExcursionEstimates estimates;
     RunTotals totals;
+    PrecisionOutcome precision;
     std::vector<std::string> warnings;
 };
 
