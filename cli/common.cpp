@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include "distributed.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -163,11 +165,13 @@ void fill(const ModelFlags& f, ModelParams& p, EngineSettings& e, RunControl& c,
     if (threads > 4096) throw InvalidParameter("threads", "threads must be between 0 and 4096");
     c.threads = static_cast<unsigned>(threads);
     level = to_double("level", f.level);
+    distribute(c);
 }
 
 Output::Output(const OutputFlags& o) : format_(o.format), path_(o.output), quiet_(o.quiet) {
     if (format_ != "table" && format_ != "json" && format_ != "csv")
         throw InvalidParameter("format", "format must be 'table', 'json' or 'csv', got '" + format_ + "'");
+    if (!is_root()) return; // in a distributed run only the first process writes
     if (path_.empty()) return;
     // The temporary lives in the target's directory so that rename() is atomic.
     temp_ = path_ + ".tmp." + std::to_string(::getpid());
@@ -184,6 +188,7 @@ Output::~Output() {
 }
 
 void Output::commit(const std::string& text, const std::vector<std::string>& warnings) {
+    if (!is_root()) return;
     for (const auto& w : warnings) std::fprintf(stderr, "stickslip: note: %s\n", w.c_str());
     if (path_.empty()) {
         std::cout << text << std::flush;
@@ -214,7 +219,7 @@ void Output::commit(const std::string& text, const std::vector<std::string>& war
 }
 
 std::function<bool(const Progress&)> progress_line(bool quiet, const std::string& what, double level) {
-    if (quiet || !isatty(STDERR_FILENO)) return {};
+    if (quiet || !isatty(STDERR_FILENO) || distributed()) return {}; // no interleaved lines from many processes
     return [what, level](const Progress& pr) {
         const double rate = pr.seconds > 0 ? static_cast<double>(pr.done) / pr.seconds : 0.0;
         const double left = rate > 0 ? static_cast<double>(pr.total - pr.done) / rate : 0.0;

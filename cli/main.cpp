@@ -8,11 +8,20 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "distributed.hpp"
 #include "stickslip/config.hpp"
 
 namespace cli = stickslip::cli;
 
-int main(int argc, char** argv) {
+namespace {
+
+/// Prints the one error line (first process only) and returns the exit code.
+int report(int code, const std::string& line) {
+    if (cli::is_root()) std::fprintf(stderr, "stickslip: %s\n", line.c_str());
+    return code;
+}
+
+int run(int argc, char** argv) {
     CLI::App app{"stickslip: diffusivity, mobility and velocity statistics of an object with dry friction under "
                  "white or colored\nnoise, by the unbiased long-excursion estimators (exact PDMP or "
                  "differential-inclusion engine),\nwith exact white-noise references."};
@@ -24,31 +33,42 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
+        return cli::is_root() ? app.exit(e) : 0;
     } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
+        return cli::is_root() ? app.exit(e) : 0;
     } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
+        return cli::is_root() ? app.exit(e) : 0;
     } catch (const CLI::ParseError& e) {
         std::string msg = e.what();
         for (auto& ch : msg)
             if (ch == '\n') ch = ' ';
-        std::fprintf(stderr, "stickslip: error: %s (see --help)\n", msg.c_str());
-        return cli::kExitBadInput;
+        return report(cli::kExitBadInput, "error: " + msg + " (see --help)");
     }
 
+    // Bad input and capped runs are found by every process alike (validation
+    // comes before any work, the capped check after the gather), so each
+    // process exits with the same code; anything else on one process of a
+    // distributed run ends them all.
     try {
         for (const auto& a : actions)
             if (a.app->parsed()) a.run();
     } catch (const stickslip::InvalidParameter& e) {
-        std::fprintf(stderr, "stickslip: error: --%s: %s\n", e.parameter().c_str(), e.what());
-        return cli::kExitBadInput;
+        return report(cli::kExitBadInput, "error: --" + e.parameter() + ": " + e.what());
     } catch (const stickslip::CappedExcursions& e) {
-        std::fprintf(stderr, "stickslip: ERROR: %s\n", e.what());
-        return cli::kExitCapped;
+        return report(cli::kExitCapped, std::string("ERROR: ") + e.what());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "stickslip: error: %s\n", e.what());
+        if (cli::distributed()) cli::abort_distribution(1);
         return 1;
     }
     return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    cli::start_distribution(argc, argv);
+    const int code = run(argc, argv);
+    cli::stop_distribution();
+    return code;
 }

@@ -25,6 +25,10 @@ PACKAGES=(
   python3-dev         # Python headers for the `stickslip` Python module
   pybind11-dev        # pybind11: the Python module
   python3-pip         # `pip install .` of the Python module
+  python3-setuptools  # build backend of `pip install .` (setup.py drives CMake)
+  python3-wheel       # idem
+  libopenmpi-dev      # MPI: `mpirun -np P stickslip diffusivity ...` (STICKSLIP_MPI)
+  openmpi-bin         # mpirun, for the MPI test
 )
 
 if [[ "${STICKSLIP_SKIP_DEPS:-0}" == 1 ]]; then

@@ -15,6 +15,7 @@
 #include <map>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "stickslip/params.hpp"
@@ -47,6 +48,20 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
     const std::uint64_t nblocks = (n + block_size - 1) / block_size;
     if (nblocks < threads) threads = static_cast<unsigned>(std::max<std::uint64_t>(nblocks, 1));
 
+    // Distributed: only this process's share of the blocks, merged after the
+    // all-gather (see RunControl::combine).
+    const bool distributed = ctl.ranks > 1;
+    if (distributed) {
+        if constexpr (!std::is_empty_v<Extra>)
+            throw InvalidParameter("ranks", "this computation cannot be split across processes (MPI): run it "
+                                            "with one process");
+        if (!ctl.combine || ctl.rank >= ctl.ranks) throw std::logic_error("RunControl: bad distributed settings");
+    }
+    const std::uint64_t local_blocks =
+        distributed ? (nblocks > ctl.rank ? (nblocks - ctl.rank + ctl.ranks - 1) / ctl.ranks : 0) : nblocks;
+    if (local_blocks < threads) threads = static_cast<unsigned>(std::max<std::uint64_t>(local_blocks, 1));
+    std::vector<BlockRecord> records; // distributed only
+
     RunTotals totals;
     totals.requested = n;
     totals.threads = threads;
@@ -68,8 +83,9 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
         try {
             for (;;) {
                 if (stop.load(std::memory_order_relaxed)) return;
-                const std::uint64_t b = next_block.fetch_add(1);
-                if (b >= nblocks) return;
+                const std::uint64_t local = next_block.fetch_add(1);
+                if (local >= local_blocks) return;
+                const std::uint64_t b = distributed ? ctl.rank + local * ctl.ranks : local;
                 BlockResult<Extra> r{BivariateMoments{}, 0, 0, make_extra()};
                 const std::uint64_t lo = b * block_size, hi = std::min(n, lo + block_size);
                 for (std::uint64_t k = lo; k < hi; ++k) {
@@ -80,6 +96,11 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
                     else r.moments.add(o.displacement, o.duration);
                 }
                 std::lock_guard<std::mutex> lock(merge_mutex);
+                if (distributed) {
+                    records.push_back(BlockRecord{b, r.moments, r.capped, r.work});
+                    merged_samples += hi - lo;
+                    continue;
+                }
                 pending.emplace(b, std::move(r));
                 // Merge strictly in block order: the result cannot depend on timing.
                 for (auto it = pending.find(next_to_merge); it != pending.end(); it = pending.find(next_to_merge)) {
@@ -126,6 +147,17 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
     }
     if (error) std::rethrow_exception(error);
     if (cancelled) throw RunCancelled();
+    if (distributed) {
+        std::vector<BlockRecord> all = ctl.combine(std::move(records));
+        std::sort(all.begin(), all.end(), [](const BlockRecord& a, const BlockRecord& c) { return a.block < c.block; });
+        if (all.size() != nblocks) throw std::runtime_error("distributed run: blocks missing after the gather");
+        for (const auto& rec : all) {
+            totals.moments.merge(rec.moments);
+            totals.capped += rec.capped;
+            totals.work += rec.work;
+        }
+        merged_samples = n;
+    }
     totals.seconds = seconds_since_start();
     if (ctl.progress) {
         Progress pr{merged_samples, n, totals.seconds, &totals.moments};

@@ -22,6 +22,24 @@ void BivariateMoments::add(double x, double y) {
     merge(one);
 }
 
+void BivariateMoments::to_raw(double* out) const {
+    out[0] = static_cast<double>(n_); // exact below 2^53 samples
+    out[1] = mean_x_;
+    out[2] = mean_y_;
+    for (int p = 0; p <= max_order; ++p)
+        for (int q = 0; q <= max_order; ++q) out[3 + p * (max_order + 1) + q] = m_[p][q];
+}
+
+BivariateMoments BivariateMoments::from_raw(const double* in) {
+    BivariateMoments m;
+    m.n_ = static_cast<std::uint64_t>(in[0]);
+    m.mean_x_ = in[1];
+    m.mean_y_ = in[2];
+    for (int p = 0; p <= max_order; ++p)
+        for (int q = 0; q <= max_order; ++q) m.m_[p][q] = in[3 + p * (max_order + 1) + q];
+    return m;
+}
+
 void BivariateMoments::merge(const BivariateMoments& b) {
     if (b.n_ == 0) return;
     if (n_ == 0) {

@@ -42,6 +42,12 @@ public:
     /// central_sum(p, q) / n.
     double central_moment(int p, int q) const;
 
+    /// The complete state as raw_size doubles (n, the means, every central
+    /// sum), for sending between processes; from_raw restores it exactly.
+    static constexpr int raw_size = 3 + (max_order + 1) * (max_order + 1);
+    void to_raw(double* out) const;
+    static BivariateMoments from_raw(const double* in);
+
 private:
     std::uint64_t n_ = 0;
     double mean_x_ = 0.0, mean_y_ = 0.0;

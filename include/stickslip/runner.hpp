@@ -29,6 +29,14 @@ struct Progress {
     const BivariateMoments* moments = nullptr; ///< merged so far (in index order)
 };
 
+/// One block's result, as exchanged between processes in a distributed run.
+struct BlockRecord {
+    std::uint64_t block = 0; ///< block number (samples block*64 ... relative to first_index)
+    BivariateMoments moments;
+    std::uint64_t capped = 0;
+    std::uint64_t work = 0;
+};
+
 struct RunControl {
     unsigned threads = 0;          ///< 0: all hardware threads
     std::uint64_t seed = 1;        ///< user seed (the Philox key)
@@ -37,6 +45,15 @@ struct RunControl {
     /// and at the end; return false to cancel the run (throws RunCancelled).
     std::function<bool(const Progress&)> progress;
     double progress_interval = 1.0;
+    /// Distributed runs (MPI, see cli/mpi.cpp): this process computes only the
+    /// blocks b with b % ranks == rank, hands them to `combine`, which must
+    /// return the blocks of every process (an all-gather); they are then
+    /// merged in block order exactly as one process merges them, so the
+    /// result is bitwise that of a single process with the same seed. Only
+    /// runs whose samples reduce to (U, t) moments (diffusivity, bruteforce,
+    /// sweep) can be distributed. ranks == 1: a plain run.
+    unsigned rank = 0, ranks = 1;
+    std::function<std::vector<BlockRecord>(std::vector<BlockRecord>)> combine;
 };
 
 /// Thrown when RunControl::progress asked to stop.

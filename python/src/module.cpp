@@ -1,0 +1,362 @@
+// The `stickslip._core` extension module: exceptions, parameters, estimates.
+// The public, documented API is the pure-Python package `stickslip`
+// (python/stickslip/__init__.py), which re-exports these classes and wraps the
+// compute functions with keyword arguments and docstrings.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "bindings.hpp"
+#include "stickslip/config.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/excursion.hpp"
+#include "stickslip/runner.hpp"
+
+namespace stickslip::python {
+
+py::array_t<double> to_array(const std::vector<double>& v) {
+    py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+    if (!v.empty()) std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+}
+
+py::array_t<std::int64_t> to_array(const std::vector<int>& v) {
+    py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
+    auto* d = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) d[k] = v[k];
+    return a;
+}
+
+py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+
+std::string float_repr(double x) {
+    if (std::isinf(x)) return x > 0 ? "float('inf')" : "float('-inf')";
+    return py::repr(py::float_(x)).cast<std::string>();
+}
+
+namespace {
+
+/// Python exception types, created once (module state lives as long as the process).
+PyObject* g_invalid_parameter = nullptr;
+PyObject* g_capped = nullptr;
+
+double checked(const char* name, double x) {
+    if (std::isnan(x)) throw InvalidParameter(name, std::string(name) + " must be a number, got NaN");
+    return x;
+}
+
+ModelParams make_params(double friction, double noise, double tau, double relaxation, double bias) {
+    ModelParams p;
+    p.friction = checked("friction", friction);
+    p.noise = checked("noise", noise);
+    p.tau = checked("tau", tau);
+    p.relaxation = checked("relaxation", relaxation);
+    p.bias = checked("bias", bias);
+    validate(p);
+    return p;
+}
+
+std::string params_repr(const ModelParams& p) {
+    return "Params(friction=" + float_repr(p.friction) + ", noise=" + float_repr(p.noise) +
+           ", tau=" + float_repr(p.tau) + ", relaxation=" + float_repr(p.relaxation) +
+           ", bias=" + float_repr(p.bias) + ")";
+}
+
+std::string estimate_repr(const Estimate& e) {
+    return "Estimate(value=" + float_repr(e.value) + ", stderr=" + float_repr(e.std_error) + ", ci=(" +
+           float_repr(e.lo) + ", " + float_repr(e.hi) + "), level=" + float_repr(e.level) + ")";
+}
+
+py::dict estimate_dict(const Estimate& e) {
+    py::dict d;
+    d["value"] = e.value;
+    d["stderr"] = e.std_error;
+    d["ci"] = py::make_tuple(e.lo, e.hi);
+    d["level"] = e.level;
+    return d;
+}
+
+template <class Get>
+py::array_t<double> series_column(const EstimateSeries& s, Get get) {
+    py::array_t<double> a(static_cast<py::ssize_t>(s.items.size()));
+    auto* d = a.mutable_data();
+    for (std::size_t k = 0; k < s.items.size(); ++k) d[k] = get(s.items[k]);
+    return a;
+}
+
+} // namespace
+
+void bind_core(py::module_& m) {
+    // ---- exceptions -------------------------------------------------------------
+    g_invalid_parameter = PyErr_NewExceptionWithDoc(
+        "stickslip.InvalidParameterError",
+        "Invalid input (a ValueError). str(e) is '--<parameter>: <message>', exactly what the\n"
+        "`stickslip` command prints after 'stickslip: error: '; e.parameter names the parameter\n"
+        "(as spelled on the command line, e.g. 'friction', 'dt', 'stop-rule') and e.message is\n"
+        "the message alone.",
+        PyExc_ValueError, nullptr);
+    g_capped = PyErr_NewExceptionWithDoc(
+        "stickslip.CappedExcursionsError",
+        "Some excursions hit the runaway guard (max_steps): the result would be biased and is\n"
+        "not returned (a RuntimeError). Pass allow_capped=True to get it anyway, with a warning.",
+        PyExc_RuntimeError, nullptr);
+    m.add_object("InvalidParameterError", py::handle(g_invalid_parameter));
+    m.add_object("CappedExcursionsError", py::handle(g_capped));
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const InvalidParameter& e) {
+            const std::string text = "--" + e.parameter() + ": " + e.what();
+            py::object exc = py::reinterpret_borrow<py::object>(g_invalid_parameter)(text);
+            exc.attr("parameter") = e.parameter();
+            exc.attr("message") = std::string(e.what());
+            PyErr_SetObject(g_invalid_parameter, exc.ptr());
+        } catch (const CappedExcursions& e) {
+            PyErr_SetString(g_capped, e.what());
+        } catch (const RunCancelled& e) {
+            PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+        }
+    });
+
+    m.attr("__version__") = STICKSLIP_VERSION_STRING;
+
+    // ---- Scales ---------------------------------------------------------------------
+    py::class_<Scales>(m, "Scales", "Units of the nondimensional system (friction = noise = 1), in SI.")
+        .def_readonly("time", &Scales::time, "noise/friction^2 [s]")
+        .def_readonly("length", &Scales::length, "noise^2/friction^3 [m]")
+        .def_readonly("velocity", &Scales::velocity, "noise/friction [m/s]")
+        .def_readonly("acceleration", &Scales::acceleration, "friction [m s^-2]")
+        .def_readonly("diffusivity", &Scales::diffusivity, "noise^3/friction^4 [m^2/s]")
+        .def_readonly("noise_level", &Scales::noise_level, "unit of X: time^-1/2 [s^-1/2]")
+        .def("to_dict",
+             [](const Scales& s) {
+                 py::dict d;
+                 d["time"] = s.time;
+                 d["length"] = s.length;
+                 d["velocity"] = s.velocity;
+                 d["acceleration"] = s.acceleration;
+                 d["diffusivity"] = s.diffusivity;
+                 d["noise_level"] = s.noise_level;
+                 return d;
+             })
+        .def("__repr__", [](const Scales& s) {
+            return "Scales(time=" + float_repr(s.time) + ", length=" + float_repr(s.length) +
+                   ", velocity=" + float_repr(s.velocity) + ", acceleration=" + float_repr(s.acceleration) +
+                   ", diffusivity=" + float_repr(s.diffusivity) + ", noise_level=" + float_repr(s.noise_level) + ")";
+        });
+
+    // ---- Params -----------------------------------------------------------------------
+    py::class_<ModelParams>(m, "Params", R"doc(Physical parameters of the model, SI units (immutable).
+
+    dV/dt + friction*sgn(V) = -V/relaxation + bias + sqrt(noise/2)*X(t),
+    tau dX = -X dt + sqrt(2) dW,   E[X(0)X(t)] = exp(-|t|/tau)/tau.
+
+As tau -> 0 the random force sqrt(noise/2)*X tends to a white noise of
+intensity `noise` (<f(t)f(s)> = noise*delta(t-s)); tau = 0 is that white noise.
+
+Params(friction=3.84, noise=5.0, tau=0.5, relaxation=0.067, bias=0.342)
+
+  friction    Delta, dry-friction coefficient [m s^-2], > 0
+  noise       Gamma, noise intensity [m^2 s^-3], > 0
+  tau         noise correlation time [s], >= 0 (0: white noise)
+  relaxation  viscous relaxation time [s], > 0, or float('inf') for no drag
+              (then |bias| < friction is needed for a stationary state)
+  bias        constant force, e.g. gravity on an incline [m s^-2]
+
+Defaults are the paper's Fig. 2 case. Invalid values raise
+InvalidParameterError (a ValueError) with the CLI's message.)doc")
+        .def(py::init(&make_params), py::kw_only(), py::arg("friction") = 3.84, py::arg("noise") = 5.0,
+             py::arg("tau") = 0.5, py::arg("relaxation") = 0.067, py::arg("bias") = 0.342)
+        .def_readonly("friction", &ModelParams::friction, "Delta, dry-friction coefficient [m s^-2]")
+        .def_readonly("noise", &ModelParams::noise, "Gamma, noise intensity [m^2 s^-3]")
+        .def_readonly("tau", &ModelParams::tau, "noise correlation time [s] (0: white noise)")
+        .def_readonly("relaxation", &ModelParams::relaxation, "viscous relaxation time [s] (inf: no drag)")
+        .def_readonly("bias", &ModelParams::bias, "constant force [m s^-2]")
+        .def_property_readonly("force_amplitude", &ModelParams::force_amplitude,
+                               "amplitude a = sqrt(noise/2) of the random force a*X [m s^-2 per s^-1/2]")
+        .def_property_readonly("white", &ModelParams::white, "True for white noise (tau = 0)")
+        .def_property_readonly("upper_threshold", &ModelParams::upper_threshold,
+                               "x* = (friction - bias)/a [s^-1/2]: a stuck object starts moving up when X > x*")
+        .def_property_readonly("lower_threshold", &ModelParams::lower_threshold,
+                               "x-* = (-friction - bias)/a [s^-1/2]")
+        .def_property_readonly("has_stationary_state", &has_stationary_state,
+                               "False only without drag (relaxation inf) and |bias| >= friction")
+        .def("nondimensional", &to_nondimensional,
+             "The same system in units friction = noise = 1: Params(friction=1, noise=1, tau=tau/T, "
+             "relaxation=relaxation/T, bias=bias/friction) with T = noise/friction^2 (see scales()).")
+        .def("scales", &scales_of, "Units of the nondimensional system, in SI (a Scales).")
+        .def_static(
+            "from_nondimensional",
+            [](const ModelParams& nd, double friction, double noise) {
+                const ModelParams p = from_nondimensional(nd, checked("friction", friction), checked("noise", noise));
+                validate(p);
+                return p;
+            },
+            py::arg("nd"), py::arg("friction"), py::arg("noise"),
+            "Inverse of nondimensional(): the SI parameters with the given friction [m s^-2] and noise "
+            "[m^2 s^-3] whose nondimensional form is `nd`.")
+        .def(
+            "replace",
+            [](const ModelParams& p, const py::kwargs& kw) {
+                double v[5] = {p.friction, p.noise, p.tau, p.relaxation, p.bias};
+                static const char* const names[5] = {"friction", "noise", "tau", "relaxation", "bias"};
+                for (auto item : kw) {
+                    const auto key = item.first.cast<std::string>();
+                    int k = 0;
+                    while (k < 5 && key != names[k]) ++k;
+                    if (k == 5) throw py::type_error("replace() got an unexpected keyword argument '" + key + "'");
+                    v[k] = item.second.cast<double>();
+                }
+                return make_params(v[0], v[1], v[2], v[3], v[4]);
+            },
+            "A copy with some fields changed: p.replace(tau=0.125).")
+        .def("to_dict",
+             [](const ModelParams& p) {
+                 py::dict d;
+                 d["friction"] = p.friction;
+                 d["noise"] = p.noise;
+                 d["tau"] = p.tau;
+                 d["relaxation"] = p.relaxation;
+                 d["bias"] = p.bias;
+                 return d;
+             },
+             "{'friction', 'noise', 'tau', 'relaxation', 'bias'} as floats (Params(**d) gives it back).")
+        .def("__repr__", &params_repr)
+        .def("__eq__",
+             [](const ModelParams& a, const py::object& other) -> py::object {
+                 if (!py::isinstance<ModelParams>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+                 const auto& b = other.cast<const ModelParams&>();
+                 return py::bool_(a.friction == b.friction && a.noise == b.noise && a.tau == b.tau &&
+                                  a.relaxation == b.relaxation && a.bias == b.bias);
+             })
+        .def("__hash__",
+             [](const ModelParams& p) {
+                 return py::hash(py::make_tuple(p.friction, p.noise, p.tau, p.relaxation, p.bias));
+             })
+        .def(py::pickle(
+            [](const ModelParams& p) { return py::make_tuple(p.friction, p.noise, p.tau, p.relaxation, p.bias); },
+            [](const py::tuple& t) {
+                if (t.size() != 5) throw std::runtime_error("Params: bad pickle state");
+                return make_params(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(),
+                                   t[3].cast<double>(), t[4].cast<double>());
+            }));
+
+    // ---- Estimate ----------------------------------------------------------------------
+    py::class_<Estimate>(m, "Estimate",
+                         "A point estimate with its standard error (delta method) and the two-sided normal "
+                         "interval value -+ q*stderr at `level`. float(e) is e.value.")
+        .def_readonly("value", &Estimate::value)
+        .def_readonly("stderr", &Estimate::std_error)
+        .def_readonly("lo", &Estimate::lo)
+        .def_readonly("hi", &Estimate::hi)
+        .def_readonly("level", &Estimate::level)
+        .def_property_readonly("ci", [](const Estimate& e) { return py::make_tuple(e.lo, e.hi); },
+                               "(lo, hi): the confidence interval at `level`")
+        .def("to_dict", &estimate_dict, "{'value', 'stderr', 'ci': (lo, hi), 'level'}")
+        .def("__float__", [](const Estimate& e) { return e.value; })
+        .def("__repr__", &estimate_repr)
+        .def(py::pickle(
+            [](const Estimate& e) { return py::make_tuple(e.value, e.std_error, e.lo, e.hi, e.level); },
+            [](const py::tuple& t) {
+                Estimate e;
+                e.value = t[0].cast<double>();
+                e.std_error = t[1].cast<double>();
+                e.lo = t[2].cast<double>();
+                e.hi = t[3].cast<double>();
+                e.level = t[4].cast<double>();
+                return e;
+            }));
+
+    py::class_<EstimateSeries>(m, "EstimateSeries",
+                               "Estimates along an axis (bins, lags, times, sweep points), as NumPy arrays: "
+                               "value, stderr, lo, hi (shape (n,)) and ci (shape (n, 2)). np.asarray(s) is "
+                               "s.value; s[k] is the k-th Estimate.")
+        .def_property_readonly("value", [](const EstimateSeries& s) {
+            return series_column(s, [](const Estimate& e) { return e.value; });
+        })
+        .def_property_readonly("stderr", [](const EstimateSeries& s) {
+            return series_column(s, [](const Estimate& e) { return e.std_error; });
+        })
+        .def_property_readonly("lo", [](const EstimateSeries& s) {
+            return series_column(s, [](const Estimate& e) { return e.lo; });
+        })
+        .def_property_readonly("hi", [](const EstimateSeries& s) {
+            return series_column(s, [](const Estimate& e) { return e.hi; });
+        })
+        .def_property_readonly("ci",
+                               [](const EstimateSeries& s) {
+                                   py::array_t<double> a({static_cast<py::ssize_t>(s.items.size()), py::ssize_t{2}});
+                                   auto r = a.mutable_unchecked<2>();
+                                   for (std::size_t k = 0; k < s.items.size(); ++k) {
+                                       r(static_cast<py::ssize_t>(k), 0) = s.items[k].lo;
+                                       r(static_cast<py::ssize_t>(k), 1) = s.items[k].hi;
+                                   }
+                                   return a;
+                               },
+                               "shape (n, 2): the intervals [lo, hi]")
+        .def_readonly("level", &EstimateSeries::level)
+        .def("__len__", [](const EstimateSeries& s) { return s.items.size(); })
+        .def("__getitem__",
+             [](const EstimateSeries& s, py::ssize_t k) {
+                 const auto n = static_cast<py::ssize_t>(s.items.size());
+                 if (k < 0) k += n;
+                 if (k < 0 || k >= n) throw py::index_error("EstimateSeries index out of range");
+                 return s.items[static_cast<std::size_t>(k)];
+             })
+        .def(
+            "__array__",
+            [](const EstimateSeries& s, const py::object& dtype) {
+                py::array a = series_column(s, [](const Estimate& e) { return e.value; });
+                if (!dtype.is_none()) a = a.attr("astype")(dtype);
+                return a;
+            },
+            py::arg("dtype") = py::none())
+        .def("to_dict",
+             [](const EstimateSeries& s) {
+                 py::dict d;
+                 d["value"] = series_column(s, [](const Estimate& e) { return e.value; });
+                 d["stderr"] = series_column(s, [](const Estimate& e) { return e.std_error; });
+                 d["lo"] = series_column(s, [](const Estimate& e) { return e.lo; });
+                 d["hi"] = series_column(s, [](const Estimate& e) { return e.hi; });
+                 d["level"] = s.level;
+                 return d;
+             },
+             "{'value', 'stderr', 'lo', 'hi'} arrays and 'level'")
+        .def("__repr__", [](const EstimateSeries& s) {
+            std::string out = "EstimateSeries(n=" + std::to_string(s.items.size()) + ", level=" + float_repr(s.level);
+            if (!s.items.empty()) {
+                out += ", value=[" + float_repr(s.items.front().value);
+                if (s.items.size() > 2) out += ", ...";
+                if (s.items.size() > 1) out += ", " + float_repr(s.items.back().value);
+                out += "]";
+            }
+            return out + ")";
+        });
+
+    // ---- engine settings (internal: the Python layer builds it from keyword arguments) ----
+    py::class_<EngineSettings>(m, "_EngineSettings")
+        .def(py::init([](const std::string& engine, double dt, double grid, double lattice_bound,
+                         const std::string& stop_rule, double white_level, std::uint64_t max_steps) {
+                 EngineSettings s;
+                 s.engine = parse_engine(engine);
+                 s.dt = checked("dt", dt);
+                 s.grid = checked("grid", grid);
+                 s.lattice_bound = checked("lattice-bound", lattice_bound);
+                 s.stop_rule = parse_stop_rule(stop_rule);
+                 s.white_level = checked("white-level", white_level);
+                 s.max_work_per_excursion = max_steps;
+                 return s;
+             }),
+             py::arg("engine"), py::arg("dt"), py::arg("grid"), py::arg("lattice_bound"), py::arg("stop_rule"),
+             py::arg("white_level"), py::arg("max_steps"));
+}
+
+} // namespace stickslip::python
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "stickslip._core: the compiled part of the stickslip package (use `import stickslip`).";
+    stickslip::python::bind_core(m);
+    stickslip::python::bind_results(m);
+    stickslip::python::bind_analytic(m);
+}

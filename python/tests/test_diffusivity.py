@@ -1,0 +1,104 @@
+"""diffusivity() and bruteforce(): attributes, the CLI's JSON, thread independence."""
+import contextlib
+import io
+import unittest
+
+import stickslip
+from _support import cli_json, without_work
+
+P = stickslip.Params()
+
+
+class DiffusivityTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.r = stickslip.diffusivity(P, excursions=192, seed=7, threads=2)
+
+    def test_attributes(self):
+        r = self.r
+        for e in (r.diffusivity, r.mobility, r.mean_duration):
+            self.assertIsInstance(e, stickslip.Estimate)
+            self.assertGreater(e.stderr, 0)
+            self.assertEqual(len(e.ci), 2)
+        self.assertGreater(r.diffusivity.value, 0)
+        self.assertEqual(r.completed, 192)
+        self.assertEqual(r.capped, 0)
+        self.assertEqual(r.excursions, 192)
+        self.assertEqual((r.engine, r.estimator, r.stop_rule, r.seed, r.level), ("inclusion", "renewal", "bridge", 7, 0.95))
+        self.assertEqual(r.params, P)
+        self.assertGreater(r.work, 0)
+        self.assertTrue(any("fewer than 5000" in w for w in r.warnings))
+        self.assertIn("DiffusivityResult(", repr(r))
+        d = r.to_dict()
+        self.assertEqual(d["diffusivity"]["value"], r.diffusivity.value)
+        self.assertEqual(d["diffusivity"]["ci"], list(r.diffusivity.ci))
+        self.assertEqual(d["warnings"], r.warnings)
+        self.assertIn("diffusivity D", r.to_table())
+        self.assertTrue(r.to_csv().count("\n") >= 2)
+
+    def test_equals_cli_json(self):
+        cli = cli_json("diffusivity", "--excursions", "192", "--seed", "7", "--threads", "2")
+        self.assertEqual(without_work(self.r.to_dict()), without_work(cli))
+
+    def test_pdmp_equals_cli_json(self):
+        p = stickslip.Params(relaxation=float("inf"), bias=0.5)
+        r = stickslip.diffusivity(p, engine="pdmp", grid=0.25, excursions=256, seed=3, level=0.9)
+        cli = cli_json("diffusivity", "--engine", "pdmp", "--grid", "0.25", "--excursions", "256", "--seed", "3",
+                       "--level", "0.9", "--relaxation", "inf", "--bias", "0.5")
+        self.assertEqual(without_work(r.to_dict()), without_work(cli))
+        self.assertEqual(r.to_dict()["params"]["relaxation"], "inf")
+
+    def test_threads_do_not_change_the_result(self):
+        one = stickslip.diffusivity(P, engine="pdmp", excursions=640, seed=11, threads=1)
+        two = stickslip.diffusivity(P, engine="pdmp", excursions=640, seed=11, threads=2)
+        self.assertEqual(one.threads, 1)
+        self.assertEqual(two.threads, 2)
+        self.assertEqual(without_work(one.to_dict()), without_work(two.to_dict()))
+        self.assertEqual(one.diffusivity.value, two.diffusivity.value)
+
+    def test_paper_estimator_and_white_noise(self):
+        white = stickslip.Params(friction=1, noise=1, tau=0, relaxation=float("inf"), bias=0)
+        r = stickslip.diffusivity(white, dt=1e-3, excursions=128, estimator="paper", threads=1)
+        self.assertEqual(r.stop_rule, "velocity-levels")
+        self.assertEqual(r.estimator, "paper")
+
+    def test_capped(self):
+        with self.assertRaises(stickslip.CappedExcursionsError) as c:
+            stickslip.diffusivity(P, excursions=64, max_steps=50000, threads=1)
+        self.assertIn("runaway guard", str(c.exception))
+        r = stickslip.diffusivity(P, excursions=64, max_steps=50000, threads=1, allow_capped=True)
+        self.assertGreater(r.capped, 0)
+        self.assertEqual(r.completed + r.capped, 64)
+
+    def test_progress_line(self):
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            stickslip.diffusivity(P, engine="pdmp", excursions=128, threads=1, progress=True)
+        self.assertIn("128/128 excursions", err.getvalue())
+        self.assertTrue(err.getvalue().endswith("\n"))
+
+    def test_params_as_dict_and_default(self):
+        r = stickslip.diffusivity({"tau": 0.5}, engine="pdmp", excursions=64, threads=1)
+        self.assertEqual(r.params, P)
+        with self.assertRaises(TypeError):
+            stickslip.diffusivity("fig2")
+
+
+class BruteForceTest(unittest.TestCase):
+    def test_equals_cli_json(self):
+        r = stickslip.bruteforce(P, engine="pdmp", time=2, trajectories=200, seed=5)
+        cli = cli_json("bruteforce", "--engine", "pdmp", "--time", "2", "--trajectories", "200", "--seed", "5")
+        self.assertEqual(without_work(r.to_dict()), without_work(cli))
+        self.assertEqual(r.trajectories, 200)
+        self.assertEqual(r.time, 2.0)
+        self.assertGreater(r.diffusivity.value, 0)
+        self.assertAlmostEqual(r.x0, r.to_dict()["params"]["x0"])
+
+    def test_start(self):
+        r = stickslip.bruteforce(P, time=0.5, trajectories=64, x0=0.0, v0=0.1, threads=1)
+        self.assertEqual(r.x0, 0.0)
+        self.assertEqual(r.v0, 0.1)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,95 @@
+"""Simulations release the GIL and stop cleanly on Ctrl-C (KeyboardInterrupt)."""
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+import unittest
+
+import stickslip
+
+CHILD = textwrap.dedent("""
+    import signal, sys
+    # A shell may start background jobs with SIGINT ignored; Python would then keep ignoring it.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    import stickslip
+    print("running", flush=True)
+    stickslip.{call}
+    print("finished", flush=True)
+""")
+
+
+class InterruptTest(unittest.TestCase):
+    def interrupt(self, call):
+        env = dict(os.environ)
+        child = subprocess.Popen([sys.executable, "-c", CHILD.format(call=call)], stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, text=True, env=env)
+        try:
+            self.assertEqual(child.stdout.readline().strip(), "running")
+            time.sleep(1.0)
+            sent = time.monotonic()
+            child.send_signal(signal.SIGINT)
+            out, err = child.communicate(timeout=10)
+            elapsed = time.monotonic() - sent
+        finally:
+            if child.poll() is None:
+                child.kill()
+                child.wait()
+        self.assertNotIn("finished", out)
+        self.assertIn("KeyboardInterrupt", err)
+        self.assertIn("Traceback", err)
+        # Python exits from an uncaught KeyboardInterrupt by re-raising SIGINT on itself (-2);
+        # a crash would be SIGSEGV/SIGABRT.
+        self.assertIn(child.returncode, (1, 130, -signal.SIGINT), err)
+        self.assertLess(elapsed, 5.0)
+
+    def test_diffusivity_two_threads(self):
+        self.interrupt("diffusivity(excursions=10**8, threads=2)")
+
+    def test_one_thread_with_progress(self):
+        self.interrupt("diffusivity(excursions=10**8, threads=1, progress=True)")
+
+    def test_sweep(self):
+        self.interrupt("sweep(noise=[3, 5], tau=[0.5], excursions=10**8, threads=2)")
+
+
+class GilTest(unittest.TestCase):
+    def test_python_thread_runs_during_a_simulation(self):
+        count = 0
+        stop = threading.Event()
+
+        def spin():
+            nonlocal count
+            while not stop.is_set():
+                count += 1
+
+        t = threading.Thread(target=spin)
+        t.start()
+        try:
+            time.sleep(0.05)
+            before = count
+            start = time.monotonic()
+            r = stickslip.diffusivity(excursions=256, threads=1)
+            seconds = time.monotonic() - start
+            during = count - before
+        finally:
+            stop.set()
+            t.join()
+        self.assertEqual(r.completed, 256)
+        self.assertGreater(seconds, 0.3)
+        # With the GIL held for the whole run the counter would barely move.
+        self.assertGreater(during, 100000 * seconds)
+
+    def test_simulation_in_a_thread(self):
+        out = {}
+        t = threading.Thread(target=lambda: out.setdefault("r", stickslip.diffusivity(engine="pdmp", excursions=256)))
+        t.start()
+        t.join(timeout=60)
+        self.assertFalse(t.is_alive())
+        self.assertEqual(out["r"].completed, 256)
+
+
+if __name__ == "__main__":
+    unittest.main()
