@@ -89,6 +89,11 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
                 BlockResult<Extra> r{BivariateMoments{}, 0, 0, make_extra()};
                 const std::uint64_t lo = b * block_size, hi = std::min(n, lo + block_size);
                 for (std::uint64_t k = lo; k < hi; ++k) {
+                    if (ctl.cancel && ctl.cancel->load(std::memory_order_relaxed)) {
+                        std::lock_guard<std::mutex> lock(merge_mutex);
+                        cancelled = true;
+                        stop = true;
+                    }
                     if (stop.load(std::memory_order_relaxed)) return;
                     const ExcursionOutcome o = sample(ctl.first_index + k, r.extra);
                     r.work += o.work;

@@ -9,6 +9,7 @@
 // partial results are merged in the same order.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
@@ -41,10 +42,16 @@ struct RunControl {
     unsigned threads = 0;          ///< 0: all hardware threads
     std::uint64_t seed = 1;        ///< user seed (the Philox key)
     std::uint64_t first_index = 0; ///< first sample index (for splitting runs)
-    /// Called from the merging thread about every `progress_interval` seconds
-    /// and at the end; return false to cancel the run (throws RunCancelled).
+    /// Called about every `progress_interval` seconds, after a block of
+    /// samples is merged, on whichever worker thread merged it (so not
+    /// necessarily the caller's thread; never concurrently), and once at the
+    /// end; return false to cancel the run (throws RunCancelled).
     std::function<bool(const Progress&)> progress;
     double progress_interval = 1.0;
+    /// Optional cancel flag, read by the workers before every sample: set it
+    /// from any thread (a signal watcher, a GUI) to stop the run within one
+    /// sample; the run then throws RunCancelled.
+    const std::atomic<bool>* cancel = nullptr;
     /// Distributed runs (MPI, see cli/mpi.cpp): this process computes only the
     /// blocks b with b % ranks == rank, hands them to `combine`, which must
     /// return the blocks of every process (an all-gather); they are then

@@ -146,8 +146,11 @@ Result run_request(Request& req, Result (*compute)(const Request&), const RunArg
     validate(req); // bad input fails here, before any thread starts
     Monitor mon;
     req.control.progress = mon.callback(what);
+    req.control.cancel = &mon.cancel; // stops the workers within one sample
+
     Result r = run_interruptible<Result>([&req, compute] { return compute(req); }, mon, a.progress);
     r.request.control.progress = nullptr; // it points to `mon`, about to go
+    r.request.control.cancel = nullptr;
     return r;
 }
 
@@ -695,9 +698,11 @@ void bind_results(py::module_& m) {
                                   noise, tau);
                     return mon.callback(what);
                 };
+                req.control.cancel = &mon.cancel; // every point's run stops within one sample
                 SweepResult r =
                     run_interruptible<SweepResult>([&req] { return compute_sweep(req); }, mon, a.progress);
                 r.request.point_progress = nullptr; // it points to `mon`, about to go
+                r.request.control.cancel = nullptr;
                 return r;
             },
             py::arg("params"), py::arg("engine"), py::arg("noises"), py::arg("taus"), py::arg("excursions"),
