@@ -173,7 +173,7 @@ Action register_moments(CLI::App& app) {
     struct Flags {
         ModelFlags model;
         OutputFlags out;
-        std::string v0, x0, times, trajectories = "10000", bins = "60", range;
+        std::string v0, x0, times, trajectories = "10000", bins = "80", range;
         bool density = false;
     };
     auto f = std::make_shared<Flags>();
