@@ -19,7 +19,6 @@ import os
 import shlex
 import subprocess
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -48,7 +47,7 @@ FIGURES = ["table1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig8", "fi
 # The default sizes were chosen from measured costs on 2 cores (inclusion engine
 # ~2.5e7 steps/s, PDMP ~3.5e7 events/s); see docs/validation.md, last section.
 DEFAULT = {
-    "table1": {"tau": 5e-6, "dt": 2.5e-3, "trajectories": 400000},
+    "table1": {"tau": 5e-6, "dt": 2.5e-3, "trajectories": 500000},
     "fig23": {"excursions_pdmp": 4000, "excursions_incl": 1000, "max_index": 200},
     "fig4": {
         "dt": 1e-3, "grid": 0.125,
@@ -65,7 +64,7 @@ DEFAULT = {
     "fig5": {
         "noise": 5.0, "max_lag": 1.5, "lags": 60, "grid": 0.125, "sample_dt": 2.5e-3,
         # tau: (N pdmp, N inclusion, inclusion dt)
-        "taus": {0.25: (10000, 6000, 1e-3), 0.5: (8000, 4000, 1e-3), 1.0: (4000, 1500, 1e-3)},
+        "taus": {0.25: (20000, 12000, 1e-3), 0.5: (16000, 8000, 1e-3), 1.0: (8000, 3000, 1e-3)},
     },
     "fig6": {"tau": 1e-5, "noise": 0.16, "dt": 1e-5, "excursions": 8000,
              "range": (-0.12, 0.12), "bins": 96, "paths": 10, "path_time": 2.0, "path_dt": 1e-5},
@@ -75,16 +74,18 @@ DEFAULT = {
              # tau': N excursions (equalises roughly the total simulated time)
              "taus": {5e-5: 2000, 5e-4: 2500, 5e-3: 5000, 5e-2: 50000}},
     "fig9": {
-        "dt": 1e-4, "bf_time": 10.0, "bf_trajectories": 1500,
+        "dt": 1e-4, "bf_time": 10.0, "bf_trajectories": 1000,
         "gammas": [1.0, 1.778, 3.162, 5.623, 10.0], "bf_gammas": [1.0, 3.162, 10.0],
-        # tau: N excursions per point (small tau: E[t1] ~ 100 s at Gamma = 10)
-        "taus": {1e-5: 1500, 1e-4: 2000, 1e-3: 6000, 1e-2: 6000},
+        # tau: N excursions per point for (b = 0, paper's b). Small tau: E[t1] ~ 100 s
+        # at Gamma = 10 (1e6 steps per excursion); tau >= 1e-3 s: cheap excursions but
+        # very heavy-tailed displacements (tau' ~ 0.01 - 0.1), so many more of them.
+        "taus": {1e-5: (1000, 1000), 1e-4: (1200, 1500), 1e-3: (20000, 10000), 1e-2: (30000, 20000)},
         "white_points": 19,
     },
 }
 
 QUICK = {
-    "table1": {"tau": 5e-6, "dt": 1.25e-2, "trajectories": 20000},
+    "table1": {"tau": 5e-6, "dt": 1.25e-2, "trajectories": 50000},
     "fig23": {"excursions_pdmp": 200, "excursions_incl": 50, "max_index": 40},
     "fig4": {
         "dt": 2e-3, "grid": 0.125,
@@ -93,14 +94,14 @@ QUICK = {
     },
     "fig5": {"noise": 5.0, "max_lag": 1.5, "lags": 30, "grid": 0.125, "sample_dt": 5e-3,
              "taus": {0.25: (300, 200, 2e-3), 0.5: (200, 100, 2e-3), 1.0: (100, 50, 2e-3)}},
-    "fig6": {"tau": 1e-5, "noise": 0.16, "dt": 1e-4, "excursions": 300,
+    "fig6": {"tau": 1e-5, "noise": 0.16, "dt": 1e-4, "excursions": 1000,
              "range": (-0.12, 0.12), "bins": 48, "paths": 10, "path_time": 2.0, "path_dt": 1e-4},
-    "fig7": {"taus": [5e-2, 5e-3, 5e-4, 5e-5], "dt": 5e-3, "trajectories": 5000,
+    "fig7": {"taus": [5e-2, 5e-3, 5e-4, 5e-5], "dt": 5e-3, "trajectories": 20000,
              "times": [0.25, 0.5, 1.0, 2.0], "range": (-3.0, 4.0), "bins": 35},
-    "fig8": {"dt": 5e-3, "max_lag": 5.0, "lags": 25, "taus": {5e-5: 60, 5e-4: 80, 5e-3: 150, 5e-2: 1500}},
+    "fig8": {"dt": 5e-3, "max_lag": 5.0, "lags": 25, "taus": {5e-5: 120, 5e-4: 160, 5e-3: 300, 5e-2: 3000}},
     "fig9": {"dt": 1e-3, "bf_time": 10.0, "bf_trajectories": 100,
              "gammas": [1.0, 3.162, 10.0], "bf_gammas": [1.0, 10.0],
-             "taus": {1e-5: 40, 1e-4: 40, 1e-3: 200, 1e-2: 200}, "white_points": 7},
+             "taus": {1e-5: (40, 40), 1e-4: (40, 40), 1e-3: (300, 200), 1e-2: (400, 300)}, "white_points": 7},
 }
 
 
@@ -544,12 +545,24 @@ def make_fig6(R, cfg, out, written, summary, seed):
     zs = zsummary(z[se > 0])
     ref = R("analytic", model, threads=False, label="analytic", fig="fig6")
 
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5))
+    fig = plt.figure(figsize=(12, 6))
+    gs = fig.add_gridspec(2, 2, height_ratios=[3, 1])
+    ax = fig.add_subplot(gs[0, 0])
+    axz = fig.add_subplot(gs[1, 0], sharex=ax)
+    ax2 = fig.add_subplot(gs[:, 1])
+    ok = se > 0
+    axz.plot(mid[ok], z[ok], "r^", ms=3)
+    axz.axhline(0, color="k", lw=1)
+    for lev in (-2, 2):
+        axz.axhline(lev, color="gray", ls=":", lw=0.8)
+    axz.set_xlabel("velocity v [m/s]")
+    axz.set_ylabel("z = (hist - P) / se")
+    axz.grid(alpha=0.3)
+    plt.setp(ax.get_xticklabels(), visible=False)
     ax.plot(curve["velocities"], curve["stationary_density"], "k-", lw=1.3,
             label="Hayakawa P(v) (white noise), `stickslip analytic`")
     ax.errorbar(mid, dens, yerr=1.96 * se, fmt="r^", ms=3.5, capsize=1.5, lw=0.8,
                 label=f"histogram, tau = {c['tau']:g} s, dt = {c['dt']:g} s (95% CI)")
-    ax.set_xlabel("velocity v [m/s]")
     ax.set_ylabel("stationary density [s/m]")
     ax.set_title(f"Fig. 6 left: bin width {bhi[0] - blo[0]:.2g} m/s, {c['excursions']} long excursions;\n"
                  f"P(stuck) = {stuck[0]:.2e} ± {stuck[1]:.1e} (atom at v = 0, not in the histogram); "
@@ -687,30 +700,38 @@ def make_fig8(R, cfg, out, written, summary, seed):
 # Fig. 9 ------------------------------------------------------------------------------
 def make_fig9(R, cfg, out, written, summary, seed):
     c = cfg["fig9"]
-    fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
+    fig, axes = plt.subplots(2, 2, figsize=(13, 9.5), sharex=True, gridspec_kw={"height_ratios": [2.2, 1]})
     res = {}
     gw = np.exp(np.linspace(np.log(min(c["gammas"])), np.log(max(c["gammas"])), c["white_points"]))
     for bi, (bname, bargs, title) in enumerate((
             ("b=0", ZERO_B, "b(v) = 0"),
             ("paper_b", PAPER_B, "b(v) = -v/tauL + gbar, tauL = 0.067 s, gbar = 0.342 m/s$^2$"))):
-        ax = axes[bi]
+        ax, axr = axes[0, bi], axes[1, bi]
         white = np.array([R("analytic", bargs + ["--noise", g], threads=False, label=None, fig="fig9")["diffusivity"]
                           for g in gw])
         wfit = np.polyfit(np.log(gw), np.log(white), 1)[0]
         ax.plot(gw, white, "k--", lw=1.3, label=f"white noise (quadrature), slope {wfit:.2f}")
+        axr.axhline(1.0, color="k", ls="--", lw=1.2)
         rb = {"white_noise_gammas": [rnd(g) for g in gw], "white_noise_D": [rnd(x) for x in white],
               "white_noise_exponent": rnd(float(wfit), 4), "per_tau": {}}
-        for k, (tau, n) in enumerate(c["taus"].items()):
+        ntau = len(c["taus"])
+        for k, (tau, ns) in enumerate(c["taus"].items()):
+            n = ns[bi]
             col = TAU_COLORS[k]
             sw = R("sweep", bargs + ["--tau", tau, "--noise", ",".join(fmt(g) for g in c["gammas"]), "--dt", c["dt"],
                                      "--excursions", n], seed=seed + 100 * bi + 10 * k,
-                   label=f"sweep {bname} tau={tau:g}", fig="fig9")
+                   label=f"sweep {bname} tau={tau:g} (N={n})", fig="fig9")
             g, D, sD, T, sT = sweep_points(sw)
             ex = sw["exponents"][0]
             alpha, salpha = est(ex["exponent"])
             ax.plot(g, D, "-", color=col, lw=1.4,
-                    label=f"tau = {tau:g} s: long excursions, alpha = {alpha:.2f} ± {salpha:.2f}")
+                    label=f"tau = {tau:g} s: long excursions (N = {n}), alpha = {alpha:.2f} ± {salpha:.2f}")
             ax.fill_between(g, D - 1.96 * sD, D + 1.96 * sD, color=col, alpha=0.2, lw=0)
+            white_at = np.array([R("analytic", bargs + ["--noise", gg], threads=False, label=None,
+                                   fig="fig9")["diffusivity"] for gg in g])
+            shift = np.exp((k - (ntau - 1) / 2) * 0.012)  # small horizontal offsets in the ratio panel
+            axr.errorbar(g * shift, D / white_at, yerr=1.96 * sD / white_at, fmt="-", color=col, lw=1.2,
+                         capsize=2)
             bf = []
             for j, gb in enumerate(c["bf_gammas"]):
                 b = R("bruteforce", bargs + ["--tau", tau, "--noise", gb, "--dt", c["dt"], "--time", c["bf_time"],
@@ -722,9 +743,9 @@ def make_fig9(R, cfg, out, written, summary, seed):
             ax.errorbar(bf[:, 0], bf[:, 1], yerr=1.96 * bf[:, 2], fmt="o", color=col, ms=5, mfc="none", capsize=2)
             # long-excursion D at the brute-force Gammas (same grid points)
             idx = [int(np.argmin(np.abs(g - gb))) for gb in bf[:, 0]]
+            axr.errorbar(bf[:, 0] * shift, bf[:, 1] / white_at[idx], yerr=1.96 * bf[:, 2] / white_at[idx], fmt="o",
+                         color=col, ms=5, mfc="none", capsize=2)
             zbf = zscores(bf[:, 1], bf[:, 2], D[idx], sD[idx])
-            white_at = np.array([R("analytic", bargs + ["--noise", gg], threads=False, label=None,
-                                   fig="fig9")["diffusivity"] for gg in g])
             rb["per_tau"][f"{tau:g}"] = {
                 "excursions": n, "stop_rule": sw["points"][0].get("stop_rule"),
                 "tau_nd": [rnd(p["nondimensional"]["tau"], 3) for p in sw["points"]],
@@ -733,23 +754,29 @@ def make_fig9(R, cfg, out, written, summary, seed):
                 "exponent": rnd(alpha, 4), "exponent_se": rnd(salpha, 2),
                 "exponent_chi2_per_dof": rnd(ex.get("chi2_per_dof"), 3) if ex.get("chi2_per_dof") is not None else None,
                 "exponent_minus_3_in_se": rnd((alpha - 3) / salpha, 3) if salpha > 0 else None,
+                "exponent_minus_white_in_se": rnd((alpha - wfit) / salpha, 3) if salpha > 0 else None,
                 "local_slopes": [rnd(p["slope"]["value"], 3) for p in sw["points"]],
                 "D_over_white": [rnd(x, 4) for x in D / white_at],
                 "z_vs_white": [rnd(x, 3) for x in zscores(D, sD, white_at)],
                 "bruteforce": {"gammas": [float(x) for x in bf[:, 0]], "D_t": [rnd(x) for x in bf[:, 1]],
                                "D_t_se": [rnd(x, 2) for x in bf[:, 2]],
                                "D_t_over_D": [rnd(x, 4) for x in bf[:, 1] / D[idx]],
+                               "D_t_over_white": [rnd(x, 4) for x in bf[:, 1] / white_at[idx]],
                                "z_vs_long_excursions": [rnd(x, 3) for x in zbf]},
                 "sim_seconds": rnd(sw["work"]["seconds"], 3),
             }
-        ax.plot([], [], "o", color="gray", mfc="none", label=f"brute force, t = {c['bf_time']:g} s, V(0) = 0")
+        ax.plot([], [], "o", color="gray", mfc="none", label=f"brute force, t = {c['bf_time']:g} s, V(0) = 0 "
+                                                              f"(N' = {c['bf_trajectories']})")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("noise intensity Gamma [m$^2$ s$^{-3}$]")
         ax.set_ylabel("diffusivity D [m$^2$/s]")
         ax.set_title(f"{title}\nDelta = 3.84 m/s$^2$, dt = {c['dt']:g} s; bands and bars: 95% CI", fontsize=9)
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3, which="both")
+        axr.set_xscale("log")
+        axr.set_xlabel("noise intensity Gamma [m$^2$ s$^{-3}$]")
+        axr.set_ylabel("D / D(white noise)")
+        axr.grid(alpha=0.3, which="both")
         res[bname] = rb
     fig.suptitle("Fig. 9: D vs Gamma, long-excursion estimator (lines), brute force (circles), "
                  "white-noise limit (dashed)", fontsize=10)
@@ -776,7 +803,8 @@ def user_args():
 
 
 def main():
-    ap = argparse.ArgumentParser(description="Regenerate Table I and Figs. 2-9 of the paper with stickslip.")
+    ap = argparse.ArgumentParser(prog="scripts/figures",
+                                 description="Regenerate Table I and Figs. 2-9 of the paper with stickslip.")
     ap.add_argument("--bin", required=True, help="stickslip binary")
     ap.add_argument("--root", required=True, help="repository root")
     ap.add_argument("--quick", action="store_true", help="CI smoke run: tiny sizes, rough plots (~2 min)")
@@ -840,7 +868,7 @@ def main():
     total = time.perf_counter() - t_all
     summary["timing_seconds"] = timing
     summary["meta"] = {
-        "command": "bash scripts/figures " + " ".join(shlex.quote(x) for x in user_args()),
+        "command": " ".join(["bash", "scripts/figures"] + [shlex.quote(x) for x in user_args()]),
         "mode": "quick" if a.quick else "default", "only": only if a.only else "all",
         "threads": a.threads, "seed": a.seed, "stickslip_version": version,
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),

@@ -294,6 +294,9 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
                                                   total.mom.ratio_covariance(1, 1),
                                               0.0));
     out.variance = make_interval(r2 - r1 * r1, var_se, req.level);
+    if (req.engine.engine == Engine::Inclusion && (req.params.white() || req.engine.dt > 0.01 * req.params.tau))
+        out.warnings.push_back("dt is not << tau: P(V = 0) includes the scheme's O(dt) quantisation of V near 0 "
+                               "(a few 1e-3 at dt' = 1e-3); refine dt to see the physical atom");
     const double outside = out.histogram.below.value + out.histogram.above.value;
     if (outside > 1e-3)
         out.warnings.push_back("probability " + detail::format_number(outside) +

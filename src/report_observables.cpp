@@ -357,6 +357,7 @@ std::string to_json(const TrajectoryResult& r, int indent) {
     if (q.paths == 0) {
         j["displacement"] = r.excursion.displacement;
         j["duration"] = r.excursion.duration;
+        j["first_half_duration"] = r.excursion.first_half;
         j["complete"] = !r.excursion.capped;
     }
     ordered_json ps = ordered_json::array();

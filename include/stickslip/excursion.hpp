@@ -63,6 +63,7 @@ struct ExcursionOutcome {
     double duration = 0.0;     ///< t [s]
     std::uint64_t work = 0;    ///< steps or events used
     bool capped = false;       ///< hit max_work_per_excursion; U, t meaningless
+    double first_half = 0.0;   ///< long excursions: duration of the +HLE [s]
 };
 
 } // namespace stickslip

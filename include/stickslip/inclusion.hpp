@@ -157,15 +157,16 @@ template <class Rng, class Observer = NoPathObserver>
 STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion(const InclusionConstants& c, Rng& rng,
                                                               Observer&& observe = Observer{}) {
     double vsum = 0.0;
-    std::uint64_t steps = 0;
+    std::uint64_t steps = 0, first = 0;
     bool ok;
     if (c.white)
-        ok = inclusion_white_half(c, +1, rng, vsum, steps, observe) &&
+        ok = inclusion_white_half(c, +1, rng, vsum, steps, observe) && ((first = steps), true) &&
              inclusion_white_half(c, -1, rng, vsum, steps, observe);
     else
-        ok = inclusion_colored_half(c, +1, rng, vsum, steps, observe) &&
+        ok = inclusion_colored_half(c, +1, rng, vsum, steps, observe) && ((first = steps), true) &&
              inclusion_colored_half(c, -1, rng, vsum, steps, observe);
     ExcursionOutcome o;
+    o.first_half = c.h * static_cast<double>(first);
     o.displacement = c.h * vsum;
     o.duration = c.h * static_cast<double>(steps);
     o.work = steps;

@@ -178,11 +178,12 @@ STICKSLIP_HD inline bool pdmp_half(const PdmpConstants& c, int dir, Rng& rng, do
 template <class Rng, class Observer = NoSegmentObserver>
 STICKSLIP_HD inline ExcursionOutcome pdmp_long_excursion(const PdmpConstants& c, Rng& rng,
                                                          Observer&& observe = Observer{}) {
-    double time = 0.0, disp = 0.0;
+    double time = 0.0, disp = 0.0, first = 0.0;
     std::uint64_t events = 0;
-    const bool ok = pdmp_half(c, +1, rng, time, disp, events, observe) &&
+    const bool ok = pdmp_half(c, +1, rng, time, disp, events, observe) && ((first = time), true) &&
                     pdmp_half(c, -1, rng, time, disp, events, observe);
     ExcursionOutcome o;
+    o.first_half = first;
     o.displacement = disp;
     o.duration = time;
     o.work = events;
