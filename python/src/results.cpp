@@ -308,6 +308,19 @@ void bind_results(py::module_& m) {
                                    "excursions requested")
             .def_property_readonly("seed", [](const DiffusivityResult& r) { return r.request.control.seed; })
             .def_property_readonly("level", [](const DiffusivityResult& r) { return r.request.level; })
+            .def_property_readonly(
+                "precision",
+                [](const DiffusivityResult& r) -> py::object {
+                    if (r.request.rel_precision <= 0) return py::none();
+                    py::dict d;
+                    d["target"] = r.precision.target;
+                    d["relative_half_width"] = r.precision.relative_half_width;
+                    d["reached"] = r.precision.reached;
+                    d["batches"] = r.precision.batches;
+                    return d;
+                },
+                "precision on demand (rel_precision > 0): {'target', 'relative_half_width', 'reached', "
+                "'batches'}; None otherwise")
             .def("__repr__", [](const DiffusivityResult& r) {
                 return "DiffusivityResult(diffusivity=" + estimate_short(r.estimates.diffusivity) +
                        " m^2/s, mobility=" + estimate_short(r.estimates.mobility) +
@@ -318,18 +331,20 @@ void bind_results(py::module_& m) {
         m.def(
             "_diffusivity",
             [](const ModelParams& p, const EngineSettings& e, std::uint64_t excursions, const std::string& estimator,
-               bool allow_capped, const RunArgs& a) {
+               bool allow_capped, double rel_precision, std::uint64_t max_excursions, const RunArgs& a) {
                 DiffusivityRequest req;
                 req.params = p;
                 req.engine = e;
                 req.excursions = excursions;
                 req.estimator = parse_estimator(estimator);
                 req.allow_capped = allow_capped;
+                req.rel_precision = rel_precision;
+                req.max_excursions = max_excursions;
                 req.level = a.level;
                 return run_request(req, &compute_diffusivity, a, "excursions");
             },
             py::arg("params"), py::arg("engine"), py::arg("excursions"), py::arg("estimator"),
-            py::arg("allow_capped"), py::arg("run"));
+            py::arg("allow_capped"), py::arg("rel_precision"), py::arg("max_excursions"), py::arg("run"));
     }
 
     // ---- bruteforce ---------------------------------------------------------------------------

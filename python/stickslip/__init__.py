@@ -303,6 +303,14 @@ def _doc(text):
         when M0 != 0; for reproducing the paper's numbers only).
     allow_capped : bool
         Return a (biased) result even if some excursions hit `max_steps`.
+    rel_precision : float
+        Precision on demand: when > 0 (e.g. 0.01), run in batches (the first
+        of `excursions`) until the interval half-width of D is at most this
+        fraction of D, or `max_excursions` have run; `.precision` then says
+        how it ended. The stopping time depends on the data, so the coverage
+        is slightly below `level`. 0 (default): exactly `excursions`.
+    max_excursions : int
+        Cap of `rel_precision` (default 100_000_000).
 {engine}
 {run}
 
@@ -322,10 +330,12 @@ def _doc(text):
 """)
 def diffusivity(params=None, *, excursions=10000, engine="inclusion", dt=1e-4, grid=0.125, stop_rule="auto",
                 estimator="renewal", allow_capped=False, seed=1, threads=0, level=0.95, progress=False,
-                lattice_bound=0.0, white_level=0.0, max_steps=200_000_000):
+                lattice_bound=0.0, white_level=0.0, max_steps=200_000_000, rel_precision=0.0,
+                max_excursions=100_000_000):
     return _core._diffusivity(
         _params(params), _engine(engine, dt, grid, lattice_bound, stop_rule, white_level, max_steps),
-        _count("excursions", excursions), str(estimator), bool(allow_capped), _run(seed, threads, level, progress))
+        _count("excursions", excursions), str(estimator), bool(allow_capped), float(rel_precision),
+        _count("max-excursions", max_excursions), _run(seed, threads, level, progress))
 
 
 @_doc("""Brute-force D_t = var U(t)/t (the paper's eq. 13) from N' trajectories on [0, t].

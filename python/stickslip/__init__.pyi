@@ -37,7 +37,8 @@ def diffusivity(params: _ParamsLike = None, *, excursions: int = 10000, engine: 
                 dt: float = 1e-4, grid: float = 0.125, stop_rule: _StopRule = "auto",
                 estimator: _Estimator = "renewal", allow_capped: bool = False, seed: int = 1, threads: int = 0,
                 level: float = 0.95, progress: bool = False, lattice_bound: float = 0.0, white_level: float = 0.0,
-                max_steps: int = 200_000_000) -> DiffusivityResult: ...
+                max_steps: int = 200_000_000, rel_precision: float = 0.0,
+                max_excursions: int = 100_000_000) -> DiffusivityResult: ...
 
 def bruteforce(params: _ParamsLike = None, *, time: float = 10.0, trajectories: int = 1000,
                x0: Optional[float] = None, v0: float = 0.0, engine: _Engine = "inclusion", dt: float = 1e-4,

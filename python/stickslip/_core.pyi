@@ -1,6 +1,6 @@
 # Type stubs of the compiled part of stickslip. Units are SI (m, s); see the
 # docstrings (help(stickslip.Params), ...) for the model and conventions.
-from typing import Any, List, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -159,6 +159,8 @@ class _LongExcursions(_Totals):
     def completed(self) -> int: ...
 
 class DiffusivityResult(_LongExcursions):
+    @property
+    def precision(self) -> Optional[Dict[str, Any]]: ...
     @property
     def engine(self) -> str: ...
     @property

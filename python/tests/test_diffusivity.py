@@ -48,6 +48,14 @@ class DiffusivityTest(unittest.TestCase):
         self.assertEqual(without_work(r.to_dict()), without_work(cli))
         self.assertEqual(r.to_dict()["params"]["relaxation"], "inf")
 
+    def test_precision_on_demand_equals_cli(self):
+        r = stickslip.diffusivity(P, dt=1e-3, excursions=256, rel_precision=0.15, seed=5)
+        self.assertTrue(r.precision["reached"])
+        self.assertLessEqual(r.precision["relative_half_width"], 0.15)
+        self.assertIsNone(self.r.precision)
+        cli = cli_json("diffusivity", "--dt", "1e-3", "--excursions", "256", "--rel-precision", "0.15", "--seed", "5")
+        self.assertEqual(without_work(r.to_dict()), without_work(cli))
+
     def test_threads_do_not_change_the_result(self):
         one = stickslip.diffusivity(P, engine="pdmp", excursions=640, seed=11, threads=1)
         two = stickslip.diffusivity(P, engine="pdmp", excursions=640, seed=11, threads=2)
