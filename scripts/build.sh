@@ -22,7 +22,8 @@ if [[ ! -f "$cache" ]]; then
   # the command starts MPI only when launched by mpirun.
   mpi=()
   if command -v mpicxx >/dev/null 2>&1; then mpi=(-DSTICKSLIP_MPI=ON); fi
-  cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${mpi[@]}" "$@"
+  # The benchmarks are built too, so that the test suite runs them once (smoke).
+  cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_BUILD_BENCH=ON "${mpi[@]}" "$@"
 elif [[ $# -gt 0 ]] || ! grep -q '^CMAKE_BUILD_TYPE:[A-Z]*=Release$' "$cache"; then
   # Already configured (with whatever generator it has): only reconfigure when
   # asked to, or when it is not a Release build. Otherwise the build step below
