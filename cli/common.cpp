@@ -3,6 +3,7 @@
 #include "distributed.hpp"
 
 #include <cerrno>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace stickslip::cli {
@@ -97,9 +99,10 @@ std::uint64_t to_seed(const std::string& s) {
     // Parsed as an integer: seeds above 2^53 must not be rounded.
     char* end = nullptr;
     errno = 0;
-    if (s.empty() || s[0] == '-' || s[0] == '+')
+    // Decimal digits only: no sign, no spaces, no octal/hex surprises ("010" is ten).
+    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
         throw InvalidParameter("seed", "seed must be an integer in [0, 2^64), got '" + s + "'");
-    const unsigned long long x = std::strtoull(s.c_str(), &end, 0);
+    const unsigned long long x = std::strtoull(s.c_str(), &end, 10);
     if (end != s.c_str() + s.size() || errno == ERANGE)
         throw InvalidParameter("seed", "seed must be an integer in [0, 2^64), got '" + s + "'");
     return x;
@@ -168,16 +171,46 @@ void fill(const ModelFlags& f, ModelParams& p, EngineSettings& e, RunControl& c,
     distribute(c);
 }
 
+namespace {
+
+/// The temporary output file of this process, removed by the signal handler
+/// (a fixed buffer: only async-signal-safe calls in the handler).
+char g_temp_path[4096] = {0};
+
+extern "C" void remove_temp_and_reraise(int sig) {
+    if (g_temp_path[0]) ::unlink(g_temp_path);
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+} // namespace
+
 Output::Output(const OutputFlags& o) : format_(o.format), path_(o.output), quiet_(o.quiet) {
     if (format_ != "table" && format_ != "json" && format_ != "csv")
         throw InvalidParameter("format", "format must be 'table', 'json' or 'csv', got '" + format_ + "'");
-    if (!is_root()) return; // in a distributed run only the first process writes
     if (path_.empty()) return;
-    // The temporary lives in the target's directory so that rename() is atomic.
-    temp_ = path_ + ".tmp." + std::to_string(::getpid());
-    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd_ < 0)
-        throw InvalidParameter("output", "cannot write '" + path_ + "': " + std::strerror(errno));
+    // Only the first process writes; every process learns whether it can, so
+    // that a bad path stops them all before any work.
+    std::string error;
+    if (is_root()) {
+        struct stat st {};
+        if (::stat(path_.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+            error = "'" + path_ + "' is a directory";
+        } else {
+            // The temporary lives in the target's directory so that rename() is atomic.
+            temp_ = path_ + ".tmp." + std::to_string(::getpid());
+            fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+            if (fd_ < 0) error = "cannot write '" + path_ + "': " + std::strerror(errno);
+        }
+    }
+    if (!all_ok(error.empty()))
+        throw InvalidParameter("output", error.empty() ? "cannot write '" + path_ + "'" : error);
+    if (fd_ >= 0 && temp_.size() < sizeof g_temp_path) {
+        // Ctrl-C or a kill during a long run must not leave the temporary behind.
+        std::memcpy(g_temp_path, temp_.c_str(), temp_.size() + 1);
+        std::signal(SIGINT, remove_temp_and_reraise);
+        std::signal(SIGTERM, remove_temp_and_reraise);
+    }
 }
 
 Output::~Output() {
@@ -185,6 +218,7 @@ Output::~Output() {
         ::close(fd_);
         ::unlink(temp_.c_str());
     }
+    g_temp_path[0] = '\0';
 }
 
 void Output::commit(const std::string& text, const std::vector<std::string>& warnings) {
@@ -204,12 +238,16 @@ void Output::commit(const std::string& text, const std::vector<std::string>& war
         }
         done += static_cast<std::size_t>(w);
     }
-    if (::fsync(fd_) != 0 || ::close(fd_) != 0) {
-        fd_ = -1;
-        ::unlink(temp_.c_str());
-        throw std::runtime_error("cannot write '" + temp_ + "': " + std::strerror(errno));
-    }
+    const bool synced = ::fsync(fd_) == 0;
+    const int sync_errno = errno;
+    const bool closed = ::close(fd_) == 0;
+    const int close_errno = errno;
     fd_ = -1;
+    if (!synced || !closed) {
+        const std::string err = std::strerror(!synced ? sync_errno : close_errno);
+        ::unlink(temp_.c_str());
+        throw std::runtime_error("cannot write '" + temp_ + "': " + err);
+    }
     if (::rename(temp_.c_str(), path_.c_str()) != 0) {
         const std::string err = std::strerror(errno);
         ::unlink(temp_.c_str());

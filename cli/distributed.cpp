@@ -1,6 +1,9 @@
 #include "distributed.hpp"
 
+#include "stickslip/params.hpp"
+
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 #ifdef STICKSLIP_WITH_MPI
@@ -33,6 +36,11 @@ std::vector<BlockRecord> all_gather(std::vector<BlockRecord> mine) {
         p[2] = static_cast<double>(mine[k].work);
         mine[k].moments.to_raw(p + 3);
     }
+    // MPI counts are ints: refuse (on every process alike) rather than overflow.
+    const bool fits = send.size() * g_ranks < static_cast<std::size_t>(std::numeric_limits<int>::max());
+    if (!all_ok(fits))
+        throw InvalidParameter("excursions", "too many sample blocks to gather across processes; use fewer "
+                                             "excursions per run");
     int count = static_cast<int>(send.size());
     std::vector<int> counts(g_ranks), offsets(g_ranks, 0);
     MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
@@ -85,6 +93,17 @@ void abort_distribution(int code) {
 
 bool distributed() { return g_ranks > 1; }
 bool is_root() { return g_rank == 0; }
+
+bool all_ok(bool ok) {
+#ifdef STICKSLIP_WITH_MPI
+    if (g_ranks > 1) {
+        int mine = ok ? 1 : 0, all = 0;
+        MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
+        return all != 0;
+    }
+#endif
+    return ok;
+}
 
 void distribute(RunControl& control) {
 #ifdef STICKSLIP_WITH_MPI

@@ -22,5 +22,8 @@ bool distributed();
 bool is_root();
 /// Makes a run's control split its blocks across the processes.
 void distribute(RunControl& control);
+/// True on every process when `ok` is true on every process (a collective
+/// call in a distributed run): lets a check made by one process fail all.
+bool all_ok(bool ok);
 
 } // namespace stickslip::cli

@@ -43,6 +43,7 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
     const auto start = clock::now();
     if (ctl.first_index > max_sample_index || n > max_sample_index - ctl.first_index)
         throw InvalidParameter("excursions", "sample indices exceed 2^56");
+    if (ctl.threads > 4096) throw InvalidParameter("threads", "threads must be between 0 and 4096");
     unsigned threads = ctl.threads ? ctl.threads : std::thread::hardware_concurrency();
     if (threads == 0) threads = 1;
     const std::uint64_t nblocks = (n + block_size - 1) / block_size;

@@ -22,7 +22,7 @@ namespace {
 
 constexpr int kMaxBins = 100000;
 constexpr int kMaxLags = 2000;
-constexpr std::uint64_t kMaxLagSamples = 10'000'000; // ring buffer of the autocorrelation: 80 MB per thread
+constexpr std::uint64_t kMaxLagSamples = 4'000'000; // ring buffer (a power of two above): at most 32 MB per thread
 
 void check_level(double level) { normal_quantile_two_sided(level); }
 
@@ -87,14 +87,20 @@ VelocityHistogram make_histogram(const VelocityBins& b, const RatioMoments& m, s
     return h;
 }
 
-/// Samples a PDMP path on the grid n * dt (n = 0, 1, ...): f(x, mode, v, u) at
-/// every grid time inside each observed segment. `offset` is the absolute time
-/// of the path's own time 0 (for continuing a path after a regeneration).
+/// Samples a PDMP path on the grid phase + n * dt (n = 0, 1, ...): f(x, mode,
+/// v, u) at every grid time inside each observed segment. `offset` is the
+/// absolute time of the path's own time 0 (for continuing a path after a
+/// regeneration). With a phase uniform in [0, dt), independent of the path,
+/// the Riemann sum dt * sum g(phase + n dt) over a duration T is an unbiased
+/// estimate of int_0^T g and E[#samples] = T/dt exactly, so the renewal-reward
+/// ratios carry no O(dt) bias (with phase 0 every excursion would be sampled
+/// at its start, where V = 0).
 template <class F>
 struct PdmpGridSampler {
     const PdmpConstants& c;
     double dt;
     F f;
+    double phase = 0.0;
     std::uint64_t next = 0;
     double offset = 0.0;
     std::uint64_t stop_at = ~std::uint64_t{0}; ///< no samples at or beyond this index
@@ -102,7 +108,7 @@ struct PdmpGridSampler {
     void operator()(const PdmpState& s, double t0, double u0, double dur) {
         const double end = offset + t0 + dur;
         while (next < stop_at) {
-            const double g = static_cast<double>(next) * dt;
+            const double g = phase + static_cast<double>(next) * dt;
             if (!(g < end)) break;
             double v = 0.0, u = u0;
             pdmp_flow(c, s.i, s.y, s.v, g - offset - t0, v, u);
@@ -113,8 +119,15 @@ struct PdmpGridSampler {
 };
 
 template <class F>
-PdmpGridSampler<F> grid_sampler(const PdmpConstants& c, double dt, F f) {
-    return PdmpGridSampler<F>{c, dt, std::move(f)};
+PdmpGridSampler<F> grid_sampler(const PdmpConstants& c, double dt, F f, double phase = 0.0) {
+    return PdmpGridSampler<F>{c, dt, std::move(f), phase};
+}
+
+/// The random grid phase of excursion k, from its own stream (the excursion's
+/// draws are untouched, so D stays that of `diffusivity`).
+double sampling_phase(std::uint64_t seed, std::uint64_t k, double dt) {
+    CounterRng rng(seed, StreamPurpose::SamplingPhase, k);
+    return dt * (1.0 - rng.uniform()); // uniform() is in (0, 1]: phase in [0, dt)
 }
 
 std::string pdmp_sampling_note(double dt) {
@@ -248,12 +261,15 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
                 y.assign(nh, 0.0);
                 double m[2] = {0.0, 0.0};
                 std::uint64_t samples = 0;
-                auto sampler = grid_sampler(c, dt, [&](double, int, double v, double) {
-                    y[static_cast<std::size_t>(index(v))] += 1.0;
-                    m[0] += v;
-                    m[1] += v * v;
-                    ++samples;
-                });
+                auto sampler = grid_sampler(
+                    c, dt,
+                    [&](double, int, double v, double) {
+                        y[static_cast<std::size_t>(index(v))] += 1.0;
+                        m[0] += v;
+                        m[1] += v * v;
+                        ++samples;
+                    },
+                    sampling_phase(seed, k, dt));
                 CounterRng rng(seed, StreamPurpose::LongExcursion, k);
                 const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
                 if (!o.capped && samples > 0) finish(acc, y, m, samples);
@@ -381,7 +397,8 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local LagState st;
                 reset(st);
-                auto sampler = grid_sampler(c, dt, [&](double, int, double v, double) { push(st, v); });
+                auto sampler =
+                    grid_sampler(c, dt, [&](double, int, double v, double) { push(st, v); }, sampling_phase(seed, k, dt));
                 CounterRng rng(seed, StreamPurpose::LongExcursion, k);
                 const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
                 if (o.capped || st.m == 0) return o;
@@ -390,7 +407,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 sampler.offset = o.duration;
                 sampler.stop_at = st.limit + lmax;
                 PdmpState s{c.k_plus + 1, +1, 0.0};
-                const double horizon = static_cast<double>(st.limit + lmax + 1) * dt - o.duration;
+                const double horizon = sampler.phase + static_cast<double>(st.limit + lmax + 1) * dt - o.duration;
                 const ExcursionOutcome more = pdmp_path(c, s, horizon, rng, sampler);
                 ExcursionOutcome res = o;
                 res.work += more.work;
@@ -410,8 +427,16 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 const ExcursionOutcome o = inclusion_long_excursion(c, rng, observe);
                 if (o.capped || st.m == 0) return o;
                 st.limit = st.m;
-                double x = c.white ? 0.0 : c.x_up, v = c.white ? c.level : 0.0; // next excursion's start
-                inclusion_path(c, x, v, lmax, rng, observe);
+                // Continue with the process itself: the following long
+                // excursions (same kernel: threshold restarts and skipped
+                // detecting steps included), cut after lmax more samples.
+                InclusionConstants more = c;
+                std::uint64_t remaining = lmax;
+                while (remaining > 0) {
+                    more.max_steps = remaining;
+                    // (the white-noise kernel may pass the cap by one step: clamp)
+                    remaining -= std::min(remaining, inclusion_long_excursion(more, rng, observe).work);
+                }
                 ExcursionOutcome res = o;
                 res.work += lmax;
                 acc.add(st.y.data(), static_cast<double>(st.limit));
@@ -461,6 +486,8 @@ void validate(const TransientRequest& req) {
             throw InvalidParameter("times", "times must be finite and >= 0 (s), got " + detail::format_number(t));
     detail::check_start(req.x0, req.v0);
     if (req.with_density) check_bins(req.bins);
+    if (req.with_density && static_cast<double>(req.times.size()) * (req.bins.count + 3) > 2e6)
+        throw InvalidParameter("bins", "times x bins must be at most 2e6 for --density (use fewer times or bins)");
     const double tmax = *std::max_element(req.times.begin(), req.times.end());
     if (req.engine.engine == Engine::Inclusion && tmax / req.engine.dt > 1e13)
         throw InvalidParameter("times", "largest time / dt exceeds 1e13 steps");

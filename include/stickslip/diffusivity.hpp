@@ -26,8 +26,9 @@ struct DiffusivityRequest {
     bool allow_capped = false; ///< if false, capped excursions make the result an error
     /// Precision on demand: when > 0, run in batches until the interval's
     /// half-width is at most rel_precision * D, or max_excursions have run.
-    /// The first batch has `excursions`; each later one is sized from the
-    /// current half-width (half-width ~ 1/sqrt(N)), at most 4x what has run.
+    /// The first batch has `excursions` (rounded up to whole blocks of 64);
+    /// each later one is sized from the current half-width (half-width ~
+    /// 1/sqrt(N)), at most 4x what has run.
     /// Batches start at block-aligned sample indices, so the result is
     /// deterministic and thread-invariant. Caveat (sequential stopping): N
     /// depends on the data, so the interval's coverage is slightly below its

@@ -29,6 +29,7 @@ enum class StreamPurpose : std::uint32_t {
     LongExcursion = 1,
     BruteForce = 2,
     Observable = 3,
+    SamplingPhase = 4, ///< random phase of a PDMP path's sampling grid (observables)
     Test = 255,
 };
 

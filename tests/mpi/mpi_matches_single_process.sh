@@ -48,4 +48,15 @@ elif grep -q "cannot be split across processes" "$tmp/d.err"; then
 else
   echo "FAIL density under mpirun: unexpected error:"; cat "$tmp/d.err"; fail=1
 fi
+# A bad --output found by the writing process stops every process (no hang).
+if timeout 60 "$mpirun" --oversubscribe -np 2 "$bin" diffusivity --dt 1e-3 --excursions 2000 --quiet \
+     --output /nonexistent-dir/x.json >/dev/null 2>"$tmp/o.err"; then
+  echo "FAIL bad --output under mpirun should fail"; fail=1
+elif [[ $? -eq 124 ]]; then
+  echo "FAIL bad --output under mpirun hangs"; fail=1
+elif grep -q -- "--output" "$tmp/o.err"; then
+  echo "ok   bad --output under mpirun stops every process"
+else
+  echo "FAIL bad --output under mpirun: unexpected error:"; cat "$tmp/o.err"; fail=1
+fi
 exit $fail
