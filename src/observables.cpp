@@ -132,7 +132,7 @@ double sampling_phase(std::uint64_t seed, std::uint64_t k, double dt) {
 
 std::string pdmp_sampling_note(double dt) {
     return "pdmp path sampled every " + detail::format_number(dt) +
-           " s (--sample-dt): time averages (and lags) are Riemann sums on that grid";
+           " s (--sample-dt) with a random phase per excursion: unbiased Riemann sums on that grid";
 }
 
 int mode_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }

@@ -22,7 +22,9 @@
 // Sampling: the inclusion engine observes V at the start of every step
 // (weight dt, the same left-point rule as the displacement). The PDMP engine is
 // exact between events; its path is sampled on a grid of spacing sample_dt
-// (the integrals become Riemann sums, error O(sample_dt)). Transient times are
+// with a random phase per excursion (its own stream, SamplingPhase), which
+// makes the Riemann sums unbiased estimates of the time integrals for any
+// sample_dt: a coarse grid costs precision, not accuracy. Transient times are
 // exact for the PDMP and rounded to whole steps for the inclusion engine.
 #pragma once
 
