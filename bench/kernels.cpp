@@ -1,28 +1,37 @@
 // bench/kernels.cpp -- single-thread throughput of stickslip's kernels
 // (Google Benchmark). Every number is per core: one thread, no runner.
 //
-//   BM_PhiloxNormalPairs          CounterRng::normal2 alone; items = pairs.
-//                                 One pair is what one colored inclusion step
-//                                 draws, so this is the practical ceiling of
+//   BM_NormalPairs                BatchedCounterRng::normal2 alone (Philox4x32-10
+//                                 over 32 counters at once + ziggurat); items =
+//                                 pairs. One colored inclusion step draws one
+//                                 pair: this is the random-number limit of
 //                                 steps/s on this core.
-//   BM_InclusionSteps/<case>      whole long excursions of the inclusion engine
-//                                 (inclusion_long_excursion); items = steps.
-//   BM_PdmpEvents/<case>          whole long excursions of the PDMP engine
-//                                 (pdmp_long_excursion, grid 0.125); items = events.
+//   BM_NormalPairsScalar          the same numbers from CounterRng, one call at a time.
+//   BM_UniformPairs               BatchedUniformRng::uniform2; one PDMP event draws
+//                                 one pair: the PDMP engine's limit of events/s.
+//   BM_UniformPairsScalar         the same from CounterRng.
+//   BM_InclusionSteps/<case>      inclusion_long_excursion, one excursion per
+//                                 iteration (BatchedCounterRng); items = steps.
+//   BM_InclusionLanes/<case>      inclusion_long_excursions, the kernel the runner
+//                                 uses (8 SIMD lanes with AVX-512), 64
+//                                 excursions per iteration; items = steps.
+//   BM_PdmpEvents/<case>          pdmp_long_excursion, grid 0.125
+//                                 (BatchedUniformRng); items = events.
 //
 // Cases: fig2 = ModelParams defaults (the paper's Fig. 2), inclusion dt 1e-4;
 //        dry  = pure dry friction: friction 1, noise 1, tau 0.5, relaxation inf,
 //               bias 0, inclusion dt 1e-3.
-// One benchmark iteration is one long excursion (sample index = iteration
-// number, so successive iterations are independent excursions).
+// Successive iterations use successive sample indices: independent excursions.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
 #include <limits>
 
 #include "stickslip/inclusion.hpp"
+#include "stickslip/inclusion_lanes.hpp"
 #include "stickslip/pdmp.hpp"
 #include "stickslip/rng.hpp"
+#include "stickslip/rng_batch.hpp"
 
 namespace {
 
@@ -42,17 +51,34 @@ ModelParams dry_params() {
     return p;
 }
 
-void BM_PhiloxNormalPairs(benchmark::State& state) {
+// Pairs drawn one at a time from a stream and summed (the sum keeps the
+// compiler from discarding them without adding a store per pair); `draw(rng)`
+// returns the sum of one pair.
+template <class Rng, class Draw>
+void pairs(benchmark::State& state, Draw draw) {
     constexpr std::int64_t batch = 1 << 16;
-    CounterRng rng(kSeed, StreamPurpose::Test, 0);
+    std::uint64_t index = 0;
+    double sink = 0.0;
     for (auto _ : state) {
-        for (std::int64_t k = 0; k < batch; ++k) {
-            auto z = rng.normal2();
-            benchmark::DoNotOptimize(z); // keeps both normals, adds no dependency chain
-        }
+        Rng rng(kSeed, StreamPurpose::Test, index++);
+        for (std::int64_t k = 0; k < batch; ++k) sink += draw(rng);
     }
+    benchmark::DoNotOptimize(sink);
     state.SetItemsProcessed(state.iterations() * batch);
 }
+constexpr auto normal_pair = [](auto& rng) {
+    const auto z = rng.normal2();
+    return z.x + z.y;
+};
+constexpr auto uniform_pair = [](auto& rng) { // one PDMP event draws one pair
+    double a, b;
+    rng.uniform2(a, b);
+    return a + b;
+};
+void BM_NormalPairs(benchmark::State& state) { pairs<BatchedCounterRng>(state, normal_pair); }
+void BM_NormalPairsScalar(benchmark::State& state) { pairs<CounterRng>(state, normal_pair); }
+void BM_UniformPairs(benchmark::State& state) { pairs<BatchedUniformRng>(state, uniform_pair); }
+void BM_UniformPairsScalar(benchmark::State& state) { pairs<CounterRng>(state, uniform_pair); }
 
 void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
     EngineSettings s;
@@ -62,11 +88,36 @@ void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
     std::uint64_t index = 0, work = 0, excursions = 0;
     double sink = 0.0;
     for (auto _ : state) {
-        CounterRng rng(kSeed, StreamPurpose::LongExcursion, index++);
+        BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, index++);
         const ExcursionOutcome o = inclusion_long_excursion(c, rng);
         sink += o.displacement;
         work += o.work;
         ++excursions;
+    }
+    benchmark::DoNotOptimize(sink);
+    state.SetItemsProcessed(static_cast<std::int64_t>(work));
+    state.counters["steps_per_excursion"] =
+        benchmark::Counter(static_cast<double>(work) / static_cast<double>(excursions ? excursions : 1));
+}
+
+// The kernel the runner uses (inclusion_long_excursions: 8 SIMD lanes where
+// vectorised): one iteration = one block of 64 excursions.
+void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double dt) {
+    EngineSettings s;
+    s.engine = Engine::Inclusion;
+    s.dt = dt;
+    const InclusionConstants c = make_inclusion_constants(p, s);
+    std::uint64_t first = 0, work = 0, excursions = 0;
+    double sink = 0.0;
+    ExcursionOutcome out[64];
+    for (auto _ : state) {
+        inclusion_long_excursions(c, kSeed, first, 64, out);
+        first += 64;
+        for (const auto& o : out) {
+            sink += o.displacement;
+            work += o.work;
+        }
+        excursions += 64;
     }
     benchmark::DoNotOptimize(sink);
     state.SetItemsProcessed(static_cast<std::int64_t>(work));
@@ -82,7 +133,7 @@ void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
     std::uint64_t index = 0, work = 0, excursions = 0;
     double sink = 0.0;
     for (auto _ : state) {
-        CounterRng rng(kSeed, StreamPurpose::LongExcursion, index++);
+        BatchedUniformRng rng(kSeed, StreamPurpose::LongExcursion, index++);
         const ExcursionOutcome o = pdmp_long_excursion(c, rng);
         sink += o.displacement;
         work += o.work;
@@ -96,14 +147,21 @@ void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
 
 void BM_InclusionSteps_fig2(benchmark::State& st) { run_inclusion(st, fig2_params(), 1e-4); }
 void BM_InclusionSteps_dry(benchmark::State& st) { run_inclusion(st, dry_params(), 1e-3); }
+void BM_InclusionLanes_fig2(benchmark::State& st) { run_inclusion_lanes(st, fig2_params(), 1e-4); }
+void BM_InclusionLanes_dry(benchmark::State& st) { run_inclusion_lanes(st, dry_params(), 1e-3); }
 void BM_PdmpEvents_fig2(benchmark::State& st) { run_pdmp(st, fig2_params(), 0.125); }
 void BM_PdmpEvents_dry(benchmark::State& st) { run_pdmp(st, dry_params(), 0.125); }
 
 } // namespace
 
-BENCHMARK(BM_PhiloxNormalPairs)->Name("BM_PhiloxNormalPairs")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NormalPairs)->Name("BM_NormalPairs")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NormalPairsScalar)->Name("BM_NormalPairsScalar")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_UniformPairs)->Name("BM_UniformPairs")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_UniformPairsScalar)->Name("BM_UniformPairsScalar")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionSteps_fig2)->Name("BM_InclusionSteps/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionSteps_dry)->Name("BM_InclusionSteps/dry_dt1e-3")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InclusionLanes_fig2)->Name("BM_InclusionLanes/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InclusionLanes_dry)->Name("BM_InclusionLanes/dry_dt1e-3")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_fig2)->Name("BM_PdmpEvents/fig2_grid0.125")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_dry)->Name("BM_PdmpEvents/dry_grid0.125")->Unit(benchmark::kMillisecond);
 

@@ -89,17 +89,33 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
                 const std::uint64_t b = distributed ? ctl.rank + local * ctl.ranks : local;
                 BlockResult<Extra> r{BivariateMoments{}, 0, 0, make_extra()};
                 const std::uint64_t lo = b * block_size, hi = std::min(n, lo + block_size);
-                for (std::uint64_t k = lo; k < hi; ++k) {
+                auto cancel_requested = [&] {
                     if (ctl.cancel && ctl.cancel->load(std::memory_order_relaxed)) {
                         std::lock_guard<std::mutex> lock(merge_mutex);
                         cancelled = true;
                         stop = true;
                     }
-                    if (stop.load(std::memory_order_relaxed)) return;
-                    const ExcursionOutcome o = sample(ctl.first_index + k, r.extra);
+                    return stop.load(std::memory_order_relaxed);
+                };
+                auto add = [&r](const ExcursionOutcome& o) {
                     r.work += o.work;
                     if (o.capped) ++r.capped;
                     else r.moments.add(o.displacement, o.duration);
+                };
+                if constexpr (std::is_invocable_v<Sample&, std::uint64_t, std::uint64_t, ExcursionOutcome*, Extra&>) {
+                    // A whole block at once (the SIMD lanes); it returns false when it saw ctl.cancel.
+                    ExcursionOutcome outs[block_size];
+                    if (cancel_requested()) return;
+                    if (!sample(ctl.first_index + lo, hi - lo, outs, r.extra)) {
+                        cancel_requested();
+                        return;
+                    }
+                    for (std::uint64_t k = lo; k < hi; ++k) add(outs[k - lo]); // in index order
+                } else {
+                    for (std::uint64_t k = lo; k < hi; ++k) {
+                        if (cancel_requested()) return;
+                        add(sample(ctl.first_index + k, r.extra));
+                    }
                 }
                 std::lock_guard<std::mutex> lock(merge_mutex);
                 if (distributed) {

@@ -3,6 +3,7 @@
 
 #include "format.hpp"
 #include "stickslip/inclusion.hpp"
+#include "stickslip/rng.hpp"
 #include "stickslip/pdmp.hpp"
 
 namespace stickslip {
@@ -58,6 +59,9 @@ void validate(const EngineSettings& s) {
     if (!std::isfinite(s.white_level) || s.white_level < 0)
         throw InvalidParameter("white-level", "white-level must be a finite number >= 0 (m/s; 0 chooses it)");
     if (s.max_work_per_excursion == 0) throw InvalidParameter("max-steps", "max-steps must be >= 1");
+    // One random block per step or event; a stream holds max_draws blocks.
+    if (s.max_work_per_excursion > max_draws / 8)
+        throw InvalidParameter("max-steps", "max-steps must be at most 2^44 (about 1.8e13)");
 }
 
 InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSettings& s) {
@@ -82,6 +86,8 @@ InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSe
     } else {
         c.h_amp = s.dt * p.force_amplitude();
         c.ou = ou_step(p.tau, s.dt);
+        c.f_x = c.h_amp * c.ou.mean_coef;
+        c.f_z = c.h_amp * c.ou.l11;
         if (!(std::isfinite(c.ou.l11) && std::isfinite(c.ou.l21) && std::isfinite(c.ou.l22) &&
               std::isfinite(c.ou.mean_coef)))
             throw InvalidParameter("dt", "dt/tau = " + detail::format_number(s.dt / p.tau) +

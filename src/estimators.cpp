@@ -178,6 +178,13 @@ Estimate RatioMoments::estimate(std::size_t j, double level) const {
     return make_interval(ratio(j), std::sqrt(std::fmax(ratio_covariance(j, j), 0.0)), level);
 }
 
+double RatioMoments::delta_variance(std::initializer_list<GradientTerm> gradient) const {
+    double v = 0.0;
+    for (const GradientTerm& a : gradient)
+        for (const GradientTerm& b : gradient) v += a.derivative * b.derivative * ratio_covariance(a.index, b.index);
+    return std::fmax(v, 0.0);
+}
+
 namespace {
 Estimate make_estimate(double value, double var_influence, double n, double q, double level) {
     Estimate e;

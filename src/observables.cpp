@@ -15,6 +15,7 @@
 #include "stickslip/inclusion.hpp"
 #include "stickslip/pdmp.hpp"
 #include "stickslip/rng.hpp"
+#include "stickslip/rng_batch.hpp"
 
 namespace stickslip {
 
@@ -135,6 +136,34 @@ std::string pdmp_sampling_note(double dt) {
            " s (--sample-dt) with a random phase per excursion: unbiased Riemann sums on that grid";
 }
 
+/// The stationary observables' view of an engine: runs long excursion k and
+/// calls on_v(v) for every velocity sample of it -- every step of the
+/// inclusion engine, or the PDMP path on a grid of spacing dt (phase 0, or the
+/// excursion's random phase when random_phase). The constants are made once.
+class SampledEngine {
+public:
+    SampledEngine(const ModelParams& p, const EngineSettings& s) : engine_(s.engine) {
+        if (engine_ == Engine::Pdmp) pdmp_ = make_pdmp_constants(p, s);
+        else inclusion_ = make_inclusion_constants(p, s);
+    }
+
+    template <class OnV>
+    ExcursionOutcome run(std::uint64_t seed, std::uint64_t k, double dt, bool random_phase, OnV&& on_v) const {
+        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
+        if (engine_ == Engine::Pdmp) {
+            auto sampler = grid_sampler(pdmp_, dt, [&](double, int, double v, double) { on_v(v); },
+                                        random_phase ? sampling_phase(seed, k, dt) : 0.0);
+            return pdmp_long_excursion(pdmp_, rng, sampler);
+        }
+        return inclusion_long_excursion(inclusion_, rng, [&](double, double v) { on_v(v); });
+    }
+
+private:
+    Engine engine_;
+    PdmpConstants pdmp_{};
+    InclusionConstants inclusion_{};
+};
+
 int mode_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
 /// Standard deviation used by automatic ranges [m/s].
@@ -189,32 +218,16 @@ bool pilot_range(const StationaryDensityRequest& req, double dt, double& lo, dou
     };
     const std::uint64_t n = std::min<std::uint64_t>(req.excursions, 256);
     const std::uint64_t seed = req.control.seed;
-    if (req.engine.engine == Engine::Pdmp) {
-        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
-        detail::run_blocks(
-            n, ctl, make,
-            [&](std::uint64_t k, Range& r) {
-                auto sampler = grid_sampler(c, dt, [&](double, int, double v, double) {
-                    r.lo = std::min(r.lo, v);
-                    r.hi = std::max(r.hi, v);
-                });
-                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
-                return pdmp_long_excursion(c, rng, sampler);
-            },
-            merge, total);
-    } else {
-        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
-        detail::run_blocks(
-            n, ctl, make,
-            [&](std::uint64_t k, Range& r) {
-                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
-                return inclusion_long_excursion(c, rng, [&](double, double v) {
-                    r.lo = std::min(r.lo, v);
-                    r.hi = std::max(r.hi, v);
-                });
-            },
-            merge, total);
-    }
+    const SampledEngine engine(req.params, req.engine);
+    detail::run_blocks(
+        n, ctl, make,
+        [&](std::uint64_t k, Range& r) {
+            return engine.run(seed, k, dt, false, [&](double v) {
+                r.lo = std::min(r.lo, v);
+                r.hi = std::max(r.hi, v);
+            });
+        },
+        merge, total);
     if (!(total.hi > total.lo)) return false;
     const double pad = 0.1 * (total.hi - total.lo);
     lo = total.lo - pad;
@@ -252,51 +265,24 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
         acc.mom.add(m, static_cast<double>(samples));
     };
     Acc total;
-    if (req.engine.engine == Engine::Pdmp) {
-        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
-        out.totals = detail::run_blocks(
-            req.excursions, req.control, make,
-            [&](std::uint64_t k, Acc& acc) {
-                thread_local std::vector<double> y;
-                y.assign(nh, 0.0);
-                double m[2] = {0.0, 0.0};
-                std::uint64_t samples = 0;
-                auto sampler = grid_sampler(
-                    c, dt,
-                    [&](double, int, double v, double) {
-                        y[static_cast<std::size_t>(index(v))] += 1.0;
-                        m[0] += v;
-                        m[1] += v * v;
-                        ++samples;
-                    },
-                    sampling_phase(seed, k, dt));
-                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
-                const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
-                if (!o.capped && samples > 0) finish(acc, y, m, samples);
-                return o;
-            },
-            merge, total);
-    } else {
-        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
-        out.totals = detail::run_blocks(
-            req.excursions, req.control, make,
-            [&](std::uint64_t k, Acc& acc) {
-                thread_local std::vector<double> y;
-                y.assign(nh, 0.0);
-                double m[2] = {0.0, 0.0};
-                std::uint64_t samples = 0;
-                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
-                const ExcursionOutcome o = inclusion_long_excursion(c, rng, [&](double, double v) {
-                    y[static_cast<std::size_t>(index(v))] += 1.0;
-                    m[0] += v;
-                    m[1] += v * v;
-                    ++samples;
-                });
-                if (!o.capped && samples > 0) finish(acc, y, m, samples);
-                return o;
-            },
-            merge, total);
-    }
+    const SampledEngine engine(req.params, req.engine);
+    out.totals = detail::run_blocks(
+        req.excursions, req.control, make,
+        [&](std::uint64_t k, Acc& acc) {
+            thread_local std::vector<double> y;
+            y.assign(nh, 0.0);
+            double m[2] = {0.0, 0.0};
+            std::uint64_t samples = 0;
+            const ExcursionOutcome o = engine.run(seed, k, dt, true, [&](double v) {
+                y[static_cast<std::size_t>(index(v))] += 1.0;
+                m[0] += v;
+                m[1] += v * v;
+                ++samples;
+            });
+            if (!o.capped && samples > 0) finish(acc, y, m, samples);
+            return o;
+        },
+        merge, total);
     detail::finish_long_excursion_run(req.params, req.engine, out.resolved, out.totals, req.allow_capped,
                                       out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
@@ -304,12 +290,8 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
     out.mean = total.mom.estimate(0, req.level);
     // Var = R_2 - R_1^2; gradient (-2 R_1, 1).
     const double r1 = total.mom.ratio(0), r2 = total.mom.ratio(1);
-    const double g0 = -2 * r1;
-    const double var_se = std::sqrt(std::fmax(g0 * g0 * total.mom.ratio_covariance(0, 0) +
-                                                  2 * g0 * total.mom.ratio_covariance(0, 1) +
-                                                  total.mom.ratio_covariance(1, 1),
-                                              0.0));
-    out.variance = make_interval(r2 - r1 * r1, var_se, req.level);
+    out.variance = make_interval(r2 - r1 * r1, std::sqrt(total.mom.delta_variance({{0, -2 * r1}, {1, 1.0}})),
+                                 req.level);
     if (req.engine.engine == Engine::Inclusion && (req.params.white() || req.engine.dt > 0.01 * req.params.tau))
         out.warnings.push_back("dt is not << tau: P(V = 0) includes the scheme's O(dt) quantisation of V near 0 "
                                "(a few 1e-3 at dt' = 1e-3); refine dt to see the physical atom");
@@ -399,7 +381,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 reset(st);
                 auto sampler =
                     grid_sampler(c, dt, [&](double, int, double v, double) { push(st, v); }, sampling_phase(seed, k, dt));
-                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
                 const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
                 if (o.capped || st.m == 0) return o;
                 // Continue from the regeneration state s+ until every lag of every start is seen.
@@ -422,7 +404,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local LagState st;
                 reset(st);
-                CounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
                 auto observe = [&](double, double v) { push(st, v); };
                 const ExcursionOutcome o = inclusion_long_excursion(c, rng, observe);
                 if (o.capped || st.m == 0) return o;
@@ -450,24 +432,19 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
     const std::size_t iu = nl;
     const double m = total.ratio(iu);
     out.mean = total.estimate(iu, req.level);
-    auto cov = [&](std::size_t a, std::size_t b) { return total.ratio_covariance(a, b); };
     const double h0 = total.ratio(0) - m * m;
     for (std::size_t j = 0; j < nl; ++j) {
         out.autocorrelation.push_back(total.estimate(j, req.level));
         const double hj = total.ratio(j) - m * m;
         // h_j = R_j - R_U^2: gradient 1 on j, -2m on U.
-        const double var_h = cov(j, j) - 4 * m * cov(j, iu) + 4 * m * m * cov(iu, iu);
-        out.covariance.push_back(make_interval(hj, std::sqrt(std::fmax(var_h, 0.0)), req.level));
-        // rho_j = h_j / h_0: gradient 1/h0 on j, -h_j/h0^2 on 0, 2m (h_j - h0)/h0^2 on U.
-        const double gj = 1 / h0, g0 = -hj / (h0 * h0), gu = 2 * m * (hj - h0) / (h0 * h0);
-        double var_r;
-        if (j == 0) {
-            var_r = 0.0; // identically 1
-        } else {
-            var_r = gj * gj * cov(j, j) + g0 * g0 * cov(0, 0) + gu * gu * cov(iu, iu) + 2 * gj * g0 * cov(j, 0) +
-                    2 * gj * gu * cov(j, iu) + 2 * g0 * gu * cov(0, iu);
-        }
-        out.normalised.push_back(make_interval(hj / h0, std::sqrt(std::fmax(var_r, 0.0)), req.level));
+        const double var_h = total.delta_variance({{j, 1.0}, {iu, -2 * m}});
+        out.covariance.push_back(make_interval(hj, std::sqrt(var_h), req.level));
+        // rho_j = h_j / h_0: gradient 1/h0 on j, -h_j/h0^2 on 0, 2m (h_j - h0)/h0^2 on U;
+        // rho_0 is identically 1.
+        const double var_r =
+            j == 0 ? 0.0
+                   : total.delta_variance({{j, 1 / h0}, {0, -hj / (h0 * h0)}, {iu, 2 * m * (hj - h0) / (h0 * h0)}});
+        out.normalised.push_back(make_interval(hj / h0, std::sqrt(var_r), req.level));
     }
     if (req.engine.engine == Engine::Pdmp) out.warnings.push_back(pdmp_sampling_note(dt));
     return out;
@@ -540,7 +517,7 @@ TransientResult compute_transient(const TransientRequest& req) {
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local std::vector<double> y;
                 y.assign(dim, 0.0);
-                CounterRng rng(seed, StreamPurpose::Observable, k);
+                BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
                 const double x0 = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
                 PdmpState s = pdmp_initial_state(c, x0, req.v0);
                 std::size_t j = 0;
@@ -579,7 +556,7 @@ TransientResult compute_transient(const TransientRequest& req) {
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local std::vector<double> y;
                 y.assign(dim, 0.0);
-                CounterRng rng(seed, StreamPurpose::Observable, k);
+                BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
                 double x = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
                 double v = req.v0;
                 std::size_t j = 0;
@@ -653,7 +630,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
     if (req.paths == 0) {
         // One long excursion, the one `diffusivity` runs as number `index`.
         SamplePath path;
-        CounterRng rng(seed, StreamPurpose::LongExcursion, req.index);
+        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, req.index);
         try {
             if (req.engine.engine == Engine::Pdmp) {
                 const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
@@ -712,7 +689,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
     const auto npoints = static_cast<std::uint64_t>(std::floor(req.horizon / every * (1 + 1e-12))) + 1;
     for (std::uint64_t k = 0; k < req.paths; ++k) {
         SamplePath path;
-        CounterRng rng(seed, StreamPurpose::BruteForce, k);
+        BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);
         if (req.engine.engine == Engine::Pdmp) {
             const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
             PdmpState s = pdmp_initial_state(c, x0, req.v0);

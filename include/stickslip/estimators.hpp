@@ -20,6 +20,7 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,16 @@ public:
     double ratio_covariance(std::size_t j, std::size_t k) const;
     /// R_j with its standard error and interval.
     Estimate estimate(std::size_t j, double level) const;
+    /// One term g_j dF/dR_j of a gradient: the ratio index and the derivative.
+    struct GradientTerm {
+        std::size_t index;
+        double derivative;
+    };
+    /// Delta-method variance of a smooth function F of the ratios whose
+    /// gradient at (R_0, R_1, ...) has the given nonzero terms:
+    /// sum_a sum_b g_a g_b cov(R_a, R_b), clamped at 0 (needs full_covariance
+    /// when more than one index appears).
+    double delta_variance(std::initializer_list<GradientTerm> gradient) const;
 
 private:
     double& cyy(std::size_t j, std::size_t k) { return full_ ? m_yy_[j * dim_ + k] : m_yy_[j]; }

@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "config.hpp"
 #include "excursion.hpp"
@@ -36,6 +37,8 @@ struct InclusionConstants {
     double h_friction; ///< h * friction [m/s]: the sticking band of f
     bool white;        ///< tau == 0
     OUStep ou;         ///< exact OU step (colored only)
+    double f_x;        ///< colored: h_amp * ou.mean_coef, the free flight's weight on X [m s^1/2 / s]
+    double f_z;        ///< colored: h_amp * ou.l11, its weight on the first normal [m/s]
     double x_up;       ///< x*  [s^-1/2] (colored only)
     double x_down;     ///< x-* [s^-1/2] (colored only)
     double bridge_rate;///< tau^2 / h [s]: Brownian-bridge crossing exponent factor
@@ -52,9 +55,15 @@ InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSe
 /// sqrt(noise*relaxation/2), so that both levels are visited often.
 double white_level_default(const ModelParams& p);
 
-/// Resolvent of h*dphi: f - clamp(f, -band, band). Exactly 0 when |f| <= band.
+/// Resolvent of h*dphi: f - clamp(f, -band, band), i.e. f - band above the band,
+/// f + band below it and exactly 0 inside (band >= 0). Written as
+/// max(f - band, min(f + band, 0)): two independent adds, then a min and a max,
+/// which compile to single instructions (std::fmax/fmin would be library calls,
+/// to honour their NaN rules), so the step's dependency chain stays short.
 STICKSLIP_HD inline double soft_threshold(double f, double band) {
-    return f - std::fmin(std::fmax(f, -band), band);
+    const double up = f - band, down = f + band;
+    const double lower = down < 0.0 ? down : 0.0;
+    return up > lower ? up : lower;
 }
 
 /// Exponent above which the bridge crossing probability exp(-e) < 2e-22 is
@@ -71,84 +80,155 @@ STICKSLIP_HD inline double bridge_crossing_probability(const InclusionConstants&
 
 /// One colored-noise step from (x, v): writes the end-of-step noise and the
 /// free-flight velocity f; returns nothing else so the caller can test f first.
+/// f = keep v + h (bias + a xbar) with xbar = mean_coef x + l11 z1, the forcing
+/// folded into two precomputed weights and added last as one sum. The sums are
+/// grouped so that the chains carried from step to step (X and V) are one
+/// multiply and one add each; the random terms are computed off the chain.
 STICKSLIP_HD inline void inclusion_colored_step(const InclusionConstants& c, double x, double v,
                                                 double z1, double z2, double& x_next, double& f) {
-    const double xbar = c.ou.mean_coef * x + c.ou.l11 * z1;
-    x_next = c.ou.end_coef * x + c.ou.l21 * z1 + c.ou.l22 * z2;
-    f = c.keep * v + c.h_bias + c.h_amp * xbar;
+    x_next = c.ou.end_coef * x + (c.ou.l21 * z1 + c.ou.l22 * z2);
+    f = c.keep * v + ((c.h_bias + c.f_x * x) + c.f_z * z1);
 }
 
-/// Runs one colored-noise half long excursion. dir = +1: from (x*, 0) until the
-/// object, stuck, sees X reach x-*; dir = -1: the mirror image. Adds the
-/// displacement sum of V (in units of h: multiply by h) to vsum and the steps to
-/// `steps`. Returns false when the step cap is reached. `observe(x, v)` sees the
-/// state at the start of every applied step (each stands for a time h), so an
-/// observable of the path is sampled exactly as the displacement is.
 /// Observer that ignores the path: the default of the long-excursion kernels,
 /// compiled away entirely.
 struct NoPathObserver {
     STICKSLIP_HD void operator()(double /*x*/, double /*v*/) const {}
 };
 
-template <class Rng, class Observer = NoPathObserver>
-STICKSLIP_HD inline bool inclusion_colored_half(const InclusionConstants& c, int dir, Rng& rng,
-                                                double& vsum, std::uint64_t& steps,
-                                                Observer&& observe = Observer{}) {
-    double x = dir > 0 ? c.x_up : c.x_down;
-    double v = 0.0;
-    const double target = dir > 0 ? c.x_down : c.x_up;
-    bool prev_stuck = false;
-    for (;;) {
-        if (steps >= c.max_steps) return false;
-        const auto z = rng.normal2();
-        double x_next, f;
-        inclusion_colored_step(c, x, v, z.x, z.y, x_next, f);
-        if (v == 0.0) {
-            if (c.rule == StopRule::Bridge) {
-                if (x >= c.x_down && x <= c.x_up) { // stuck at the start of the step
-                    bool crossed = dir > 0 ? x_next <= target : x_next >= target;
-                    if (!crossed) {
-                        const double p = bridge_crossing_probability(c, x, x_next, target);
-                        crossed = p > 0.0 && rng.uniform() < p;
-                    }
-                    if (crossed) return true; // the detecting step is not applied
-                }
-            } else if (prev_stuck && (dir > 0 ? f < -c.h_friction : f > c.h_friction)) {
-                return true;
-            }
-        }
-        const double v_next = soft_threshold(f, c.h_friction);
-        prev_stuck = (v == 0.0 && v_next == 0.0);
-        observe(x, v);
-        vsum += v;
-        ++steps;
-        x = x_next;
-        v = v_next;
+/// A long excursion of the inclusion engine between two steps. The kernels
+/// advance it one step at a time (inclusion_walk_step_as), so the same step serves
+/// the one-excursion kernel below and the interleaved one (inclusion_lanes.hpp).
+struct InclusionWalk {
+    double x = 0.0;          ///< noise X at the start of the next step [s^-1/2] (0 for white noise)
+    double v = 0.0;          ///< velocity at the start of the next step [m/s]
+    double vsum = 0.0;       ///< sum of V over the applied steps [m/s]
+    std::uint64_t steps = 0; ///< applied steps, both halves
+    std::uint64_t first = 0; ///< applied steps of the first half, once it is over
+    int dir = +1;            ///< +1: first half (+HLE), -1: second half (-HLE)
+    bool prev_stuck = false; ///< rule P: the previous step started and ended at V = 0
+    bool spare_ok = false;   ///< white noise: the second normal of the last pair is unused
+    double spare = 0.0;      ///< that normal
+};
+
+enum class WalkStatus { Running, HalfDone, Capped };
+
+/// The three step laws: white noise, colored noise with stop rule Q (Bridge)
+/// or P (Stuck).
+enum class StepKind { White, ColoredBridge, ColoredStuck };
+
+/// Calls f(std::integral_constant<StepKind, K>{}) with K the step kind of c.
+template <class F>
+STICKSLIP_HD inline decltype(auto) with_step_kind(const InclusionConstants& c, F&& f) {
+    if (c.white) return f(std::integral_constant<StepKind, StepKind::White>{});
+    if (c.rule == StopRule::Bridge) return f(std::integral_constant<StepKind, StepKind::ColoredBridge>{});
+    return f(std::integral_constant<StepKind, StepKind::ColoredStuck>{});
+}
+
+/// Puts w at the start of half `dir`. Colored noise: +1 starts from (x*, 0), -1
+/// from (x-*, 0); white noise: from V = dir * c.level.
+STICKSLIP_HD inline void inclusion_walk_start_half(const InclusionConstants& c, InclusionWalk& w, int dir) {
+    w.dir = dir;
+    w.prev_stuck = false;
+    w.spare_ok = false;
+    if (c.white) {
+        w.x = 0.0;
+        w.v = dir * c.level;
+    } else {
+        w.x = dir > 0 ? c.x_up : c.x_down;
+        w.v = 0.0;
     }
 }
 
-/// White-noise half excursion between the velocity levels: dir = +1 runs from
-/// V = +c until V reaches -c (the crossing step is not applied), dir = -1 the
-/// mirror image. One Philox call serves two steps.
-template <class Rng, class Observer = NoPathObserver>
-STICKSLIP_HD inline bool inclusion_white_half(const InclusionConstants& c, int dir, Rng& rng,
-                                              double& vsum, std::uint64_t& steps,
-                                              Observer&& observe = Observer{}) {
-    double v = dir * c.level;
-    for (;;) {
-        if (steps >= c.max_steps) return false;
-        const auto z = rng.normal2();
-        const double zz[2] = {z.x, z.y};
-        for (int k = 0; k < 2; ++k) {
-            const double f = c.keep * v + c.h_bias + c.h_amp * zz[k];
-            const double v_next = soft_threshold(f, c.h_friction);
-            if (dir > 0 ? v_next <= -c.level : v_next >= c.level) return true;
-            observe(0.0, v);
-            vsum += v;
-            ++steps;
-            v = v_next;
+/// One step of the current half. Colored noise: the half of direction +1 ends
+/// when the object, stuck, sees X reach x-* (rule Q: at the end of the step or,
+/// by the Brownian-bridge test, within it; rule P: a stuck step followed by a
+/// step whose free flight leaves the band downwards); -1 is the mirror image.
+/// White noise: the half ends when V reaches -c (+1) or +c (-1). The detecting
+/// step is not applied (returns HalfDone). `observe(x, v)` sees the state at
+/// the start of every applied step (each stands for a time h). Returns Capped,
+/// without stepping, once the excursion has made c.max_steps steps.
+/// (K = step_kind(c), fixed at compile time so that the kernels test the noise
+/// and the stop rule once per excursion, not once per step.)
+template <StepKind K, class Rng, class Observer>
+STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& c, InclusionWalk& w, Rng& rng,
+                                                      Observer& observe) {
+    if (w.steps >= c.max_steps) return WalkStatus::Capped;
+    if constexpr (K == StepKind::White) {
+        double z;
+        if (w.spare_ok) {
+            z = w.spare;
+            w.spare_ok = false;
+        } else { // one Philox block serves two steps
+            const auto p = rng.normal2();
+            z = p.x;
+            w.spare = p.y;
+            w.spare_ok = true;
+        }
+        const double v_next = soft_threshold(c.keep * w.v + (c.h_bias + c.h_amp * z), c.h_friction);
+        if (w.dir > 0 ? v_next <= -c.level : v_next >= c.level) return WalkStatus::HalfDone;
+        observe(0.0, w.v);
+        w.vsum += w.v;
+        ++w.steps;
+        w.v = v_next;
+        return WalkStatus::Running;
+    }
+    const auto z = rng.normal2();
+    double x_next, f;
+    inclusion_colored_step(c, w.x, w.v, z.x, z.y, x_next, f);
+    if (w.v == 0.0) {
+        if constexpr (K == StepKind::ColoredBridge) {
+            if (w.x >= c.x_down && w.x <= c.x_up) { // stuck at the start of the step
+                const double target = w.dir > 0 ? c.x_down : c.x_up;
+                bool crossed = w.dir > 0 ? x_next <= target : x_next >= target;
+                if (!crossed) {
+                    const double p = bridge_crossing_probability(c, w.x, x_next, target);
+                    crossed = p > 0.0 && rng.side_uniform() < p;
+                }
+                if (crossed) return WalkStatus::HalfDone;
+            }
+        } else if (w.prev_stuck && (w.dir > 0 ? f < -c.h_friction : f > c.h_friction)) {
+            return WalkStatus::HalfDone;
         }
     }
+    const double v_next = soft_threshold(f, c.h_friction);
+    if constexpr (K == StepKind::ColoredStuck) w.prev_stuck = (w.v == 0.0 && v_next == 0.0);
+    observe(w.x, w.v);
+    w.vsum += w.v;
+    ++w.steps;
+    w.x = x_next;
+    w.v = v_next;
+    return WalkStatus::Running;
+}
+
+/// The outcome of a finished (or capped) walk.
+STICKSLIP_HD inline ExcursionOutcome inclusion_walk_outcome(const InclusionConstants& c, const InclusionWalk& w,
+                                                            bool capped) {
+    ExcursionOutcome o;
+    o.first_half = c.h * static_cast<double>(w.first);
+    o.displacement = c.h * w.vsum;
+    o.duration = c.h * static_cast<double>(w.steps);
+    o.work = w.steps;
+    o.capped = capped;
+    return o;
+}
+
+/// inclusion_long_excursion for step kind K = step_kind(c).
+template <StepKind K, class Rng, class Observer>
+STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion_as(const InclusionConstants& c, Rng& rng,
+                                                                 Observer& observe) {
+    InclusionWalk w;
+    inclusion_walk_start_half(c, w, +1);
+    WalkStatus st;
+    while ((st = inclusion_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
+    }
+    if (st == WalkStatus::HalfDone) {
+        w.first = w.steps;
+        inclusion_walk_start_half(c, w, -1);
+        while ((st = inclusion_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
+        }
+    }
+    return inclusion_walk_outcome(c, w, st == WalkStatus::Capped);
 }
 
 /// One long excursion (+HLE then -HLE) of the inclusion engine; `observe(x, v)`
@@ -156,22 +236,7 @@ STICKSLIP_HD inline bool inclusion_white_half(const InclusionConstants& c, int d
 template <class Rng, class Observer = NoPathObserver>
 STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion(const InclusionConstants& c, Rng& rng,
                                                               Observer&& observe = Observer{}) {
-    double vsum = 0.0;
-    std::uint64_t steps = 0, first = 0;
-    bool ok;
-    if (c.white)
-        ok = inclusion_white_half(c, +1, rng, vsum, steps, observe) && ((first = steps), true) &&
-             inclusion_white_half(c, -1, rng, vsum, steps, observe);
-    else
-        ok = inclusion_colored_half(c, +1, rng, vsum, steps, observe) && ((first = steps), true) &&
-             inclusion_colored_half(c, -1, rng, vsum, steps, observe);
-    ExcursionOutcome o;
-    o.first_half = c.h * static_cast<double>(first);
-    o.displacement = c.h * vsum;
-    o.duration = c.h * static_cast<double>(steps);
-    o.work = steps;
-    o.capped = !ok;
-    return o;
+    return with_step_kind(c, [&](auto kind) { return inclusion_long_excursion_as<kind.value>(c, rng, observe); });
 }
 
 /// Brute-force trajectory (Algorithm 2 with time stepping): from noise x0
@@ -192,7 +257,7 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_path(const InclusionConstants& c,
             for (int k = 0; k < 2 && n < nsteps; ++k, ++n) {
                 observe(0.0, v);
                 vsum += v;
-                v = soft_threshold(c.keep * v + c.h_bias + c.h_amp * zz[k], c.h_friction);
+                v = soft_threshold(c.keep * v + (c.h_bias + c.h_amp * zz[k]), c.h_friction);
             }
         }
     } else {

@@ -8,18 +8,30 @@
 // Layout, after HOOMD-blue's RandomNumbers.h: the *key* is static (the user's
 // 64-bit seed); the *counter* is dynamic: two words hold the sample index
 // (56 bits) and the purpose (8 bits), two words hold the draw number within the
-// sample. The generator is Random123's Philox4x32-10, which passes BigCrush and
-// costs about 1 ns per call; each call yields 128 bits.
+// sample. The generator is Random123's Philox4x32-10, which passes BigCrush;
+// each call yields 128 bits.
+//
+// Normals come from the ziggurat (ziggurat.hpp): draw j of a stream gives the
+// pair (N(word 0), N(word 1)) of its two 64-bit words. A word the ziggurat's
+// fast path rejects (1.5%) is resolved with words from its own retry substream,
+// counter {j lo, 2^31 | half << 30 | attempt << 15 | j hi, index, purpose}, so
+// every normal is a pure function of (seed, purpose, index, j, half): a batched
+// generator (rng_batch.hpp) reproduces CounterRng bit for bit. A step that
+// needs one more uniform besides its normals (the inclusion engine's bridge
+// test) takes it from the side block of its draw, counter {j lo, 2^30 | j hi,
+// index, purpose}, so every step consumes exactly one block of the main stream
+// and excursions can advance in lockstep (inclusion_lanes.hpp). This needs
+// j < 2^47 draws per stream (max_draws); the engines cap their work far below.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
-#include <Random123/boxmuller.hpp>
 #include <Random123/philox.h>
 #include <Random123/uniform.hpp>
 
 #include "config.hpp"
+#include "ziggurat.hpp"
 
 namespace stickslip {
 
@@ -36,15 +48,51 @@ enum class StreamPurpose : std::uint32_t {
 /// Largest sample index a stream can take (56 bits).
 inline constexpr std::uint64_t max_sample_index = (std::uint64_t{1} << 56) - 1;
 
+/// Draws a stream may make (2^47): the retry substream of the normals keeps the
+/// draw number's high word in 15 bits.
+inline constexpr std::uint64_t max_draws = std::uint64_t{1} << 47;
+
+/// A pair of doubles (two normals), usable on host and device.
+struct NormalPair {
+    double x, y;
+};
+
 class CounterRng {
 public:
     using Philox = r123::Philox4x32;
 
-    STICKSLIP_HD CounterRng(std::uint64_t seed, StreamPurpose purpose, std::uint64_t index) {
-        key_ = {{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)}};
-        ctr_ = {{0u, 0u, static_cast<std::uint32_t>(index),
+    STICKSLIP_HD CounterRng(std::uint64_t seed, StreamPurpose purpose, std::uint64_t index)
+        : key_(make_key(seed)), ctr_(make_counter(purpose, index, 0)) {}
+
+    /// The Philox key of a seed.
+    STICKSLIP_HD static Philox::key_type make_key(std::uint64_t seed) {
+        return {{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)}};
+    }
+
+    /// The counter of draw j of stream (purpose, index).
+    STICKSLIP_HD static Philox::ctr_type make_counter(StreamPurpose purpose, std::uint64_t index,
+                                                      std::uint64_t j) {
+        return {{static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(j >> 32),
+                 static_cast<std::uint32_t>(index),
                  static_cast<std::uint32_t>((index >> 32) & 0x00ffffffu) |
                      (static_cast<std::uint32_t>(purpose) << 24)}};
+    }
+
+    /// The normal of a 64-bit word whose ziggurat fast path rejected it: the
+    /// exact slow path, fed by the retry substream of (draw j, half) of the
+    /// stream whose key and counter words 2, 3 are given.
+    STICKSLIP_HD static double resolve_rejected(const Philox::key_type& key, std::uint32_t c2, std::uint32_t c3,
+                                                std::uint64_t j, unsigned half, std::uint64_t word) {
+        RetryWords more{key, {{static_cast<std::uint32_t>(j), 0u, c2, c3}}, {}, static_cast<std::uint32_t>(j >> 32),
+                        half, 0u, 4};
+        return ziggurat_resolve(word, more);
+    }
+
+    /// The normal of word `word` of draw j, half `half` of this stream.
+    STICKSLIP_HD double normal_of_word(std::uint64_t word, std::uint64_t j, unsigned half) const {
+        double x;
+        if (ziggurat_fast(word, x)) return x;
+        return resolve_rejected(key_, ctr_.v[2], ctr_.v[3], j, half, word);
     }
 
     /// 128 fresh random bits; advances the draw counter by one.
@@ -59,11 +107,24 @@ public:
         return (static_cast<std::uint64_t>(ctr_.v[1]) << 32) | ctr_.v[0];
     }
 
-    /// Two independent standard normals (Box-Muller on two 64-bit uniforms).
-    STICKSLIP_HD r123::double2 normal2() {
-        Philox::ctr_type b = next_block();
-        return r123::boxmuller(join(b.v[0], b.v[1]), join(b.v[2], b.v[3]));
+    /// Two independent standard normals: the ziggurat of the block's two 64-bit words.
+    STICKSLIP_HD NormalPair normal2() {
+        const std::uint64_t j = draws();
+        const Philox::ctr_type b = next_block();
+        return {normal_of_word(join(b.v[0], b.v[1]), j, 0), normal_of_word(join(b.v[2], b.v[3]), j, 1)};
     }
+
+    /// The side uniform of draw j, in (0, 1]: independent of the draw's own block.
+    STICKSLIP_HD static double side_uniform_of(const Philox::key_type& key, std::uint32_t c2, std::uint32_t c3,
+                                               std::uint64_t j) {
+        const Philox::ctr_type ctr = {{static_cast<std::uint32_t>(j),
+                                       0x40000000u | (static_cast<std::uint32_t>(j >> 32) & 0x7fffu), c2, c3}};
+        const Philox::ctr_type b = Philox()(ctr, key);
+        return r123::u01<double>(join(b.v[0], b.v[1]));
+    }
+
+    /// The side uniform of the last draw (call after at least one draw).
+    STICKSLIP_HD double side_uniform() const { return side_uniform_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); }
 
     /// Two independent uniforms in (0, 1] with 53 significant bits.
     STICKSLIP_HD void uniform2(double& u0, double& u1) {
@@ -78,10 +139,33 @@ public:
         return r123::u01<double>(join(b.v[0], b.v[1]));
     }
 
-private:
     STICKSLIP_HD static std::uint64_t join(std::uint32_t lo, std::uint32_t hi) {
         return (static_cast<std::uint64_t>(hi) << 32) | lo;
     }
+
+private:
+    /// Words of the retry substream of one rejected normal, two per Philox call.
+    struct RetryWords {
+        Philox::key_type key;
+        Philox::ctr_type ctr;
+        Philox::ctr_type block;
+        std::uint32_t j_hi;
+        unsigned half;
+        std::uint32_t attempt;
+        int pos;
+        STICKSLIP_HD std::uint64_t operator()() {
+            if (pos == 4) {
+                attempt = (attempt + 1) & 0x7fffu; // wraps after 2^15 rejections in a row: probability < 1e-5000
+                ctr.v[1] = 0x80000000u | (static_cast<std::uint32_t>(half) << 30) | (attempt << 15) |
+                           (j_hi & 0x7fffu);
+                block = Philox()(ctr, key);
+                pos = 0;
+            }
+            const std::uint64_t w = join(block.v[pos], block.v[pos + 1]);
+            pos += 2;
+            return w;
+        }
+    };
 
     Philox::key_type key_;
     Philox::ctr_type ctr_;

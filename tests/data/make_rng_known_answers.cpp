@@ -38,7 +38,8 @@ int main() {
               << nlohmann::json(
                      "Known answers of stickslip::CounterRng (Philox4x32-10; key = seed, counter = {draw lo, draw hi, "
                      "index lo, index hi 24 bits | purpose << 24}). For each (seed, purpose, index): the first "
-                     "128-bit block of a fresh stream, the first three normal2() pairs of a fresh stream and the "
+                     "128-bit block of a fresh stream, the first three normal2() pairs of a fresh stream (ziggurat, 256 "
+                     "layers, rejected words resolved from the retry substream) and the "
                      "first three uniform2() pairs of a fresh stream. *_bits are the IEEE-754 bit patterns; the "
                      "numbers are the same values in shortest round-trip decimal.")
                      .dump()

@@ -180,11 +180,13 @@ TEST(StationaryDensity, WhiteNoiseWithDragAndBiasMatchesHayakawa) {
     r.control.seed = 19;
     const auto res = ss::compute_stationary_density(r);
     const ss::HayakawaDensity hay(r.params);
-    // sqrt(dt') bias of the scheme: about 1% of the standard deviation at dt' = 1e-3.
+    // Discretisation bias of the scheme at dt' = 1e-3: about 1% of the standard
+    // deviation for the mean; for the variance -2.4% +- 0.3% (three seeds of 3e4
+    // excursions; -0.9% +- 0.6% at dt' = 2.5e-4), hence a 3% allowance.
     const double sd = std::sqrt(hay.variance());
     EXPECT_TRUE(check(compare(res.mean.value, res.mean.std_error, hay.mean(), 0.0, 0.01 * sd),
                       "white noise E[V] vs Hayakawa"));
-    EXPECT_TRUE(check(compare(res.variance.value, res.variance.std_error, hay.variance(), 0.0, 0.02 * hay.variance()),
+    EXPECT_TRUE(check(compare(res.variance.value, res.variance.std_error, hay.variance(), 0.0, 0.03 * hay.variance()),
                       "white noise Var(V) vs Hayakawa"));
 }
 

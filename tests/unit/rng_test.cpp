@@ -56,7 +56,8 @@ nlohmann::json load_known_answers() {
     return nlohmann::json::parse(in);
 }
 
-// Normals go through log, sqrt and sincos. glibc on x86-64 (where the file was
+// Normals come from the ziggurat: the fast path is one exact multiply, but a
+// rejected word goes through exp or log. glibc on x86-64 (where the file was
 // made) must reproduce them bit for bit; another libm may differ in the last bit.
 #if defined(__GLIBC__) && defined(__x86_64__)
 constexpr std::uint64_t kNormalUlps = 0;

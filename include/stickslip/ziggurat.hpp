@@ -1,0 +1,75 @@
+// stickslip/ziggurat.hpp -- standard normals from 64-bit words: the ziggurat.
+//
+// Why a ziggurat: one inclusion step needs a pair of normals, and Box-Muller
+// (a logarithm, a square root, a sine and a cosine per pair) cost about 4x the
+// Philox block that fed it; the whole step was the transform. The ziggurat
+// (Marsaglia & Tsang 2000, 256 layers, NumPy's 52-bit layout) turns one 64-bit
+// word into an exact normal with a table lookup, a multiply and a compare in
+// 98.5% of cases -- and that fast path has no branch that depends on earlier
+// draws, so a batch of words converts with SIMD instructions (rng_batch.hpp).
+//
+// Word layout: bits 0-7 layer index, bit 8 sign, bits 9-60 the 52-bit position;
+// bits 61-63 are unused. A word the fast path rejects (the top layer, a wedge
+// between a rectangle and the curve, or the tail beyond zig_r) is resolved by
+// the exact rejection steps, which draw further words from a source the caller
+// supplies; CounterRng gives every rejected word its own retry substream, so a
+// normal is a pure function of (seed, stream, draw number, half).
+//
+// Exactness: the fast path is one correctly rounded multiply of an exact
+// integer, so the result is bitwise the same on every IEEE machine and SIMD
+// width; the rare slow path calls std::exp and std::log once or twice.
+//
+// GPU note: the functions are STICKSLIP_HD, but the tables are host constexpr
+// arrays; a CUDA build must mirror them in __constant__ memory.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include <Random123/uniform.hpp>
+
+#include "config.hpp"
+#include "detail/ziggurat_tables.hpp"
+
+namespace stickslip {
+
+/// Mask of the 52-bit position field (after shifting the word right by 9).
+inline constexpr std::uint64_t ziggurat_position_mask = (std::uint64_t{1} << 52) - 1;
+
+/// The fast path: writes the candidate normal for word r into x and returns true
+/// when it is accepted (the point lies inside the layer's inner rectangle).
+/// When it returns false, x must be passed through ziggurat_resolve.
+STICKSLIP_HD inline bool ziggurat_fast(std::uint64_t r, double& x) {
+    const unsigned idx = static_cast<unsigned>(r & 0xffu);
+    const std::uint64_t pos = (r >> 9) & ziggurat_position_mask;
+    const double a = static_cast<double>(static_cast<std::int64_t>(pos)) * detail::zig_w[idx];
+    x = ((r >> 8) & 1u) ? -a : a;
+    return pos < detail::zig_k[idx];
+}
+
+/// Exact resolution of a word the fast path rejected. `more()` returns fresh
+/// independent 64-bit words; uniforms are u01 of a word, in (0, 1].
+template <class WordSource>
+STICKSLIP_HD inline double ziggurat_resolve(std::uint64_t r, WordSource& more) {
+    for (;;) {
+        double x;
+        if (ziggurat_fast(r, x)) return x;
+        const unsigned idx = static_cast<unsigned>(r & 0xffu);
+        const bool negative = (r >> 8) & 1u;
+        if (idx == 0) {
+            // Tail beyond zig_r: Marsaglia's exponential rejection.
+            for (;;) {
+                const double xx = -detail::zig_inv_r * std::log(r123::u01<double>(more()));
+                const double yy = -std::log(r123::u01<double>(more()));
+                if (yy + yy > xx * xx) return negative ? -(detail::zig_r + xx) : detail::zig_r + xx;
+            }
+        }
+        // Wedge: accept with the density's height against a uniform in the layer.
+        const double y = (detail::zig_f[idx - 1] - detail::zig_f[idx]) * r123::u01<double>(more()) +
+                         detail::zig_f[idx];
+        if (y < std::exp(-0.5 * x * x)) return x;
+        r = more();
+    }
+}
+
+} // namespace stickslip

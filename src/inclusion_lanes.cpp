@@ -1,0 +1,264 @@
+#include "stickslip/inclusion_lanes.hpp"
+
+#include "stickslip/rng.hpp"
+#include "stickslip/rng_batch.hpp"
+
+namespace stickslip {
+
+namespace {
+
+constexpr int L = inclusion_lanes;
+constexpr int B = detail::rng_batch_size;
+
+/// The draw's numbers as one step of inclusion_walk_step_as sees them: its
+/// normal pair and, if the bridge test asks, its side uniform.
+struct LaneStepRng {
+    double z1, z2;
+    const CounterRng::Philox::key_type* key;
+    std::uint32_t c2, c3;
+    std::uint64_t j;
+    NormalPair normal2() const { return {z1, z2}; }
+    double side_uniform() const { return CounterRng::side_uniform_of(*key, c2, c3, j); }
+};
+
+/// Eight walks, structure of arrays, and their normals by (half, step, lane).
+struct LaneGroup {
+    alignas(64) double x[L];
+    alignas(64) double v[L];
+    alignas(64) double vsum[L];
+    alignas(64) double target[L];  ///< the half's stopping level of X
+    alignas(64) double dir[L];     ///< +1 or -1
+    alignas(64) std::int64_t steps[L];      ///< (signed: AVX2 compares signed 64-bit integers only)
+    alignas(64) std::int64_t prev_stuck[L]; ///< rule P: 1 or 0
+    alignas(64) std::int64_t attention[L];  ///< 1: the lane's step is left to the scalar kernel
+    alignas(64) double z[2][B][L];
+    std::uint64_t first_half[L];
+    std::uint64_t slot[L];
+    std::uint64_t base[L]; ///< draw number of buffer position 0 (mod 2^64)
+    std::uint32_t c2[L], c3[L];
+    bool active[L];
+};
+
+template <StepKind K>
+class LaneRunner {
+public:
+    LaneRunner(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+               ExcursionOutcome* out, const std::atomic<bool>* cancel)
+        : c_(c), key_(CounterRng::make_key(seed)), first_(first), count_(count), out_(out), cancel_(cancel) {}
+
+    bool run() {
+        int live = 0;
+        for (int l = 0; l < L; ++l) live += load(l, 0) ? 1 : 0;
+        while (live > 0) {
+            for (int p = 0; p < B && live > 0; ++p) {
+                if (!vector_step(p)) continue;
+                for (int l = 0; l < L; ++l)
+                    if (g_.attention[l] && g_.active[l] && !scalar_step(l, p)) --live;
+            }
+            for (int l = 0; l < L; ++l)
+                if (g_.active[l]) {
+                    g_.base[l] += B;
+                    refill(l, 0);
+                }
+        }
+        return !cancelled_;
+    }
+
+private:
+    /// Normals of lane l for draws base .. base+B-1, from buffer position `from` on.
+    void refill(int l, int from) {
+        std::uint32_t words[4][B];
+        double normals[2][B];
+        detail::fill_normals(key_, g_.c2[l], g_.c3[l], g_.base[l], words, normals, from);
+        for (int h = 0; h < 2; ++h)
+            for (int i = from; i < B; ++i) g_.z[h][i][l] = normals[h][i];
+    }
+
+    void start_half(int l, int dir) {
+        InclusionWalk w;
+        inclusion_walk_start_half(c_, w, dir);
+        g_.x[l] = w.x;
+        g_.v[l] = w.v;
+        g_.dir[l] = dir;
+        g_.target[l] = dir > 0 ? c_.x_down : c_.x_up;
+        g_.prev_stuck[l] = 0;
+    }
+
+    /// Gives lane l the next excursion, its draw 0 at buffer position `phase`.
+    bool load(int l, int phase) {
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) cancelled_ = true;
+        g_.active[l] = !cancelled_ && next_ < count_;
+        g_.attention[l] = 0;
+        if (!g_.active[l]) {
+            park(l);
+            return false;
+        }
+        g_.slot[l] = next_++;
+        const auto ctr = CounterRng::make_counter(StreamPurpose::LongExcursion, first_ + g_.slot[l], 0);
+        g_.c2[l] = ctr.v[2];
+        g_.c3[l] = ctr.v[3];
+        g_.vsum[l] = 0.0;
+        g_.steps[l] = 0;
+        g_.first_half[l] = 0;
+        start_half(l, +1);
+        g_.base[l] = std::uint64_t{0} - static_cast<std::uint64_t>(phase);
+        if (phase < B) refill(l, phase);
+        return true;
+    }
+
+    /// An idle lane: a state the vector step never flags (moving, no cap), so
+    /// it only computes values nobody reads.
+    void park(int l) {
+        g_.x[l] = 0.0;
+        g_.v[l] = 1.0;
+        g_.vsum[l] = 0.0;
+        g_.steps[l] = 0;
+        g_.prev_stuck[l] = 0;
+        g_.dir[l] = 1.0;
+        g_.target[l] = c_.x_down;
+        for (int h = 0; h < 2; ++h)
+            for (int i = 0; i < B; ++i) g_.z[h][i][l] = 0.0;
+    }
+
+    /// Step p of every lane where the outcome is the plain step; marks the
+    /// others in g_.attention. Returns whether any lane was marked. The
+    /// expressions are inclusion_colored_step's and soft_threshold's, in the
+    /// same order, so the applied lanes get the same bits.
+    bool vector_step(int p) {
+        const double ec = c_.ou.end_coef, l21 = c_.ou.l21, l22 = c_.ou.l22;
+        const double keep = c_.keep, hb = c_.h_bias, fx = c_.f_x, fz = c_.f_z, band = c_.h_friction;
+        const double xd = c_.x_down, xu = c_.x_up, rate = c_.bridge_rate;
+        const auto cap = static_cast<std::int64_t>(c_.max_steps);
+        std::int64_t any = 0;
+#pragma GCC ivdep
+        for (int l = 0; l < L; ++l) {
+            const double z1 = g_.z[0][p][l], z2 = g_.z[1][p][l];
+            const double x0 = g_.x[l], v0 = g_.v[l];
+            const double xn = ec * x0 + (l21 * z1 + l22 * z2);
+            const double f = keep * v0 + ((hb + fx * x0) + fz * z1);
+            const double up = f - band, down = f + band;
+            const double lower = down < 0.0 ? down : 0.0;
+            const double vn = up > lower ? up : lower;
+            const std::int64_t stuck = v0 == 0.0 ? 1 : 0;
+            std::int64_t flag = g_.steps[l] >= cap ? 1 : 0;
+            if constexpr (K == StepKind::ColoredBridge) {
+                const double t = g_.target[l];
+                const std::int64_t inband = (x0 >= xd ? 1 : 0) & (x0 <= xu ? 1 : 0);
+                const std::int64_t crossed = g_.dir[l] * (xn - t) <= 0.0 ? 1 : 0;
+                const double e = (x0 - t) * (xn - t) * rate;
+                const std::int64_t maybe = e > bridge_exponent_cutoff ? 0 : 1; // also NaN
+                flag |= stuck & inband & (crossed | maybe);
+            } else {
+                const std::int64_t pos = g_.dir[l] > 0.0 ? 1 : 0;
+                const std::int64_t leaves = (pos & (f < -band ? 1 : 0)) | ((1 - pos) & (f > band ? 1 : 0));
+                flag |= stuck & g_.prev_stuck[l] & leaves;
+                const std::int64_t stays = vn == 0.0 ? 1 : 0;
+                g_.prev_stuck[l] = flag ? g_.prev_stuck[l] : (stuck & stays);
+            }
+            g_.attention[l] = flag;
+            any |= flag;
+            g_.x[l] = flag ? x0 : xn;
+            g_.v[l] = flag ? v0 : vn;
+            g_.vsum[l] = flag ? g_.vsum[l] : g_.vsum[l] + v0;
+            g_.steps[l] += 1 - flag;
+        }
+        return any != 0;
+    }
+
+    /// Step p of lane l by the one-excursion kernel itself. Returns false when
+    /// the lane has no excursion left to run.
+    bool scalar_step(int l, int p) {
+        InclusionWalk w;
+        w.x = g_.x[l];
+        w.v = g_.v[l];
+        w.vsum = g_.vsum[l];
+        w.steps = static_cast<std::uint64_t>(g_.steps[l]);
+        w.first = g_.first_half[l];
+        w.dir = g_.dir[l] > 0.0 ? +1 : -1;
+        w.prev_stuck = g_.prev_stuck[l] != 0;
+        LaneStepRng rng{g_.z[0][p][l], g_.z[1][p][l], &key_, g_.c2[l], g_.c3[l],
+                        g_.base[l] + static_cast<std::uint64_t>(p)};
+        NoPathObserver none;
+        const WalkStatus st = inclusion_walk_step_as<K>(c_, w, rng, none);
+        g_.x[l] = w.x;
+        g_.v[l] = w.v;
+        g_.vsum[l] = w.vsum;
+        g_.steps[l] = static_cast<std::int64_t>(w.steps);
+        g_.prev_stuck[l] = w.prev_stuck ? 1 : 0;
+        if (st == WalkStatus::Running) return true;
+        if (st == WalkStatus::HalfDone && w.dir > 0) {
+            g_.first_half[l] = w.steps;
+            start_half(l, -1);
+            return true;
+        }
+        out_[g_.slot[l]] = inclusion_walk_outcome(c_, w, st == WalkStatus::Capped);
+        return load(l, p + 1);
+    }
+
+    const InclusionConstants& c_;
+    const CounterRng::Philox::key_type key_;
+    const std::uint64_t first_, count_;
+    ExcursionOutcome* const out_;
+    const std::atomic<bool>* const cancel_;
+    std::uint64_t next_ = 0;
+    bool cancelled_ = false;
+    LaneGroup g_{};
+};
+
+// One source, compiled per x86-64 level (see rng_batch.cpp); the loader picks one.
+// flatten: the runner must be inlined into each clone to get its instruction set.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(STICKSLIP_RNG_TARGET_CLONES)
+#define STICKSLIP_LANE_CLONES __attribute__((flatten, target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define STICKSLIP_LANE_CLONES __attribute__((flatten))
+#endif
+
+STICKSLIP_LANE_CLONES
+bool run_lanes_bridge(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                      ExcursionOutcome* out, const std::atomic<bool>* cancel) {
+    return LaneRunner<StepKind::ColoredBridge>(c, seed, first, count, out, cancel).run();
+}
+
+STICKSLIP_LANE_CLONES
+bool run_lanes_stuck(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                     ExcursionOutcome* out, const std::atomic<bool>* cancel) {
+    return LaneRunner<StepKind::ColoredStuck>(c, seed, first, count, out, cancel).run();
+}
+
+} // namespace
+
+bool inclusion_long_excursions(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
+                               std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel) {
+    if (c.white || !inclusion_lanes_vectorised()) {
+        for (std::uint64_t i = 0; i < count; ++i) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+            BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
+            out[i] = inclusion_long_excursion(c, rng);
+        }
+        return true;
+    }
+    return c.rule == StopRule::Bridge ? run_lanes_bridge(c, seed, first, count, out, cancel)
+                                      : run_lanes_stuck(c, seed, first, count, out, cancel);
+}
+
+bool inclusion_lanes_vectorised() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(STICKSLIP_RNG_TARGET_CLONES)
+    // GCC 12 vectorises the lane step for AVX-512 only; elsewhere the lanes
+    // would run as scalar code, slower than one excursion at a time.
+    static const bool avx512 = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("x86-64-v4") != 0;
+    }();
+    return avx512;
+#elif defined(__GNUC__) && !defined(__clang__) && defined(__AVX512F__) && defined(__AVX512DQ__)
+    return true; // compiled for AVX-512 (STICKSLIP_NATIVE on such a machine)
+#else
+    return false;
+#endif
+}
+
+const char* inclusion_kernel_name() {
+    return inclusion_lanes_vectorised() ? "8 SIMD lanes (AVX-512)" : "one excursion at a time";
+}
+
+} // namespace stickslip

@@ -1,0 +1,116 @@
+// The interleaved inclusion kernel (inclusion_lanes.hpp) against the
+// one-excursion kernel: every outcome must be bitwise the same, for both stop
+// rules, white noise, capped excursions, partial lane groups and any first
+// index; and the cancel flag must stop it. On machines without AVX-512 the
+// function runs the one-excursion kernel itself, and the tests still hold.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "stickslip/inclusion.hpp"
+#include "stickslip/inclusion_lanes.hpp"
+#include "stickslip/rng.hpp"
+
+namespace ss = stickslip;
+
+namespace {
+
+constexpr std::uint64_t kSeed = 424242;
+
+ss::ModelParams dry_params() {
+    ss::ModelParams p;
+    p.friction = 1.0;
+    p.noise = 1.0;
+    p.tau = 0.5;
+    p.relaxation = std::numeric_limits<double>::infinity();
+    p.bias = 0.0;
+    return p;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Runs `count` excursions from `first` both ways and counts the differences.
+int mismatches(const ss::InclusionConstants& c, std::uint64_t first, std::uint64_t count, int* capped = nullptr) {
+    std::vector<ss::ExcursionOutcome> lanes(count);
+    EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, first, count, lanes.data()));
+    int bad = 0;
+    for (std::uint64_t i = 0; i < count; ++i) {
+        ss::CounterRng rng(kSeed, ss::StreamPurpose::LongExcursion, first + i);
+        const ss::ExcursionOutcome o = ss::inclusion_long_excursion(c, rng);
+        const ss::ExcursionOutcome& l = lanes[i];
+        const bool same = same_bits(o.displacement, l.displacement) && same_bits(o.duration, l.duration) &&
+                          same_bits(o.first_half, l.first_half) && o.work == l.work && o.capped == l.capped;
+        if (!same && bad < 3)
+            ADD_FAILURE() << "excursion " << first + i << ": one-at-a-time U = " << o.displacement
+                          << ", steps " << o.work << ", first half " << o.first_half << ", capped " << o.capped
+                          << "; lanes U = " << l.displacement << ", steps " << l.work << ", first half "
+                          << l.first_half << ", capped " << l.capped;
+        bad += same ? 0 : 1;
+        if (capped) *capped += o.capped ? 1 : 0;
+    }
+    return bad;
+}
+
+ss::InclusionConstants constants(const ss::ModelParams& p, double dt, ss::StopRule rule,
+                                 std::uint64_t max_steps = 200'000'000) {
+    ss::EngineSettings s;
+    s.engine = ss::Engine::Inclusion;
+    s.dt = dt;
+    s.stop_rule = rule;
+    s.max_work_per_excursion = max_steps;
+    return ss::make_inclusion_constants(p, s);
+}
+
+} // namespace
+
+TEST(InclusionLanes, BitwiseEqualToOneAtATimeBridgeRule) {
+    EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge), 0, 100), 0);
+}
+
+TEST(InclusionLanes, BitwiseEqualToOneAtATimeStuckRule) {
+    EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Stuck), 0, 100), 0);
+}
+
+TEST(InclusionLanes, BitwiseEqualWithoutViscousDragAndAtLargeIndices) {
+    const std::uint64_t first = (std::uint64_t{1} << 40) + 3;
+    EXPECT_EQ(mismatches(constants(dry_params(), 1e-3, ss::StopRule::Bridge), first, 77), 0);
+    EXPECT_EQ(mismatches(constants(dry_params(), 2e-2, ss::StopRule::Stuck), first, 77), 0);
+}
+
+TEST(InclusionLanes, WhiteNoiseRunsTheOneExcursionKernel) {
+    ss::ModelParams p = dry_params();
+    p.tau = 0.0;
+    EXPECT_EQ(mismatches(constants(p, 1e-3, ss::StopRule::Auto), 5, 40), 0);
+}
+
+TEST(InclusionLanes, PartialGroupsAndEmptyRuns) {
+    const auto c = constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge);
+    for (std::uint64_t n : {0u, 1u, 7u, 8u, 9u, 17u}) EXPECT_EQ(mismatches(c, 1000, n), 0) << n << " excursions";
+}
+
+TEST(InclusionLanes, CappedExcursionsMatchToo) {
+    // A cap below the median length: many excursions end capped, some in their first half.
+    int capped = 0;
+    EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge, 4000), 0, 64, &capped), 0);
+    EXPECT_GT(capped, 10);
+    EXPECT_LT(capped, 64);
+}
+
+TEST(InclusionLanes, CancelStopsStartingExcursions) {
+    const auto c = constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge);
+    std::atomic<bool> cancel{true};
+    std::vector<ss::ExcursionOutcome> out(64);
+    EXPECT_FALSE(ss::inclusion_long_excursions(c, kSeed, 0, out.size(), out.data(), &cancel));
+    cancel = false;
+    EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, 0, 3, out.data(), &cancel));
+}
+
+TEST(InclusionLanes, ReportsItsKernel) {
+    const std::string name = ss::inclusion_kernel_name();
+    EXPECT_EQ(name, ss::inclusion_lanes_vectorised() ? "8 SIMD lanes (AVX-512)" : "one excursion at a time");
+}
