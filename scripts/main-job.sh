@@ -7,13 +7,13 @@
 #
 #   bash scripts/main-job.sh                     # table on stdout
 #   bash scripts/main-job.sh --format json       # extra args go to the command
-#   STICKSLIP_MAIN_EXCURSIONS=100000 bash scripts/main-job.sh
+#   STICKSLIP_MAIN_EXCURSIONS=400000 bash scripts/main-job.sh   # half the interval width
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 bash scripts/build.sh >&2
 
 BUILD_DIR="${STICKSLIP_BUILD_DIR:-build}"
-EXCURSIONS="${STICKSLIP_MAIN_EXCURSIONS:-24000}"
+EXCURSIONS="${STICKSLIP_MAIN_EXCURSIONS:-100000}"
 echo "main job: stickslip diffusivity, paper Fig. 2 parameters, $EXCURSIONS long excursions" >&2
 exec "$BUILD_DIR/stickslip" diffusivity --excursions "$EXCURSIONS" "$@"

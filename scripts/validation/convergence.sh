@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces the measured numbers of docs/validation.md (about 30 min on 2 cores):
+# Reproduces the measured numbers of docs/validation.md (about 9 min on 2 cores):
 # discretisation convergence of D on the Fig. 2/4 case (dt for the inclusion
 # engine, grid for the PDMP), the white-noise dt convergence against the exact
 # quadrature, and brute force against long excursions. Each run is one

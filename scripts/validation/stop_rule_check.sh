@@ -7,10 +7,9 @@
 #
 # Usage: scripts/validation/stop_rule_check.sh [N_excursions] [N_trajectories] [t1] [t2]
 # Seeds are SEED_BASE+1 (bridge), +2 (stuck), +3, +4 (brute force); SEED_BASE
-# defaults to 100. docs/validation.md used `2000000 100000 10 20` with
-# SEED_BASE=100, and N_LE = 6e6, N_BF = 4e5 with SEED_BASE=200 (bridge only).
-# Defaults aim at ~0.5% standard errors and take hours on 2 cores; the numbers in
-# docs/validation.md state the sizes that were run.
+# defaults to 100. docs/validation.md used `20000000 2000000 10 20` with
+# SEED_BASE=300 (about 20 min on 2 cores). Output: $STICKSLIP_VALIDATION_OUT
+# (default build/validation).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 N_LE=${1:-4000000}
