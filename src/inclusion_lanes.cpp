@@ -86,7 +86,9 @@ private:
 
     /// Gives lane l the next excursion, its draw 0 at buffer position `phase`.
     bool load(int l, int phase) {
-        if (cancel_ && cancel_->load(std::memory_order_relaxed)) cancelled_ = true;
+        // Only a cancel that stops an excursion from starting counts: one
+        // that arrives after the last has started leaves `out` complete.
+        if (next_ < count_ && cancel_ && cancel_->load(std::memory_order_relaxed)) cancelled_ = true;
         g_.active[l] = !cancelled_ && next_ < count_;
         g_.attention[l] = 0;
         if (!g_.active[l]) {
@@ -106,8 +108,9 @@ private:
         return true;
     }
 
-    /// An idle lane: a state the vector step never flags (moving, no cap), so
-    /// it only computes values nobody reads.
+    /// An idle lane: it keeps stepping on zero normals and may even be flagged
+    /// later (stuck, or at the cap), but run() skips inactive lanes, so it only
+    /// computes values nobody reads.
     void park(int l) {
         g_.x[l] = 0.0;
         g_.v[l] = 1.0;
@@ -225,18 +228,29 @@ bool run_lanes_stuck(const InclusionConstants& c, std::uint64_t seed, std::uint6
     return LaneRunner<StepKind::ColoredStuck>(c, seed, first, count, out, cancel).run();
 }
 
+
+bool one_at_a_time(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                   ExcursionOutcome* out, const std::atomic<bool>* cancel) {
+    for (std::uint64_t i = 0; i < count; ++i) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
+        out[i] = inclusion_long_excursion(c, rng);
+    }
+    return true;
+}
+
 } // namespace
 
 bool inclusion_long_excursions(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
                                std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel) {
-    if (c.white || !inclusion_lanes_vectorised()) {
-        for (std::uint64_t i = 0; i < count; ++i) {
-            if (cancel && cancel->load(std::memory_order_relaxed)) return false;
-            BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
-            out[i] = inclusion_long_excursion(c, rng);
-        }
-        return true;
-    }
+    if (!inclusion_lanes_vectorised()) return one_at_a_time(c, seed, first, count, out, cancel);
+    return detail::inclusion_long_excursions_in_lanes(c, seed, first, count, out, cancel);
+}
+
+bool detail::inclusion_long_excursions_in_lanes(const InclusionConstants& c, std::uint64_t seed,
+                                                std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                                                const std::atomic<bool>* cancel) {
+    if (c.white) return one_at_a_time(c, seed, first, count, out, cancel);
     return c.rule == StopRule::Bridge ? run_lanes_bridge(c, seed, first, count, out, cancel)
                                       : run_lanes_stuck(c, seed, first, count, out, cancel);
 }

@@ -39,7 +39,8 @@ inline constexpr int inclusion_lanes = 8;
 /// (seed, LongExcursion, index), and writes excursion first+i to out[i]:
 /// bitwise what inclusion_long_excursion(c, CounterRng(seed, LongExcursion,
 /// first+i)) returns. Stops starting new excursions once *cancel is set and
-/// then returns false (out is incomplete); returns true when all are done.
+/// then returns false (out is incomplete); returns true when all are done
+/// (also when the cancel comes after the last excursion has started).
 bool inclusion_long_excursions(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
                                std::uint64_t count, ExcursionOutcome* out,
                                const std::atomic<bool>* cancel = nullptr);
@@ -51,5 +52,15 @@ bool inclusion_lanes_vectorised();
 
 /// A short description of the colored-noise kernel in use, for reports.
 const char* inclusion_kernel_name();
+
+namespace detail {
+/// inclusion_long_excursions with the lanes forced on any machine (white
+/// noise still runs the one-excursion kernel): the same results, slower where
+/// the lane step is not vectorised. For tests, so that the lane code is
+/// checked on every instruction set, not only where it is the default.
+bool inclusion_long_excursions_in_lanes(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
+                                        std::uint64_t count, ExcursionOutcome* out,
+                                        const std::atomic<bool>* cancel = nullptr);
+} // namespace detail
 
 } // namespace stickslip

@@ -2,7 +2,8 @@
 // one-excursion kernel: every outcome must be bitwise the same, for both stop
 // rules, white noise, capped excursions, partial lane groups and any first
 // index; and the cancel flag must stop it. On machines without AVX-512 the
-// function runs the one-excursion kernel itself, and the tests still hold.
+// public function runs the one-excursion kernel itself, so the lanes are also
+// run forced (detail::inclusion_long_excursions_in_lanes) on every machine.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -34,11 +35,22 @@ ss::ModelParams dry_params() {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// Runs `count` excursions from `first` both ways and counts the differences.
+// Runs `count` excursions from `first` by the public entry point, by the lanes
+// forced on (so that the lane code is checked on machines without AVX-512,
+// where it is not the default), and one at a time; counts the differences.
 int mismatches(const ss::InclusionConstants& c, std::uint64_t first, std::uint64_t count, int* capped = nullptr) {
-    std::vector<ss::ExcursionOutcome> lanes(count);
+    std::vector<ss::ExcursionOutcome> lanes(count), forced(count);
     EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, first, count, lanes.data()));
+    EXPECT_TRUE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, first, count, forced.data()));
     int bad = 0;
+    for (std::uint64_t i = 0; i < count; ++i) {
+        const bool same = same_bits(lanes[i].displacement, forced[i].displacement) &&
+                          same_bits(lanes[i].duration, forced[i].duration) && lanes[i].work == forced[i].work;
+        if (!same && bad < 3)
+            ADD_FAILURE() << "excursion " << first + i << ": forced lanes U = " << forced[i].displacement
+                          << ", default kernel U = " << lanes[i].displacement;
+        bad += same ? 0 : 1;
+    }
     for (std::uint64_t i = 0; i < count; ++i) {
         ss::CounterRng rng(kSeed, ss::StreamPurpose::LongExcursion, first + i);
         const ss::ExcursionOutcome o = ss::inclusion_long_excursion(c, rng);
@@ -106,8 +118,18 @@ TEST(InclusionLanes, CancelStopsStartingExcursions) {
     std::atomic<bool> cancel{true};
     std::vector<ss::ExcursionOutcome> out(64);
     EXPECT_FALSE(ss::inclusion_long_excursions(c, kSeed, 0, out.size(), out.data(), &cancel));
+    EXPECT_FALSE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, 0, out.size(), out.data(), &cancel));
     cancel = false;
     EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, 0, 3, out.data(), &cancel));
+    EXPECT_TRUE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, 0, 3, out.data(), &cancel));
+}
+
+TEST(InclusionLanes, NothingToStartMeansNothingCancelled) {
+    // Both kernels agree that a run with nothing left to start is complete.
+    const auto c = constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge);
+    std::atomic<bool> cancel{true};
+    EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, 0, 0, nullptr, &cancel));
+    EXPECT_TRUE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, 0, 0, nullptr, &cancel));
 }
 
 TEST(InclusionLanes, ReportsItsKernel) {
