@@ -33,7 +33,9 @@ struct BlockResult {
 };
 
 /// make_extra() -> Extra (an empty accumulator); sample(index, Extra&) ->
-/// ExcursionOutcome, adding to Extra only when the outcome is not capped;
+/// ExcursionOutcome, adding to Extra only when the outcome is not capped, or
+/// the block form sample(first, count, ExcursionOutcome* out, Extra&) -> bool
+/// (false: cancelled, out incomplete), which fills a block of outcomes at once;
 /// merge(Extra& into, const Extra& from). Returns the totals; `extra_total`
 /// receives the merged Extra.
 template <class Extra, class MakeExtra, class Sample, class Merge>

@@ -149,12 +149,13 @@ public:
 
     template <class OnV>
     ExcursionOutcome run(std::uint64_t seed, std::uint64_t k, double dt, bool random_phase, OnV&& on_v) const {
-        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
         if (engine_ == Engine::Pdmp) {
+            BatchedUniformRng rng(seed, StreamPurpose::LongExcursion, k); // uniforms only: no ziggurat
             auto sampler = grid_sampler(pdmp_, dt, [&](double, int, double v, double) { on_v(v); },
                                         random_phase ? sampling_phase(seed, k, dt) : 0.0);
             return pdmp_long_excursion(pdmp_, rng, sampler);
         }
+        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
         return inclusion_long_excursion(inclusion_, rng, [&](double, double v) { on_v(v); });
     }
 
@@ -381,7 +382,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 reset(st);
                 auto sampler =
                     grid_sampler(c, dt, [&](double, int, double v, double) { push(st, v); }, sampling_phase(seed, k, dt));
-                BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                BatchedUniformRng rng(seed, StreamPurpose::LongExcursion, k);
                 const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
                 if (o.capped || st.m == 0) return o;
                 // Continue from the regeneration state s+ until every lag of every start is seen.
@@ -416,7 +417,6 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 std::uint64_t remaining = lmax;
                 while (remaining > 0) {
                     more.max_steps = remaining;
-                    // (the white-noise kernel may pass the cap by one step: clamp)
                     remaining -= std::min(remaining, inclusion_long_excursion(more, rng, observe).work);
                 }
                 ExcursionOutcome res = o;

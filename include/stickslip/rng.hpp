@@ -3,7 +3,9 @@
 // Why counter-based: every excursion (or brute-force trajectory) k owns the
 // stream (seed, purpose, k). Its random numbers depend on nothing else, so a
 // result is bitwise identical for any number of threads and any split of the
-// sample indices across processes or GPU threads.
+// sample indices across processes. (A GPU port would reproduce the fast path
+// exactly; the ziggurat's rare slow path calls exp/log, whose last bit may
+// differ between libm and CUDA, see ziggurat.hpp.)
 //
 // Layout, after HOOMD-blue's RandomNumbers.h: the *key* is static (the user's
 // 64-bit seed); the *counter* is dynamic: two words hold the sample index
@@ -19,8 +21,9 @@
 // generator (rng_batch.hpp) reproduces CounterRng bit for bit. A step that
 // needs one more uniform besides its normals (the inclusion engine's bridge
 // test) takes it from the side block of its draw, counter {j lo, 2^30 | j hi,
-// index, purpose}, so every step consumes exactly one block of the main stream
-// and excursions can advance in lockstep (inclusion_lanes.hpp). This needs
+// index, purpose}, so every colored-noise step consumes exactly one block of
+// the main stream (a white-noise step uses one normal, half a block) and
+// excursions can advance in lockstep (inclusion_lanes.hpp). This needs
 // j < 2^47 draws per stream (max_draws); the engines cap their work far below.
 #pragma once
 

@@ -10,7 +10,7 @@
 // counts or process splits never matter. A tested guarantee
 // (tests/unit/rng_batch_test.cpp).
 //
-// Host only (the buffer is 1.3 KB); GPU code uses CounterRng.
+// Host only (the buffer is about 1 KB); GPU code uses CounterRng.
 #pragma once
 
 #include <cstdint>
