@@ -80,11 +80,25 @@ void BM_NormalPairsScalar(benchmark::State& state) { pairs<CounterRng>(state, no
 void BM_UniformPairs(benchmark::State& state) { pairs<BatchedUniformRng>(state, uniform_pair); }
 void BM_UniformPairsScalar(benchmark::State& state) { pairs<CounterRng>(state, uniform_pair); }
 
-void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
+// Items = steps (inclusion) or events (pdmp); `sink` keeps the kernel from
+// being optimised away.
+void report_work(benchmark::State& state, double sink, std::uint64_t work, std::uint64_t excursions,
+                 const char* per_excursion_name) {
+    benchmark::DoNotOptimize(sink);
+    state.SetItemsProcessed(static_cast<std::int64_t>(work));
+    state.counters[per_excursion_name] =
+        benchmark::Counter(static_cast<double>(work) / static_cast<double>(excursions ? excursions : 1));
+}
+
+InclusionConstants inclusion_constants(const ModelParams& p, double dt) {
     EngineSettings s;
     s.engine = Engine::Inclusion;
     s.dt = dt;
-    const InclusionConstants c = make_inclusion_constants(p, s);
+    return make_inclusion_constants(p, s);
+}
+
+void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
+    const InclusionConstants c = inclusion_constants(p, dt);
     std::uint64_t index = 0, work = 0, excursions = 0;
     double sink = 0.0;
     for (auto _ : state) {
@@ -94,19 +108,13 @@ void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
         work += o.work;
         ++excursions;
     }
-    benchmark::DoNotOptimize(sink);
-    state.SetItemsProcessed(static_cast<std::int64_t>(work));
-    state.counters["steps_per_excursion"] =
-        benchmark::Counter(static_cast<double>(work) / static_cast<double>(excursions ? excursions : 1));
+    report_work(state, sink, work, excursions, "steps_per_excursion");
 }
 
 // The kernel the runner uses (inclusion_long_excursions: 8 SIMD lanes where
 // vectorised): one iteration = one block of 64 excursions.
 void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double dt) {
-    EngineSettings s;
-    s.engine = Engine::Inclusion;
-    s.dt = dt;
-    const InclusionConstants c = make_inclusion_constants(p, s);
+    const InclusionConstants c = inclusion_constants(p, dt);
     std::uint64_t first = 0, work = 0, excursions = 0;
     double sink = 0.0;
     ExcursionOutcome out[64];
@@ -119,10 +127,7 @@ void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double d
         }
         excursions += 64;
     }
-    benchmark::DoNotOptimize(sink);
-    state.SetItemsProcessed(static_cast<std::int64_t>(work));
-    state.counters["steps_per_excursion"] =
-        benchmark::Counter(static_cast<double>(work) / static_cast<double>(excursions ? excursions : 1));
+    report_work(state, sink, work, excursions, "steps_per_excursion");
 }
 
 void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
@@ -139,10 +144,7 @@ void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
         work += o.work;
         ++excursions;
     }
-    benchmark::DoNotOptimize(sink);
-    state.SetItemsProcessed(static_cast<std::int64_t>(work));
-    state.counters["events_per_excursion"] =
-        benchmark::Counter(static_cast<double>(work) / static_cast<double>(excursions ? excursions : 1));
+    report_work(state, sink, work, excursions, "events_per_excursion");
 }
 
 void BM_InclusionSteps_fig2(benchmark::State& st) { run_inclusion(st, fig2_params(), 1e-4); }
@@ -165,4 +167,13 @@ BENCHMARK(BM_InclusionLanes_dry)->Name("BM_InclusionLanes/dry_dt1e-3")->Unit(ben
 BENCHMARK(BM_PdmpEvents_fig2)->Name("BM_PdmpEvents/fig2_grid0.125")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_dry)->Name("BM_PdmpEvents/dry_grid0.125")->Unit(benchmark::kMillisecond);
 
-BENCHMARK_MAIN();
+// BENCHMARK_MAIN, plus which code paths ran, in the report's context.
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::AddCustomContext("stickslip_rng_isa", stickslip::detail::rng_batch_isa());
+    benchmark::AddCustomContext("stickslip_inclusion_kernel", stickslip::inclusion_kernel_name());
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

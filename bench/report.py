@@ -63,6 +63,8 @@ def main():
     print()
     print("stickslip benchmarks -- host %s, %s cores at %s MHz; kernel rates are ONE core (single thread)"
           % (ctx.get("host_name", "?"), a.cores, ctx.get("mhz_per_cpu", "?")))
+    print("random numbers compiled for: %s; inclusion kernel: %s"
+          % (ctx.get("stickslip_rng_isa", "?"), ctx.get("stickslip_inclusion_kernel", "?")))
     if ctx.get("library_build_type") == "debug":
         print("(Google Benchmark's own library reports a debug build, as Debian ships it; that does not"
               " affect the timed code, which is stickslip's Release build)")
@@ -115,7 +117,9 @@ def main():
     if os.path.exists(p2):
         s2 = load(p2)
         thread_speedup = ss_sec / s2["work"]["seconds"]
-        same = (s2["diffusivity"] == ss["diffusivity"] and s2.get("mobility") == ss.get("mobility"))
+        # Everything but the timings and the thread count must be identical.
+        same = ({k: v for k, v in s2.items() if k != "work"} == {k: v for k, v in ss.items() if k != "work"}
+                and s2["work"]["steps"] == ss["work"]["steps"])
         failed |= not same
         print("  %-40s %7d %10s %9.2f %7.2f %24s %14s" % (
             "stickslip diffusivity --threads 2", a.excursions, fmt_rate(ss_steps / s2["work"]["seconds"]),
