@@ -90,6 +90,12 @@ STICKSLIP_HD inline void inclusion_colored_step(const InclusionConstants& c, dou
     f = c.keep * v + ((c.h_bias + c.f_x * x) + c.f_z * z1);
 }
 
+/// One white-noise step from v with the standard normal z: the velocity at the
+/// end of the step [m/s] (the free flight, then the friction's resolvent).
+STICKSLIP_HD inline double inclusion_white_step(const InclusionConstants& c, double v, double z) {
+    return soft_threshold(c.keep * v + (c.h_bias + c.h_amp * z), c.h_friction);
+}
+
 /// Observer that ignores the path: the default of the long-excursion kernels,
 /// compiled away entirely.
 struct NoPathObserver {
@@ -165,7 +171,7 @@ STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& 
             w.spare = p.y;
             w.spare_ok = true;
         }
-        const double v_next = soft_threshold(c.keep * w.v + (c.h_bias + c.h_amp * z), c.h_friction);
+        const double v_next = inclusion_white_step(c, w.v, z);
         if (w.dir > 0 ? v_next <= -c.level : v_next >= c.level) return WalkStatus::HalfDone;
         observe(0.0, w.v);
         w.vsum += w.v;
@@ -257,7 +263,7 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_path(const InclusionConstants& c,
             for (int k = 0; k < 2 && n < nsteps; ++k, ++n) {
                 observe(0.0, v);
                 vsum += v;
-                v = soft_threshold(c.keep * v + (c.h_bias + c.h_amp * zz[k]), c.h_friction);
+                v = inclusion_white_step(c, v, zz[k]);
             }
         }
     } else {
