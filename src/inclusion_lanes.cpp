@@ -2,6 +2,7 @@
 
 #include "stickslip/rng.hpp"
 #include "stickslip/rng_batch.hpp"
+#include "x86_levels.hpp"
 
 namespace stickslip {
 
@@ -124,24 +125,23 @@ private:
     }
 
     /// Step p of every lane where the outcome is the plain step; marks the
-    /// others in g_.attention. Returns whether any lane was marked. The
-    /// expressions are inclusion_colored_step's and soft_threshold's, in the
-    /// same order, so the applied lanes get the same bits.
+    /// others in g_.attention. Returns whether any lane was marked. The step is
+    /// inclusion_colored_step and soft_threshold themselves, so the applied
+    /// lanes get the one-excursion kernel's bits.
     bool vector_step(int p) {
-        const double ec = c_.ou.end_coef, l21 = c_.ou.l21, l22 = c_.ou.l22;
-        const double keep = c_.keep, hb = c_.h_bias, fx = c_.f_x, fz = c_.f_z, band = c_.h_friction;
-        const double xd = c_.x_down, xu = c_.x_up, rate = c_.bridge_rate;
-        const auto cap = static_cast<std::int64_t>(c_.max_steps);
+        // A local copy: the stores to g_ below cannot alias it, so the
+        // constants stay in registers and the loop vectorises.
+        const InclusionConstants c = c_;
+        const double band = c.h_friction, xd = c.x_down, xu = c.x_up, rate = c.bridge_rate;
+        const auto cap = static_cast<std::int64_t>(c.max_steps);
         std::int64_t any = 0;
 #pragma GCC ivdep
         for (int l = 0; l < L; ++l) {
             const double z1 = g_.z[0][p][l], z2 = g_.z[1][p][l];
             const double x0 = g_.x[l], v0 = g_.v[l];
-            const double xn = ec * x0 + (l21 * z1 + l22 * z2);
-            const double f = keep * v0 + ((hb + fx * x0) + fz * z1);
-            const double up = f - band, down = f + band;
-            const double lower = down < 0.0 ? down : 0.0;
-            const double vn = up > lower ? up : lower;
+            double xn, f;
+            inclusion_colored_step(c, x0, v0, z1, z2, xn, f);
+            const double vn = soft_threshold(f, band);
             const std::int64_t stuck = v0 == 0.0 ? 1 : 0;
             std::int64_t flag = g_.steps[l] >= cap ? 1 : 0;
             if constexpr (K == StepKind::ColoredBridge) {
@@ -208,21 +208,16 @@ private:
     LaneGroup g_{};
 };
 
-// One source, compiled per x86-64 level (see rng_batch.cpp); the loader picks one.
-// flatten: the runner must be inlined into each clone to get its instruction set.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(STICKSLIP_RNG_TARGET_CLONES)
-#define STICKSLIP_LANE_CLONES __attribute__((flatten, target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define STICKSLIP_LANE_CLONES __attribute__((flatten))
-#endif
+// One source, compiled per x86-64 level (x86_levels.hpp); the runner is
+// inlined into each clone.
 
-STICKSLIP_LANE_CLONES
+STICKSLIP_X86_CLONES_FLATTEN
 bool run_lanes_bridge(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                       ExcursionOutcome* out, const std::atomic<bool>* cancel) {
     return LaneRunner<StepKind::ColoredBridge>(c, seed, first, count, out, cancel).run();
 }
 
-STICKSLIP_LANE_CLONES
+STICKSLIP_X86_CLONES_FLATTEN
 bool run_lanes_stuck(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                      ExcursionOutcome* out, const std::atomic<bool>* cancel) {
     return LaneRunner<StepKind::ColoredStuck>(c, seed, first, count, out, cancel).run();
@@ -256,13 +251,10 @@ bool detail::inclusion_long_excursions_in_lanes(const InclusionConstants& c, std
 }
 
 bool inclusion_lanes_vectorised() {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(STICKSLIP_RNG_TARGET_CLONES)
+#ifdef STICKSLIP_PER_X86_LEVEL
     // GCC 12 vectorises the lane step for AVX-512 only; elsewhere the lanes
     // would run as scalar code, slower than one excursion at a time.
-    static const bool avx512 = [] {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("x86-64-v4") != 0;
-    }();
+    static const bool avx512 = detail::x86_clone_level() == 4;
     return avx512;
 #elif defined(__GNUC__) && !defined(__clang__) && defined(__AVX512F__) && defined(__AVX512DQ__)
     return true; // compiled for AVX-512 (STICKSLIP_NATIVE on such a machine)
