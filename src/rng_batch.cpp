@@ -3,21 +3,13 @@
 #include <bit>
 #include <cstring>
 
+#include "x86_levels.hpp"
+
 namespace stickslip {
 
 namespace detail {
 
-// One source, compiled three times on x86-64 with GCC (the loader picks the
-// best clone for the CPU); elsewhere a single portable version. Every clone
-// computes the same integers and the same correctly rounded products, so the
-// choice never changes a result.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(STICKSLIP_RNG_TARGET_CLONES)
-#define STICKSLIP_RNG_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define STICKSLIP_RNG_CLONES
-#endif
-
-STICKSLIP_RNG_CLONES
+STICKSLIP_X86_CLONES
 void philox_batch(std::uint32_t key0, std::uint32_t key1, std::uint64_t j0, std::uint32_t c2, std::uint32_t c3,
                   std::uint32_t (*words)[rng_batch_size]) {
     constexpr int n = rng_batch_size;
@@ -54,7 +46,7 @@ void philox_batch(std::uint32_t key0, std::uint32_t key1, std::uint64_t j0, std:
     }
 }
 
-STICKSLIP_RNG_CLONES
+STICKSLIP_X86_CLONES
 int ziggurat_fast_batch(const std::uint32_t (*words)[rng_batch_size], double (*normals)[rng_batch_size],
                         std::uint8_t (*rejected)[rng_batch_size]) {
     constexpr int n = rng_batch_size;
@@ -78,12 +70,11 @@ int ziggurat_fast_batch(const std::uint32_t (*words)[rng_batch_size], double (*n
 }
 
 const char* rng_batch_isa() {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(STICKSLIP_RNG_TARGET_CLONES)
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("x86-64-v4")) return "avx512";
-    if (__builtin_cpu_supports("x86-64-v3")) return "avx2";
-#endif
-    return "baseline";
+    switch (x86_clone_level()) {
+    case 4: return "avx512";
+    case 3: return "avx2";
+    default: return "baseline";
+    }
 }
 
 } // namespace detail
