@@ -1,13 +1,18 @@
-// Registration of the `stickslip` subcommands (commands.cpp).
+// The subcommands of `stickslip` (commands.cpp): each registers its flags,
+// generated from its request's settings, and returns what to run when it is
+// the one chosen.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <vector>
 
-#include "common.hpp"
-
 namespace stickslip::cli {
+
+/// Exit codes: 0 ok, 1 unexpected failure (I/O, internal), 2 bad input,
+/// 3 untrustworthy run (runaway excursions).
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitCapped = 3;
 
 /// A registered subcommand and what to do when it is the one parsed.
 struct Action {
@@ -16,5 +21,8 @@ struct Action {
 };
 
 std::vector<Action> register_all(CLI::App& app);
+
+/// The conventions footer of every --help.
+extern const char* const kConventions;
 
 } // namespace stickslip::cli

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "commands.hpp"
-#include "common.hpp"
 #include "distributed.hpp"
-#include "stickslip/config.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/version.hpp"
 
 namespace cli = stickslip::cli;
 
@@ -27,7 +27,7 @@ int run(int argc, char** argv) {
                  "differential-inclusion engine),\nwith exact white-noise references."};
     app.footer(cli::kConventions);
     app.require_subcommand(1);
-    app.set_version_flag("--version", STICKSLIP_VERSION_STRING);
+    app.set_version_flag("--version", stickslip::version());
     const auto actions = cli::register_all(app);
 
     try {
@@ -67,6 +67,7 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // MPI starts here, before parsing, only when launched by an MPI launcher.
     cli::start_distribution(argc, argv);
     const int code = run(argc, argv);
     cli::stop_distribution();

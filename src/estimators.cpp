@@ -93,6 +93,10 @@ Estimator parse_estimator(const std::string& s) {
                                         "(eq. 12, biased when the mobility is not 0), got '" + s + "'");
 }
 
+std::string format_setting(Estimator e) { return to_string(e); }
+void parse_setting(const SettingInfo&, const std::string& text, Estimator& out) { out = parse_estimator(text); }
+const char* setting_form(const Estimator&) { return "renewal|paper"; }
+
 double normal_quantile_two_sided(double level) {
     if (!(level > 0.0 && level < 1.0))
         throw InvalidParameter("level", "level must be strictly between 0 and 1");

@@ -1,16 +1,12 @@
-// Internal: the one number formatter for messages (errors and warnings).
+// Internal: the one number formatter of the library's messages and reports.
 #pragma once
 
-#include <sstream>
 #include <string>
 
 namespace stickslip::detail {
 
-inline std::string format_number(double x, int precision = 6) {
-    std::ostringstream os;
-    os.precision(precision);
-    os << x;
-    return os.str();
-}
+/// x with `precision` significant digits, as printf's %g writes it ("0.0001",
+/// "2.5e+08", "inf", "nan").
+std::string format_number(double x, int precision = 6);
 
 } // namespace stickslip::detail

@@ -25,8 +25,6 @@ constexpr int kMaxBins = 100000;
 constexpr int kMaxLags = 2000;
 constexpr std::uint64_t kMaxLagSamples = 4'000'000; // ring buffer (a power of two above): at most 32 MB per thread
 
-void check_level(double level) { normal_quantile_two_sided(level); }
-
 void check_bins(const VelocityBins& b) {
     if (b.count < 1 || b.count > kMaxBins)
         throw InvalidParameter("bins", "bins must be between 1 and " + std::to_string(kMaxBins) + " (got " +
@@ -34,12 +32,6 @@ void check_bins(const VelocityBins& b) {
     if (!std::isfinite(b.lo) || !std::isfinite(b.hi) || (b.lo >= b.hi && !(b.lo == 0 && b.hi == 0)))
         throw InvalidParameter("range", "velocity range must be finite with lo < hi (or both 0 for automatic), got [" +
                                             detail::format_number(b.lo) + ", " + detail::format_number(b.hi) + "]");
-}
-
-void check_count(const char* name, std::uint64_t n, std::uint64_t min) {
-    if (n < min)
-        throw InvalidParameter(name, std::string(name) + " must be >= " + std::to_string(min) + " (got " +
-                                         std::to_string(n) + ")");
 }
 
 /// Sampling interval of a path observable [s].
@@ -142,27 +134,22 @@ std::string pdmp_sampling_note(double dt) {
 /// excursion's random phase when random_phase). The constants are made once.
 class SampledEngine {
 public:
-    SampledEngine(const ModelParams& p, const EngineSettings& s) : engine_(s.engine) {
-        if (engine_ == Engine::Pdmp) pdmp_ = make_pdmp_constants(p, s);
-        else inclusion_ = make_inclusion_constants(p, s);
-    }
+    explicit SampledEngine(const PreparedEngine& e) : e_(e) {}
 
     template <class OnV>
     ExcursionOutcome run(std::uint64_t seed, std::uint64_t k, double dt, bool random_phase, OnV&& on_v) const {
-        if (engine_ == Engine::Pdmp) {
+        if (e_.settings.engine == Engine::Pdmp) {
             BatchedUniformRng rng(seed, StreamPurpose::LongExcursion, k); // uniforms only: no ziggurat
-            auto sampler = grid_sampler(pdmp_, dt, [&](double, int, double v, double) { on_v(v); },
+            auto sampler = grid_sampler(e_.pdmp, dt, [&](double, int, double v, double) { on_v(v); },
                                         random_phase ? sampling_phase(seed, k, dt) : 0.0);
-            return pdmp_long_excursion(pdmp_, rng, sampler);
+            return pdmp_long_excursion(e_.pdmp, rng, sampler);
         }
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-        return inclusion_long_excursion(inclusion_, rng, [&](double, double v) { on_v(v); });
+        return inclusion_long_excursion(e_.inclusion, rng, [&](double, double v) { on_v(v); });
     }
 
 private:
-    Engine engine_;
-    PdmpConstants pdmp_{};
-    InclusionConstants inclusion_{};
+    const PreparedEngine& e_;
 };
 
 int mode_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
@@ -192,20 +179,26 @@ VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b) {
 
 // ---- stationary density ------------------------------------------------------
 
-void validate(const StationaryDensityRequest& req) {
-    resolve_engine(req.params, req.engine);
-    check_level(req.level);
-    check_count("excursions", req.excursions, 2);
+namespace {
+
+PreparedEngine prepare_request(const StationaryDensityRequest& req) {
+    PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
+    validate(static_cast<const ExcursionSettings&>(req));
     check_bins(req.bins);
     sampling_interval(req.engine, req.sample_dt);
+    return engine;
 }
+
+} // namespace
+
+void validate(const StationaryDensityRequest& req) { prepare_request(req); }
 
 namespace {
 
 /// Velocity range seen by the first excursions (a deterministic pilot of the
 /// same streams): automatic histogram ranges that fit colored noise, whose
 /// velocities are far smaller than the white-noise spread.
-bool pilot_range(const StationaryDensityRequest& req, double dt, double& lo, double& hi) {
+bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engine, double dt, double& lo, double& hi) {
     struct Range {
         double lo = 0, hi = 0;
     };
@@ -219,7 +212,6 @@ bool pilot_range(const StationaryDensityRequest& req, double dt, double& lo, dou
     };
     const std::uint64_t n = std::min<std::uint64_t>(req.excursions, 256);
     const std::uint64_t seed = req.control.seed;
-    const SampledEngine engine(req.params, req.engine);
     detail::run_blocks(
         n, ctl, make,
         [&](std::uint64_t k, Range& r) {
@@ -239,13 +231,14 @@ bool pilot_range(const StationaryDensityRequest& req, double dt, double& lo, dou
 } // namespace
 
 StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req) {
-    validate(req);
+    const PreparedEngine prepared = prepare_request(req);
+    const SampledEngine engine(prepared);
     StationaryDensityResult out;
     out.request = req;
-    out.resolved = resolve_engine(req.params, req.engine);
+    out.resolved = prepared.resolved;
     const double dt = sampling_interval(req.engine, req.sample_dt);
     VelocityBins bins = resolve_bins(req.params, req.bins);
-    if (req.bins.lo == 0 && req.bins.hi == 0) pilot_range(req, dt, bins.lo, bins.hi);
+    if (req.bins.lo == 0 && req.bins.hi == 0) pilot_range(req, engine, dt, bins.lo, bins.hi);
     out.request.bins = bins;
     const BinIndex index(bins);
     const std::size_t nh = static_cast<std::size_t>(bins.count) + 3;
@@ -266,7 +259,6 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
         acc.mom.add(m, static_cast<double>(samples));
     };
     Acc total;
-    const SampledEngine engine(req.params, req.engine);
     out.totals = detail::run_blocks(
         req.excursions, req.control, make,
         [&](std::uint64_t k, Acc& acc) {
@@ -284,8 +276,7 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
             return o;
         },
         merge, total);
-    detail::finish_long_excursion_run(req.params, req.engine, out.resolved, out.totals, req.allow_capped,
-                                      out.warnings);
+    detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
     out.histogram = make_histogram(bins, total.hist, 0, req.level);
     out.mean = total.mom.estimate(0, req.level);
@@ -306,10 +297,11 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
 
 // ---- autocorrelation -------------------------------------------------------------
 
-void validate(const CorrelationRequest& req) {
-    resolve_engine(req.params, req.engine);
-    check_level(req.level);
-    check_count("excursions", req.excursions, 2);
+namespace {
+
+PreparedEngine prepare_request(const CorrelationRequest& req) {
+    PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
+    validate(static_cast<const ExcursionSettings&>(req));
     if (req.lags < 1 || req.lags > kMaxLags)
         throw InvalidParameter("lags", "lags must be between 1 and " + std::to_string(kMaxLags));
     if (!std::isfinite(req.max_lag) || req.max_lag < 0)
@@ -320,13 +312,18 @@ void validate(const CorrelationRequest& req) {
     if (max_lag / dt > static_cast<double>(kMaxLagSamples))
         throw InvalidParameter("max-lag", "max-lag / sampling interval exceeds " + std::to_string(kMaxLagSamples) +
                                               " samples; use a shorter --max-lag (pdmp: or a coarser --sample-dt)");
+    return engine;
 }
 
+} // namespace
+
+void validate(const CorrelationRequest& req) { prepare_request(req); }
+
 CorrelationResult compute_correlation(const CorrelationRequest& req) {
-    validate(req);
+    const PreparedEngine prepared = prepare_request(req);
     CorrelationResult out;
     out.request = req;
-    out.resolved = resolve_engine(req.params, req.engine);
+    out.resolved = prepared.resolved;
     const double dt = sampling_interval(req.engine, req.sample_dt);
     const double max_lag = req.max_lag > 0 ? req.max_lag : 5 * scales_of(req.params).time;
     out.request.max_lag = max_lag;
@@ -374,7 +371,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
         st.limit = ~0ull;
     };
     if (req.engine.engine == Engine::Pdmp) {
-        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+        const PdmpConstants& c = prepared.pdmp;
         out.totals = detail::run_blocks(
             req.excursions, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
@@ -399,7 +396,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
             },
             merge, total);
     } else {
-        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+        const InclusionConstants& c = prepared.inclusion;
         out.totals = detail::run_blocks(
             req.excursions, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
@@ -426,8 +423,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
             },
             merge, total);
     }
-    detail::finish_long_excursion_run(req.params, req.engine, out.resolved, out.totals, req.allow_capped,
-                                      out.warnings);
+    detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
     const std::size_t iu = nl;
     const double m = total.ratio(iu);
@@ -452,29 +448,50 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
 
 // ---- transient ----------------------------------------------------------------------
 
-void validate(const TransientRequest& req) {
-    resolve_engine(req.params, req.engine);
-    check_level(req.level);
-    check_count("trajectories", req.trajectories, 2);
-    if (req.times.empty()) throw InvalidParameter("times", "times must list at least one time t >= 0 (s)");
+namespace {
+
+/// The times of a transient request [s]: its own, or Table I's.
+std::vector<double> transient_times(const TransientRequest& req) {
+    if (!req.times.empty()) return req.times;
+    std::vector<double> times;
+    const double unit = scales_of(req.params).time;
+    for (double t : table_one_times) times.push_back(t * unit);
+    return times;
+}
+
+PreparedEngine prepare_request(const TransientRequest& req) {
+    PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
+    if (req.trajectories < 2)
+        throw InvalidParameter("trajectories",
+                               "trajectories must be >= 2 (got " + std::to_string(req.trajectories) + ")");
     if (req.times.size() > 10000) throw InvalidParameter("times", "at most 10000 times");
     for (double t : req.times)
         if (!std::isfinite(t) || t < 0)
             throw InvalidParameter("times", "times must be finite and >= 0 (s), got " + detail::format_number(t));
-    detail::check_start(req.x0, req.v0);
+    detail::check_start(req.x0, std::isnan(req.v0) ? 0.0 : req.v0);
     if (req.with_density) check_bins(req.bins);
-    if (req.with_density && static_cast<double>(req.times.size()) * (req.bins.count + 3) > 2e6)
+    const std::vector<double> times = transient_times(req);
+    if (req.with_density && static_cast<double>(times.size()) * (req.bins.count + 3) > 2e6)
         throw InvalidParameter("bins", "times x bins must be at most 2e6 for --density (use fewer times or bins)");
-    const double tmax = *std::max_element(req.times.begin(), req.times.end());
+    const double tmax = *std::max_element(times.begin(), times.end());
     if (req.engine.engine == Engine::Inclusion && tmax / req.engine.dt > 1e13)
         throw InvalidParameter("times", "largest time / dt exceeds 1e13 steps");
+    return engine;
 }
 
-TransientResult compute_transient(const TransientRequest& req) {
-    validate(req);
+} // namespace
+
+void validate(const TransientRequest& req) { prepare_request(req); }
+
+TransientResult compute_transient(const TransientRequest& req_in) {
+    const PreparedEngine prepared = prepare_request(req_in);
+    // The defaults that depend on the model, resolved once: the report shows them.
+    TransientRequest req = req_in;
+    if (std::isnan(req.v0)) req.v0 = scales_of(req.params).velocity;
+    req.times = transient_times(req);
     TransientResult out;
     out.request = req;
-    out.resolved = resolve_engine(req.params, req.engine);
+    out.resolved = prepared.resolved;
     out.resolved.stop_rule = "none";
     std::vector<double> times = req.times;
     std::sort(times.begin(), times.end());
@@ -509,7 +526,7 @@ TransientResult compute_transient(const TransientRequest& req) {
     auto merge = [](RatioMoments& a, const RatioMoments& b) { a.merge(b); };
     RatioMoments total;
     if (req.engine.engine == Engine::Pdmp) {
-        const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+        const PdmpConstants& c = prepared.pdmp;
         out.time = times;
         const double horizon = times.back();
         out.totals = detail::run_blocks(
@@ -539,7 +556,7 @@ TransientResult compute_transient(const TransientRequest& req) {
             },
             merge, total);
     } else {
-        const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+        const InclusionConstants& c = prepared.inclusion;
         std::vector<std::uint64_t> steps(nt);
         for (std::size_t j = 0; j < nt; ++j) steps[j] = static_cast<std::uint64_t>(std::llround(times[j] / c.h));
         for (std::size_t j = 0; j < nt; ++j) out.time.push_back(static_cast<double>(steps[j]) * c.h);
@@ -585,8 +602,11 @@ TransientResult compute_transient(const TransientRequest& req) {
 
 // ---- sample paths --------------------------------------------------------------------
 
-void validate(const TrajectoryRequest& req) {
-    resolve_engine(req.params, req.engine);
+namespace {
+
+PreparedEngine prepare_request(const TrajectoryRequest& req) {
+    PreparedEngine engine = prepare_engine(req.params, req.engine);
+    check_run_control(req.control);
     if (req.paths > 1000) throw InvalidParameter("paths", "paths must be at most 1000");
     if (req.paths > 0 && (!std::isfinite(req.horizon) || req.horizon <= 0))
         throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + detail::format_number(req.horizon));
@@ -602,9 +622,8 @@ void validate(const TrajectoryRequest& req) {
         if (req.engine.engine == Engine::Inclusion && req.horizon / req.engine.dt > 1e13)
             throw InvalidParameter("time", "time / dt exceeds 1e13 steps");
     }
+    return engine;
 }
-
-namespace {
 
 void append(SamplePath& p, double t, double x, int mode, double v, double u) {
     p.t.push_back(t);
@@ -618,11 +637,13 @@ struct TooManyPoints {};
 
 } // namespace
 
+void validate(const TrajectoryRequest& req) { prepare_request(req); }
+
 TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
-    validate(req);
+    const PreparedEngine prepared = prepare_request(req);
     TrajectoryResult out;
     out.request = req;
-    out.resolved = resolve_engine(req.params, req.engine);
+    out.resolved = prepared.resolved;
     const std::uint64_t seed = req.control.seed;
     auto guard = [&](const SamplePath& p) {
         if (p.t.size() >= req.max_points) throw TooManyPoints{};
@@ -633,7 +654,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, req.index);
         try {
             if (req.engine.engine == Engine::Pdmp) {
-                const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+                const PdmpConstants& c = prepared.pdmp;
                 if (req.every > 0) {
                     auto sampler = grid_sampler(c, req.every, [&](double x, int y, double v, double u) {
                         guard(path);
@@ -649,7 +670,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
                 if (!out.excursion.capped) // the regeneration state that ends it
                     append(path, out.excursion.duration, c.delta * (c.k_plus + 1), 1, 0.0, out.excursion.displacement);
             } else {
-                const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+                const InclusionConstants& c = prepared.inclusion;
                 const auto stride =
                     std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(req.every / c.h)));
                 std::uint64_t n = 0;
@@ -678,20 +699,13 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
     // Independent paths on [0, horizon], recorded every `every` seconds.
     const double every = req.every > 0 ? req.every : req.horizon / 1000;
     out.request.every = every;
-    double x0 = req.x0;
-    if (std::isnan(x0)) {
-        if (req.params.white()) x0 = 0.0;
-        else if (req.engine.engine == Engine::Pdmp) {
-            const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
-            x0 = (c.k_plus + 1) * c.delta;
-        } else x0 = req.params.upper_threshold();
-    }
+    const double x0 = std::isnan(req.x0) ? detail::default_start_noise(prepared) : req.x0;
     const auto npoints = static_cast<std::uint64_t>(std::floor(req.horizon / every * (1 + 1e-12))) + 1;
     for (std::uint64_t k = 0; k < req.paths; ++k) {
         SamplePath path;
         BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);
         if (req.engine.engine == Engine::Pdmp) {
-            const PdmpConstants c = make_pdmp_constants(req.params, req.engine);
+            const PdmpConstants& c = prepared.pdmp;
             PdmpState s = pdmp_initial_state(c, x0, req.v0);
             auto sampler = grid_sampler(c, every, [&](double x, int y, double v, double u) {
                 append(path, static_cast<double>(path.t.size()) * every, x, y, v, u);
@@ -701,7 +715,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
             const ExcursionOutcome o = pdmp_path(c, s, horizon, rng, sampler);
             if (path.t.size() < npoints) append(path, horizon, c.delta * s.i, s.y, s.v, o.displacement);
         } else {
-            const InclusionConstants c = make_inclusion_constants(req.params, req.engine);
+            const InclusionConstants& c = prepared.inclusion;
             const auto stride = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(every / c.h)));
             const std::uint64_t nsteps = (npoints - 1) * stride;
             double x = x0, v = req.v0, u = 0.0;

@@ -72,4 +72,11 @@ bool has_stationary_state(const ModelParams& p) {
     return !std::isinf(p.relaxation) || std::fabs(p.bias) < p.friction;
 }
 
+void require_stationary_state(const ModelParams& p) {
+    if (!has_stationary_state(p))
+        throw InvalidParameter("bias", "with relaxation inf the bias must satisfy |bias| < friction (otherwise the "
+                                       "object accelerates forever and D is undefined); got bias " +
+                                           detail::format_number(p.bias) + ", friction " + detail::format_number(p.friction));
+}
+
 } // namespace stickslip

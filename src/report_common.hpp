@@ -1,141 +1,81 @@
-// Internal: the pieces every report shares (parameter blocks, units, the
-// work/warnings/version tail, number formatting), so all outputs agree.
+// Internal: what every report shares, so all outputs agree: the JSON head
+// (quantity, engine, estimator, stop rule), the parameter and nondimensional
+// blocks, the tail (engine details, work, warnings, version and source
+// revision), the table's head and work lines, and the number formats of
+// tables and CSV.
 #pragma once
 
-#include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "stickslip/config.hpp"
-#include "stickslip/diffusivity.hpp"
+#include "stickslip/estimators.hpp"
+#include "stickslip/run.hpp"
 
 namespace stickslip::detail {
 
 using nlohmann::ordered_json;
 
-inline ordered_json number_or_inf(double x) {
-    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-    return x;
-}
+// ---- JSON -------------------------------------------------------------------
 
-inline ordered_json estimate_json(const Estimate& e, bool with_ci = true) {
-    ordered_json j;
-    j["value"] = e.value;
-    j["stderr"] = e.std_error;
-    if (with_ci) {
-        j["ci"] = {e.lo, e.hi};
-        j["level"] = e.level;
-    }
-    return j;
-}
+/// A number, "inf"/"-inf" for infinities, null for NaN (JSON has neither).
+ordered_json json_number(double x);
+/// {value, stderr[, ci, level]}.
+ordered_json estimate_json(const Estimate& e, bool with_ci = true);
+/// {key: where, value, stderr, ci}: one point of a series (null for NaN).
+ordered_json series_point(const char* key, double where, const Estimate& e);
+/// {diffusivity, mobility, mean_duration, completed}.
+ordered_json long_excursion_json(const LongExcursionEstimates& e);
 
-inline ordered_json params_json(const ModelParams& p, const EngineSettings& s, std::uint64_t seed) {
-    ordered_json j;
-    j["friction"] = p.friction;
-    j["noise"] = p.noise;
-    j["tau"] = p.tau;
-    j["relaxation"] = number_or_inf(p.relaxation);
-    j["bias"] = p.bias;
-    if (s.engine == Engine::Pdmp) j["grid"] = s.grid;
-    else j["dt"] = s.dt;
-    j["seed"] = seed;
-    return j;
-}
+/// The head of a report: "quantity" (when given), "engine", "estimator" (when
+/// given) and "stop_rule" (when given).
+ordered_json report_head(const char* quantity, const EngineSettings& s, const char* estimator,
+                         const std::string* stop_rule);
+/// The model, the engine's step (dt or grid) and the seed.
+ordered_json params_json(const RunSettings& r);
+/// The nondimensional block: tau, relaxation, bias, dt or grid, and the units.
+ordered_json nondimensional_json(const RunSettings& r);
+/// engine_details: the thresholds, the PDMP lattice or the white level, the guard.
+ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r);
+/// The tail of a report: "work" (when `work` is not null), "warnings",
+/// "version" and, when the build knows it, "revision".
+void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings);
+/// {steps|events, seconds, threads} of a run.
+ordered_json work_json(const EngineSettings& s, const RunTotals& t);
+/// Every member of `from` appended to `into`, in order.
+void append_members(ordered_json& into, const ordered_json& from);
+/// The text of a JSON report.
+std::string dump(const ordered_json& j, int indent);
 
-inline ordered_json nondimensional_json(const ModelParams& p, const EngineSettings& s) {
-    const ModelParams nd = to_nondimensional(p);
-    const Scales sc = scales_of(p);
-    ordered_json j;
-    j["tau"] = nd.tau;
-    j["relaxation"] = number_or_inf(nd.relaxation);
-    j["bias"] = nd.bias;
-    if (s.engine == Engine::Pdmp) j["grid"] = s.grid / sc.noise_level;
-    else j["dt"] = s.dt / sc.time;
-    j["time_unit"] = sc.time;
-    j["length_unit"] = sc.length;
-    j["velocity_unit"] = sc.velocity;
-    j["diffusivity_unit"] = sc.diffusivity;
-    return j;
-}
+// ---- tables -------------------------------------------------------------------
 
-inline ordered_json resolved_json(const ResolvedEngine& r, const ModelParams& p, const EngineSettings& s) {
-    ordered_json j;
-    if (!p.white()) {
-        j["upper_threshold"] = r.upper_threshold;
-        j["lower_threshold"] = r.lower_threshold;
-    }
-    if (s.engine == Engine::Pdmp) {
-        j["lattice_bound"] = r.lattice_bound;
-        j["lattice_points"] = r.lattice_points;
-        j["truncated_mass"] = r.truncated_mass;
-        j["jump_rate"] = r.jump_rate;
-    } else if (p.white()) {
-        j["white_level"] = r.white_level;
-    }
-    j["max_work_per_excursion"] = s.max_work_per_excursion;
-    return j;
-}
-
-/// The common tail of every report: work done (the only part that changes
-/// between runs with the same seed), warnings and the library version.
-inline void add_work_and_notes(ordered_json& j, const EngineSettings& s, const RunTotals& totals,
-                        const std::vector<std::string>& warnings) {
-    ordered_json work;
-    work[s.engine == Engine::Pdmp ? "events" : "steps"] = totals.work;
-    work["seconds"] = totals.seconds;
-    work["threads"] = totals.threads;
-    j["work"] = work;
-    j["warnings"] = warnings;
-    j["version"] = STICKSLIP_VERSION_STRING;
-}
-
-inline std::string dump(const ordered_json& j, int indent) { return j.dump(indent) + "\n"; }
-
-inline std::string g(double x, int prec = 6) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", prec, x);
-    return buf;
-}
-
-inline void table_row(std::ostringstream& os, const std::string& name, const Estimate& e, double unit,
-               const std::string& units, bool ci = true) {
-    char buf[256];
-    if (ci)
-        std::snprintf(buf, sizeof buf, "%-14s %13.6g  +- %-10.3g [%11.6g, %11.6g]  %-7s %11.6g\n", name.c_str(),
-                      e.value, e.std_error, e.lo, e.hi, units.c_str(), e.value / unit);
-    else
-        std::snprintf(buf, sizeof buf, "%-14s %13.6g  +- %-10.3g %27s  %-7s %11.6g\n", name.c_str(), e.value,
-                      e.std_error, "", units.c_str(), e.value / unit);
-    os << buf;
-}
-
+/// "stickslip WHAT: ENGINE engine, dt X s" + extra + "\n".
+std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra);
+/// The physical and nondimensional parameter lines.
+std::string param_line(const ModelParams& p, const EngineSettings& s);
+/// "N WHAT (seed S), W steps, T s on K threads" + extra + "\n".
+std::string work_line(std::uint64_t samples, const char* what, std::uint64_t seed, const EngineSettings& s,
+                      const RunTotals& t, const std::string& extra = "");
+/// One "note: ..." line per warning.
+std::string notes(const std::vector<std::string>& warnings);
 /// Column titles of the estimate tables, with the interval's level.
-inline std::string table_head(double level) {
-    // Built with append: GCC 12 warns (-Wrestrict, a false positive) on " " + std::string.
-    std::string interval = "  ";
-    interval.append(g(100 * level, 3)).append("% interval");
-    char head[200];
-    std::snprintf(head, sizeof head, "%-14s %13s  %-13s %-25s  %-7s %11s\n", "quantity", "value", "+- stderr",
-                  interval.c_str() + 1, "unit", "nondim");
-    return head;
-}
+std::string table_head(double level);
+/// One estimate row: value, stderr, interval (if ci), unit, value / unit.
+void table_row(std::ostringstream& os, const std::string& name, const Estimate& e, double unit,
+               const std::string& units, bool ci = true);
+/// "value +- stderr" in fixed columns.
+std::string estimate_cell(const Estimate& e);
+/// "inf" written as "inf", else x with 6 significant digits and its unit.
+std::string relaxation_text(double relaxation);
 
-inline std::string param_line(const ModelParams& p, const EngineSettings& s) {
-    std::ostringstream os;
-    os << "friction " << g(p.friction) << " m/s^2, noise " << g(p.noise) << " m^2/s^3, tau " << g(p.tau)
-       << " s, relaxation " << (std::isinf(p.relaxation) ? std::string("inf") : g(p.relaxation) + " s") << ", bias "
-       << g(p.bias) << " m/s^2\n";
-    const ModelParams nd = to_nondimensional(p);
-    os << "nondimensional: tau' " << g(nd.tau) << ", relaxation' "
-       << (std::isinf(nd.relaxation) ? std::string("inf") : g(nd.relaxation)) << ", bias' " << g(nd.bias);
-    if (s.engine == Engine::Pdmp) os << ", grid' " << g(s.grid / scales_of(p).noise_level);
-    else os << ", dt' " << g(s.dt / scales_of(p).time);
-    os << "  (time unit " << g(scales_of(p).time) << " s, length unit " << g(scales_of(p).length) << " m)\n";
-    return os.str();
-}
+// ---- CSV --------------------------------------------------------------------------
 
+/// A CSV cell: 12 significant digits, "inf"/"-inf", and empty for NaN (never "nan").
+std::string csv_number(double x);
+/// "name,name_stderr,name_lo,name_hi".
+std::string csv_estimate_header(const std::string& name);
+/// value,stderr,lo,hi.
+std::string csv_estimate(const Estimate& e);
 
 } // namespace stickslip::detail

@@ -1,29 +1,25 @@
+// Reports of the long-excursion diffusivity run and the brute-force run
+// (report.hpp): JSON, aligned table, CSV.
+#include "report_common.hpp"
 #include "stickslip/report.hpp"
 
-#include "report_common.hpp"
-
-#include <cmath>
-#include <cstdio>
-#include <nlohmann/json.hpp>
-#include <sstream>
-
-#include "stickslip/config.hpp"
+#include "format.hpp"
 
 namespace stickslip {
 
 using namespace detail;
 
+// ---- diffusivity ----------------------------------------------------------------
+
 std::string to_json(const DiffusivityResult& r, int indent) {
     const auto& q = r.request;
-    ordered_json j;
-    j["engine"] = to_string(q.engine.engine);
-    j["estimator"] = to_string(q.estimator);
-    j["stop_rule"] = r.resolved.stop_rule;
-    auto params = params_json(q.params, q.engine, q.control.seed);
+    const std::string estimator = to_string(q.estimator);
+    ordered_json j = report_head(nullptr, q.engine, estimator.c_str(), &r.resolved.stop_rule);
+    auto params = params_json(q);
     params["excursions"] = q.excursions;
     params["level"] = q.level;
     j["params"] = params;
-    auto nd = nondimensional_json(q.params, q.engine);
+    auto nd = nondimensional_json(q);
     const Scales sc = scales_of(q.params);
     nd["diffusivity"] = r.estimates.diffusivity.value / sc.diffusivity;
     nd["mobility"] = r.estimates.mobility.value / sc.velocity;
@@ -43,25 +39,58 @@ std::string to_json(const DiffusivityResult& r, int indent) {
         pr["max_excursions"] = q.max_excursions;
         j["precision"] = pr;
     }
-    j["engine_details"] = resolved_json(r.resolved, q.params, q.engine);
-    add_work_and_notes(j, q.engine, r.totals, r.warnings);
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    const ordered_json work = work_json(q.engine, r.totals);
+    add_report_tail(j, &work, r.warnings);
     return dump(j, indent);
 }
 
+std::string to_table(const DiffusivityResult& r) {
+    const auto& q = r.request;
+    const Scales sc = scales_of(q.params);
+    const Estimate& d = r.estimates.diffusivity;
+    std::ostringstream os;
+    os << engine_line("diffusivity", q.engine,
+                      ", stop rule " + r.resolved.stop_rule + ", estimator " + to_string(q.estimator));
+    os << param_line(q.params, q.engine);
+    os << "\n" << table_head(q.level);
+    table_row(os, "diffusivity D", d, sc.diffusivity, "m^2/s");
+    table_row(os, "mobility M0", r.estimates.mobility, sc.velocity, "m/s");
+    table_row(os, "mean E[t1]", r.estimates.mean_duration, sc.time, "s", false);
+    os << "\n"
+       << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals,
+                    "; relative half-width of D: " + format_number(100 * (d.hi - d.value) / d.value, 3) + "%")
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const DiffusivityResult& r) {
+    const auto& q = r.request;
+    const auto& p = q.params;
+    std::ostringstream os;
+    os << "engine,friction,noise,tau,relaxation,bias,excursions,seed," << csv_estimate_header("diffusivity") << ","
+       << csv_estimate_header("mobility") << ",mean_duration,mean_duration_stderr\n";
+    os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
+       << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
+       << r.estimates.excursions << "," << q.control.seed << "," << csv_estimate(r.estimates.diffusivity) << ","
+       << csv_estimate(r.estimates.mobility) << "," << csv_number(r.estimates.mean_duration.value) << ","
+       << csv_number(r.estimates.mean_duration.std_error) << "\n";
+    return os.str();
+}
+
+// ---- brute force --------------------------------------------------------------
+
 std::string to_json(const BruteForceResult& r, int indent) {
     const auto& q = r.request;
-    ordered_json j;
-    j["engine"] = to_string(q.engine.engine);
-    j["estimator"] = "bruteforce";
-    j["stop_rule"] = r.resolved.stop_rule;
-    auto params = params_json(q.params, q.engine, q.control.seed);
+    ordered_json j = report_head(nullptr, q.engine, "bruteforce", &r.resolved.stop_rule);
+    auto params = params_json(q);
     params["time"] = q.horizon;
     params["trajectories"] = q.trajectories;
     params["x0"] = r.start_noise;
     params["v0"] = q.v0;
     params["level"] = q.level;
     j["params"] = params;
-    auto nd = nondimensional_json(q.params, q.engine);
+    auto nd = nondimensional_json(q);
     const Scales sc = scales_of(q.params);
     nd["time"] = q.horizon / sc.time;
     nd["diffusivity"] = r.estimates.diffusivity.value / sc.diffusivity;
@@ -69,50 +98,39 @@ std::string to_json(const BruteForceResult& r, int indent) {
     j["nondimensional"] = nd;
     j["diffusivity"] = estimate_json(r.estimates.diffusivity);
     j["mobility"] = estimate_json(r.estimates.mobility);
-    j["engine_details"] = resolved_json(r.resolved, q.params, q.engine);
-    add_work_and_notes(j, q.engine, r.totals, r.warnings);
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    const ordered_json work = work_json(q.engine, r.totals);
+    add_report_tail(j, &work, r.warnings);
     return dump(j, indent);
-}
-
-std::string to_table(const DiffusivityResult& r) {
-    const auto& q = r.request;
-    const Scales sc = scales_of(q.params);
-    std::ostringstream os;
-    os << "stickslip diffusivity: " << to_string(q.engine.engine) << " engine, "
-       << (q.engine.engine == Engine::Pdmp ? "grid " + g(q.engine.grid) + " s^-1/2"
-                                           : "dt " + g(q.engine.dt) + " s")
-       << ", stop rule " << r.resolved.stop_rule << ", estimator " << to_string(q.estimator) << "\n";
-    os << param_line(q.params, q.engine);
-    os << "\n" << table_head(q.level);
-    table_row(os, "diffusivity D", r.estimates.diffusivity, sc.diffusivity, "m^2/s");
-    table_row(os, "mobility M0", r.estimates.mobility, sc.velocity, "m/s");
-    table_row(os, "mean E[t1]", r.estimates.mean_duration, sc.time, "s", false);
-    os << "\n" << r.estimates.excursions << " excursions (seed " << q.control.seed << "), " << r.totals.work
-       << (q.engine.engine == Engine::Pdmp ? " events" : " steps") << ", " << g(r.totals.seconds, 3) << " s on "
-       << r.totals.threads << " thread" << (r.totals.threads > 1 ? "s" : "") << "; relative half-width of D: "
-       << g(100 * (r.estimates.diffusivity.hi - r.estimates.diffusivity.value) / r.estimates.diffusivity.value, 3)
-       << "%\n";
-    for (const auto& w : r.warnings) os << "note: " << w << "\n";
-    return os.str();
 }
 
 std::string to_table(const BruteForceResult& r) {
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
     std::ostringstream os;
-    os << "stickslip bruteforce: " << to_string(q.engine.engine) << " engine, "
-       << (q.engine.engine == Engine::Pdmp ? "grid " + g(q.engine.grid) + " s^-1/2"
-                                           : "dt " + g(q.engine.dt) + " s")
-       << ", horizon t = " << g(q.horizon) << " s, start x0 = " << g(r.start_noise) << " s^-1/2, v0 = " << g(q.v0)
-       << " m/s\n";
+    os << engine_line("bruteforce", q.engine,
+                      ", horizon t = " + format_number(q.horizon) + " s, start x0 = " + format_number(r.start_noise) +
+                          " s^-1/2, v0 = " + format_number(q.v0) + " m/s");
     os << param_line(q.params, q.engine);
     os << "\n" << table_head(q.level);
     table_row(os, "D_t", r.estimates.diffusivity, sc.diffusivity, "m^2/s");
     table_row(os, "U(t)/t", r.estimates.mobility, sc.velocity, "m/s");
-    os << "\n" << r.estimates.trajectories << " trajectories (seed " << q.control.seed << "), " << r.totals.work
-       << (q.engine.engine == Engine::Pdmp ? " events" : " steps") << ", " << g(r.totals.seconds, 3) << " s on "
-       << r.totals.threads << " thread" << (r.totals.threads > 1 ? "s" : "") << "\n";
-    for (const auto& w : r.warnings) os << "note: " << w << "\n";
+    os << "\n"
+       << work_line(r.estimates.trajectories, "trajectories", q.control.seed, q.engine, r.totals)
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const BruteForceResult& r) {
+    const auto& q = r.request;
+    const auto& p = q.params;
+    std::ostringstream os;
+    os << "engine,friction,noise,tau,relaxation,bias,time,trajectories,seed," << csv_estimate_header("diffusivity")
+       << "," << csv_estimate_header("mobility") << "\n";
+    os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
+       << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
+       << csv_number(q.horizon) << "," << r.estimates.trajectories << "," << q.control.seed << ","
+       << csv_estimate(r.estimates.diffusivity) << "," << csv_estimate(r.estimates.mobility) << "\n";
     return os.str();
 }
 

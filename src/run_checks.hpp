@@ -2,21 +2,30 @@
 // (diffusivity, stationary density, correlation), so they say the same thing.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
-#include "stickslip/diffusivity.hpp"
+#include "stickslip/run.hpp"
 
 namespace stickslip::detail {
+
+/// Below this many excursions the standard error of D is itself too noisy to
+/// trust (U is heavy-tailed); the reports say so.
+inline constexpr std::uint64_t few_excursions = 5000;
 
 /// Throws CappedExcursions when excursions hit the runaway guard (unless
 /// allowed: then warns) or fewer than 2 completed; adds the standard warnings
 /// (truncated PDMP lattice, few excursions, meaning of mean_duration).
-void finish_long_excursion_run(const ModelParams& p, const EngineSettings& s, const ResolvedEngine& resolved,
-                               const RunTotals& totals, bool allow_capped, std::vector<std::string>& warnings);
+void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
+                               std::vector<std::string>& warnings);
 
 /// Checks a trajectory start: v0 [m/s] finite ("v0"); x0 [s^-1/2] finite or
 /// NaN, which means "the default start" ("x0").
 void check_start(double x0, double v0);
+
+/// The default start of a trajectory's noise [s^-1/2] (x0 NaN): 0 for white
+/// noise, else the upper threshold x* (PDMP: the first lattice point above it).
+double default_start_noise(const PreparedEngine& e);
 
 } // namespace stickslip::detail

@@ -3,12 +3,14 @@
 #include <cmath>
 
 #include "block_runner.hpp"
+#include "run_checks.hpp"
 
 #include "stickslip/inclusion.hpp"
 #include "stickslip/inclusion_lanes.hpp"
 #include "stickslip/pdmp.hpp"
 #include "stickslip/rng.hpp"
 #include "stickslip/rng_batch.hpp"
+#include "stickslip/run.hpp"
 
 namespace stickslip {
 
@@ -16,25 +18,29 @@ namespace {
 struct NoExtra {};
 } // namespace
 
+void check_run_control(const RunControl& ctl) {
+    if (ctl.threads > 4096) throw InvalidParameter("threads", "threads must be between 0 and 4096");
+}
+
 RunTotals run_samples(std::uint64_t n, const RunControl& ctl,
                       const std::function<ExcursionOutcome(std::uint64_t)>& sample) {
+    check_run_control(ctl);
     NoExtra none;
     return detail::run_blocks(
         n, ctl, [] { return NoExtra{}; }, [&](std::uint64_t k, NoExtra&) { return sample(k); },
         [](NoExtra&, const NoExtra&) {}, none);
 }
 
-RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,
-                              const RunControl& ctl) {
+RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl) {
     const std::uint64_t seed = ctl.seed;
-    if (s.engine == Engine::Pdmp) {
-        const PdmpConstants c = make_pdmp_constants(p, s);
+    if (e.settings.engine == Engine::Pdmp) {
+        const PdmpConstants& c = e.pdmp;
         return run_samples(excursions, ctl, [&c, seed](std::uint64_t k) {
             BatchedUniformRng rng(seed, StreamPurpose::LongExcursion, k);
             return pdmp_long_excursion(c, rng);
         });
     }
-    const InclusionConstants c = make_inclusion_constants(p, s);
+    const InclusionConstants& c = e.inclusion;
     NoExtra none;
     return detail::run_blocks(
         excursions, ctl, [] { return NoExtra{}; },
@@ -44,28 +50,47 @@ RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std
         [](NoExtra&, const NoExtra&) {}, none);
 }
 
-RunTotals run_bruteforce(const ModelParams& p, const EngineSettings& s, double horizon, double x0, double v0,
-                         std::uint64_t trajectories, const RunControl& ctl) {
-    if (!std::isfinite(horizon) || horizon <= 0)
-        throw InvalidParameter("time", "time must be a finite number > 0 (s)");
-    if (!std::isfinite(v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,
+                              const RunControl& ctl) {
+    check_run_control(ctl);
+    return run_long_excursions(prepare_engine(p, s), excursions, ctl);
+}
+
+std::uint64_t bruteforce_steps(double horizon, double dt) {
+    if (!(horizon / dt >= 1)) throw InvalidParameter("time", "time must be at least one step dt");
+    const double nsteps = std::nearbyint(horizon / dt);
+    if (nsteps > 1e13) // a stream holds 2^47 random blocks
+        throw InvalidParameter("time", "time/dt must be between 1 and 1e13 steps");
+    return static_cast<std::uint64_t>(nsteps);
+}
+
+RunTotals run_bruteforce(const PreparedEngine& e, double horizon, double x0, double v0, std::uint64_t trajectories,
+                         const RunControl& ctl) {
     const std::uint64_t seed = ctl.seed;
-    if (s.engine == Engine::Pdmp) {
-        const PdmpConstants c = make_pdmp_constants(p, s);
+    if (e.settings.engine == Engine::Pdmp) {
+        const PdmpConstants& c = e.pdmp;
         return run_samples(trajectories, ctl, [&c, seed, horizon, x0, v0](std::uint64_t k) {
             BatchedUniformRng rng(seed, StreamPurpose::BruteForce, k);
             return pdmp_trajectory(c, x0, v0, horizon, rng);
         });
     }
-    const InclusionConstants c = make_inclusion_constants(p, s);
-    const double nsteps_real = std::nearbyint(horizon / s.dt);
-    if (nsteps_real < 1 || nsteps_real > 1e13) // a stream holds 2^47 random blocks
-        throw InvalidParameter("time", "time/dt must be between 1 and 1e13 steps");
-    const auto nsteps = static_cast<std::uint64_t>(nsteps_real);
+    const InclusionConstants& c = e.inclusion;
+    const std::uint64_t nsteps = bruteforce_steps(horizon, c.h);
     return run_samples(trajectories, ctl, [&c, seed, x0, v0, nsteps](std::uint64_t k) {
         BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);
         return inclusion_trajectory(c, x0, v0, nsteps, rng);
     });
+}
+
+RunTotals run_bruteforce(const ModelParams& p, const EngineSettings& s, double horizon, double x0, double v0,
+                         std::uint64_t trajectories, const RunControl& ctl) {
+    if (!std::isfinite(horizon) || horizon <= 0)
+        throw InvalidParameter("time", "time must be a finite number > 0 (s)");
+    detail::check_start(x0, v0);
+    check_run_control(ctl);
+    const PreparedEngine e = prepare_engine(p, s);
+    if (s.engine == Engine::Inclusion) bruteforce_steps(horizon, s.dt);
+    return run_bruteforce(e, horizon, x0, v0, trajectories, ctl);
 }
 
 } // namespace stickslip

@@ -15,16 +15,12 @@ constexpr std::size_t kMaxPoints = 1u << 16; // sweep_index_stride * kMaxPoints 
 
 DiffusivityRequest point_request(const SweepRequest& req, double noise, double tau, std::size_t k) {
     DiffusivityRequest d;
-    d.params = req.params;
+    static_cast<RunSettings&>(d) = req;
+    static_cast<ExcursionSettings&>(d) = req;
     d.params.noise = noise;
     d.params.tau = tau;
-    d.engine = req.engine;
-    d.excursions = req.excursions;
-    d.level = req.level;
     d.estimator = req.estimator;
-    d.control = req.control;
     d.control.first_index = req.control.first_index + k * sweep_index_stride;
-    d.allow_capped = req.allow_capped;
     return d;
 }
 
@@ -34,9 +30,15 @@ std::vector<double> sorted_unique(std::vector<double> v) {
     return v;
 }
 
-} // namespace
+/// The sorted grid of a sweep and its points' prepared engines (tau-major).
+struct PreparedSweep {
+    std::vector<double> noises, taus;
+    std::vector<PreparedEngine> engines;
+};
 
-void validate(const SweepRequest& req) {
+/// Every check of a sweep, once: the grid, then every point as a diffusivity
+/// run (the first bad point is named).
+PreparedSweep prepare_sweep(const SweepRequest& req) {
     if (req.noises.empty()) throw InvalidParameter("noise", "the sweep needs at least one noise value");
     if (req.taus.empty()) throw InvalidParameter("tau", "the sweep needs at least one tau value");
     if (req.noises.size() * req.taus.size() > kMaxPoints)
@@ -44,25 +46,37 @@ void validate(const SweepRequest& req) {
     if (req.excursions > sweep_index_stride) throw InvalidParameter("excursions", "at most 2^40 excursions per point");
     if (req.control.first_index != 0) throw InvalidParameter("first-index", "a sweep starts at sample index 0");
     for (double g : req.noises)
-        for (double t : req.taus) {
-            const std::string where = " (at noise " + detail::format_number(g) + ", tau " + detail::format_number(t) + ")";
+        if (std::isnan(g)) throw InvalidParameter("noise", "noise must be a number, got NaN");
+    for (double t : req.taus)
+        if (std::isnan(t)) throw InvalidParameter("tau", "tau must be a number, got NaN");
+    PreparedSweep out{sorted_unique(req.noises), sorted_unique(req.taus), {}};
+    std::size_t k = 0;
+    for (double t : out.taus)
+        for (double g : out.noises) {
             try {
-                validate(point_request(req, g, t, 0));
+                out.engines.push_back(prepare(point_request(req, g, t, k++)));
             } catch (const InvalidParameter& e) {
+                const std::string where =
+                    " (at noise " + detail::format_number(g) + ", tau " + detail::format_number(t) + ")";
                 throw InvalidParameter(e.parameter(), e.what() + where);
             }
         }
+    return out;
 }
 
+} // namespace
+
+void validate(const SweepRequest& req) { prepare_sweep(req); }
+
 SweepResult compute_sweep(const SweepRequest& req) {
-    validate(req);
-    const auto start = std::chrono::steady_clock::now();
+    const PreparedSweep prepared = prepare_sweep(req);
     SweepResult out;
     out.request = req;
-    out.request.noises = sorted_unique(req.noises);
-    out.request.taus = sorted_unique(req.taus);
+    out.request.noises = prepared.noises;
+    out.request.taus = prepared.taus;
     const auto& noises = out.request.noises;
     const auto& taus = out.request.taus;
+    const auto start = std::chrono::steady_clock::now();
     const std::size_t total = noises.size() * taus.size();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::size_t k = 0;
@@ -73,7 +87,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
             DiffusivityResult r;
             try {
-                r = compute_diffusivity(d);
+                r = compute_diffusivity(d, prepared.engines[k]);
             } catch (const CappedExcursions& e) {
                 throw CappedExcursions(std::string(e.what()) + " [at noise " + detail::format_number(noise) +
                                        ", tau " + detail::format_number(tau) + "]");

@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "setting.hpp"
+
 namespace stickslip {
 
 /// Exact, mergeable centred moments of a bivariate sample (x, y) up to total
@@ -61,6 +63,10 @@ enum class Estimator {
 };
 std::string to_string(Estimator e);      ///< "renewal" | "paper"
 Estimator parse_estimator(const std::string& s);
+// Its text form as a setting (setting.hpp).
+std::string format_setting(Estimator e);
+void parse_setting(const SettingInfo& info, const std::string& text, Estimator& out);
+const char* setting_form(const Estimator&);
 
 /// A point estimate with its standard error and a two-sided interval.
 struct Estimate {

@@ -37,6 +37,7 @@
 #include "estimators.hpp"
 #include "excursion.hpp"
 #include "params.hpp"
+#include "run.hpp"
 #include "runner.hpp"
 
 namespace stickslip {
@@ -51,6 +52,14 @@ struct VelocityBins {
     int count = 80;
 };
 
+/// The bins as settings: --bins (count) and --range (lo,hi); `range_help`
+/// says what the automatic range is for the request at hand.
+template <class Visitor>
+void visit_settings(VelocityBins& b, Visitor&& v, const char* range_help) {
+    v(b.count, SettingInfo{"bins", "", "number of equal velocity bins, 1 to 100000"});
+    v(NumberRange{b.lo, b.hi}, SettingInfo{"range", "m/s", range_help});
+}
+
 /// A density histogram with error bars. `density[k]` estimates the density of
 /// the continuous part of the law of V on [edges[k], edges[k+1]) [s/m]: the
 /// atom at V = 0 is excluded and reported in `stuck` (probability), so that
@@ -64,17 +73,24 @@ struct VelocityHistogram {
 
 // ---- stationary density --------------------------------------------------
 
-struct StationaryDensityRequest {
-    ModelParams params;
-    EngineSettings engine;
-    std::uint64_t excursions = 10000;
+struct StationaryDensityRequest : RunSettings, ExcursionSettings {
     VelocityBins bins;
     /// PDMP sampling interval [s]; 0 uses engine.dt. Ignored by the inclusion engine.
     double sample_dt = 0.0;
-    double level = 0.95;
-    RunControl control;
-    bool allow_capped = false;
 };
+
+/// --sample-dt of the stationary observables.
+inline constexpr SettingInfo sample_dt_info{
+    "sample-dt", "s", "pdmp only: sampling interval of the path; 0 = --dt (the inclusion engine samples every step)"};
+
+template <class Visitor>
+void visit_settings(StationaryDensityRequest& r, Visitor&& v) {
+    visit_settings(static_cast<RunSettings&>(r), v);
+    visit_settings(static_cast<ExcursionSettings&>(r), v);
+    visit_settings(r.bins, v,
+                   "velocity range 'lo,hi'; default: the velocities seen by the first 256 excursions, padded by 10%");
+    v(r.sample_dt, sample_dt_info);
+}
 
 struct StationaryDensityResult {
     StationaryDensityRequest request;
@@ -92,17 +108,20 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
 
 // ---- stationary autocorrelation ---------------------------------------------
 
-struct CorrelationRequest {
-    ModelParams params;
-    EngineSettings engine;
-    std::uint64_t excursions = 10000;
+struct CorrelationRequest : RunSettings, ExcursionSettings {
     double max_lag = 0.0; ///< largest lag r [s]; 0 chooses 5 time units noise/friction^2
     int lags = 50;        ///< lags 0, max_lag/lags, ..., max_lag (rounded to the sampling grid)
     double sample_dt = 0.0; ///< PDMP sampling interval [s]; 0 uses engine.dt
-    double level = 0.95;
-    RunControl control;
-    bool allow_capped = false;
 };
+
+template <class Visitor>
+void visit_settings(CorrelationRequest& r, Visitor&& v) {
+    visit_settings(static_cast<RunSettings&>(r), v);
+    visit_settings(static_cast<ExcursionSettings&>(r), v);
+    v(r.max_lag, SettingInfo{"max-lag", "s", "largest lag r; 0 = 5 time units (noise/friction^2)"});
+    v(r.lags, SettingInfo{"lags", "", "number of lag intervals, 1 to 2000: lags 0, max/lags, ..., max"});
+    v(r.sample_dt, sample_dt_info);
+}
 
 struct CorrelationResult {
     CorrelationRequest request;
@@ -122,20 +141,36 @@ CorrelationResult compute_correlation(const CorrelationRequest& req);
 
 // ---- transient statistics ------------------------------------------------------
 
-struct TransientRequest {
-    ModelParams params;
-    EngineSettings engine;
-    double v0 = 0.0; ///< initial velocity v_i [m/s]
+struct TransientRequest : RunSettings {
+    /// Initial velocity v_i [m/s]; NaN: one velocity unit, noise/friction.
+    double v0 = std::numeric_limits<double>::quiet_NaN();
     /// Initial noise X(0) [s^-1/2]; NaN draws it from the stationary law
     /// N(0, 1/tau) independently for each trajectory. Ignored for white noise.
     double x0 = std::numeric_limits<double>::quiet_NaN();
-    std::vector<double> times;       ///< t >= 0 [s], any order
+    /// t >= 0 [s], any order; empty: Table I's t' = 0.05, 0.125, 0.25, 0.5, 1,
+    /// 2.5 time units (noise/friction^2).
+    std::vector<double> times;
     std::uint64_t trajectories = 10000;
     bool with_density = false;       ///< also histogram V(t) at every time
     VelocityBins bins;
-    double level = 0.95;
-    RunControl control;
 };
+
+template <class Visitor>
+void visit_settings(TransientRequest& r, Visitor&& v) {
+    visit_settings(static_cast<RunSettings&>(r), v);
+    v(OptionalNumber{r.v0}, SettingInfo{"v0", "m/s", "initial velocity v0; default: 1 velocity unit, noise/friction"});
+    v(OptionalNumber{r.x0}, SettingInfo{"x0", "s^-1/2", "initial noise X(0); default: drawn from N(0, 1/tau) per trajectory"});
+    v(NumberList{r.times}, SettingInfo{"times", "s",
+                                       "times t >= 0, comma-separated or lo:hi:n (log-spaced); default: Table I's t' = "
+                                       "0.05, 0.125, 0.25, 0.5, 1, 2.5 time units (noise/friction^2)"});
+    v(r.trajectories, SettingInfo{"trajectories", "", "number of independent trajectories (>= 2)"});
+    v(r.with_density, SettingInfo{"density", "", "also estimate the density of V(t) at every time (histogram)"});
+    visit_settings(r.bins, v, "velocity range 'lo,hi' of --density; default: automatic");
+}
+
+/// Table I's times t' = 0.05, 0.125, 0.25, 0.5, 1, 2.5, in time units
+/// (noise/friction^2): the default times of a transient request.
+inline constexpr double table_one_times[] = {0.05, 0.125, 0.25, 0.5, 1.0, 2.5};
 
 struct TransientResult {
     TransientRequest request;
@@ -163,9 +198,7 @@ struct SamplePath {
     std::vector<double> u; ///< displacement [m]
 };
 
-struct TrajectoryRequest {
-    ModelParams params;
-    EngineSettings engine;
+struct TrajectoryRequest : RunSettings {
     /// Excursion mode (paths == 0): long excursion number `index` of stream
     /// `control.seed`, the very excursion `diffusivity` runs with that index.
     std::uint64_t index = 0;
@@ -179,8 +212,21 @@ struct TrajectoryRequest {
     /// in excursion mode, and horizon/1000 in path mode.
     double every = 0.0;
     std::uint64_t max_points = 5'000'000; ///< refuse to record more points than this per path
-    RunControl control;
 };
+
+template <class Visitor>
+void visit_settings(TrajectoryRequest& r, Visitor&& v) {
+    visit_settings(static_cast<RunSettings&>(r), skip_settings(v, {"level"}));
+    v(r.index, SettingInfo{"index", "", "excursion number (excursion mode)"});
+    v(r.paths, SettingInfo{"paths", "", "number of independent paths, at most 1000 (0 = one long excursion instead)"});
+    v(r.horizon, SettingInfo{"time", "s", "path length (path mode)"});
+    v(OptionalNumber{r.x0}, SettingInfo{"x0", "s^-1/2", "initial noise X(0) (path mode); default: the upper threshold x*"});
+    v(r.v0, SettingInfo{"v0", "m/s", "initial velocity (path mode)"});
+    v(r.every, SettingInfo{"every", "s",
+                           "recording interval; 0 = every step (inclusion) or event (pdmp) of an excursion, time/1000 "
+                           "for paths"});
+    v(r.max_points, SettingInfo{"max-points", "", "refuse to record more points than this per path"});
+}
 
 struct TrajectoryResult {
     TrajectoryRequest request;

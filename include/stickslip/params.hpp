@@ -11,23 +11,11 @@
 // friction = noise = 1: time unit noise/friction^2, length unit noise^2/friction^3.
 #pragma once
 
-#include <limits>
-#include <stdexcept>
 #include <string>
 
+#include "setting.hpp"
+
 namespace stickslip {
-
-/// Thrown for invalid input. `parameter()` is the name of the offending
-/// parameter as spelled on the command line (e.g. "friction", "dt").
-class InvalidParameter : public std::invalid_argument {
-public:
-    InvalidParameter(std::string parameter, const std::string& message)
-        : std::invalid_argument(message), parameter_(std::move(parameter)) {}
-    const std::string& parameter() const noexcept { return parameter_; }
-
-private:
-    std::string parameter_;
-};
 
 /// Physical parameters of the model, SI units. Defaults: the paper's Fig. 2 case.
 struct ModelParams {
@@ -50,6 +38,16 @@ struct ModelParams {
     /// Lower noise threshold x-* = (-friction - b(0))/a [s^-1/2].
     double lower_threshold() const;
 };
+
+/// The model parameters, as the command line, config files and Python name them.
+template <class Visitor>
+void visit_settings(ModelParams& p, Visitor&& v) {
+    v(p.friction, SettingInfo{"friction", "m s^-2", "dry-friction coefficient Delta, > 0"});
+    v(p.noise, SettingInfo{"noise", "m^2 s^-3", "noise intensity Gamma, > 0"});
+    v(p.tau, SettingInfo{"tau", "s", "noise correlation time, >= 0 (0 = white noise)"});
+    v(p.relaxation, SettingInfo{"relaxation", "s", "viscous relaxation time tauL, > 0, or inf for none", "NUM|inf"});
+    v(p.bias, SettingInfo{"bias", "m s^-2", "constant force gbar, e.g. gravity on an incline"});
+}
 
 /// Units of the nondimensional system (MODEL.md section 3), in SI.
 struct Scales {
@@ -78,5 +76,8 @@ void validate(const ModelParams& p);
 /// True when the stationary state exists: with no viscous drag the constant
 /// force must be weaker than friction (|bias| < friction).
 bool has_stationary_state(const ModelParams& p);
+
+/// Throws InvalidParameter ("bias") when there is no stationary state.
+void require_stationary_state(const ModelParams& p);
 
 } // namespace stickslip

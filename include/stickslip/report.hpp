@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "bruteforce.hpp"
 #include "diffusivity.hpp"
 #include "observables.hpp"
 #include "sweep.hpp"

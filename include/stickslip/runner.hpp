@@ -52,7 +52,7 @@ struct RunControl {
     /// from any thread (a signal watcher, a GUI) to stop the run within one
     /// sample; the run then throws RunCancelled.
     const std::atomic<bool>* cancel = nullptr;
-    /// Distributed runs (MPI, see cli/mpi.cpp): this process computes only the
+    /// Distributed runs (MPI, see cli/distributed.hpp): this process computes only the
     /// blocks b with b % ranks == rank, hands them to `combine`, which must
     /// return the blocks of every process (an all-gather); they are then
     /// merged in block order exactly as one process merges them, so the
@@ -81,12 +81,27 @@ struct RunTotals {
     unsigned threads = 1;
 };
 
-/// N long excursions of the chosen engine.
+struct PreparedEngine; // run.hpp
+
+/// Throws InvalidParameter for a thread count above 4096.
+void check_run_control(const RunControl& ctl);
+
+/// N long excursions of a prepared engine (run.hpp), which is trusted.
+RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl);
+/// The same, preparing (and so validating) the engine first.
 RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,
                               const RunControl& ctl);
 
+/// Steps of the inclusion engine in a brute-force trajectory of length
+/// horizon [s] (time rounded to whole steps of dt); InvalidParameter ("time")
+/// outside 1 .. 1e13 steps.
+std::uint64_t bruteforce_steps(double horizon, double dt);
+
 /// N brute-force trajectories on [0, horizon] from noise x0 [s^-1/2] and
-/// velocity v0 [m/s]. Moments are of (U(horizon), horizon).
+/// velocity v0 [m/s], of a prepared engine. Moments are of (U(horizon), horizon).
+RunTotals run_bruteforce(const PreparedEngine& e, double horizon, double x0, double v0, std::uint64_t trajectories,
+                         const RunControl& ctl);
+/// The same, preparing (and so validating) the engine and the start first.
 RunTotals run_bruteforce(const ModelParams& p, const EngineSettings& s, double horizon, double x0,
                          double v0, std::uint64_t trajectories, const RunControl& ctl);
 

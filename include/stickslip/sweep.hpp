@@ -20,20 +20,29 @@ namespace stickslip {
 /// First sample index of sweep point k.
 inline constexpr std::uint64_t sweep_index_stride = std::uint64_t{1} << 40;
 
-struct SweepRequest {
-    ModelParams params;            ///< friction, relaxation, bias (noise and tau come from the grid)
-    EngineSettings engine;
-    std::vector<double> noises;    ///< Gamma values [m^2 s^-3], > 0 (sorted increasing in the result)
-    std::vector<double> taus;      ///< tau values [s], >= 0
-    std::uint64_t excursions = 10000; ///< per point
-    double level = 0.95;
+/// A sweep: RunSettings whose params give friction, relaxation and bias (its
+/// noise and tau are replaced by the grid's), and whose control gives the seed
+/// and threads (control.progress is not used; see point_progress).
+/// `excursions` is per point.
+struct SweepRequest : RunSettings, ExcursionSettings {
+    /// Gamma values [m^2 s^-3], > 0 (sorted increasing in the result); the
+    /// default, 1:10:5, is five log-spaced values from 1 to 10.
+    std::vector<double> noises = spaced_values(1.0, 10.0, 5);
+    std::vector<double> taus = {0.125, 0.25, 0.5, 1.0}; ///< tau values [s], >= 0
     Estimator estimator = Estimator::RenewalReward;
-    RunControl control;            ///< seed and threads (control.progress is not used)
-    bool allow_capped = false;
     /// Optional: the progress callback for point k of n at (noise, tau).
     std::function<std::function<bool(const Progress&)>(std::size_t k, std::size_t n, double noise, double tau)>
         point_progress;
 };
+
+template <class Visitor>
+void visit_settings(SweepRequest& r, Visitor&& v) {
+    visit_settings(static_cast<RunSettings&>(r), skip_settings(v, {"noise", "tau"}));
+    v(NumberList{r.noises}, SettingInfo{"noise", "m^2 s^-3", "noise intensities Gamma: comma-separated or lo:hi:n (n log-spaced)"});
+    v(NumberList{r.taus}, SettingInfo{"tau", "s", "correlation times: comma-separated or lo:hi:n (n log-spaced)"});
+    visit_settings(static_cast<ExcursionSettings&>(r), v);
+    v(r.estimator, SettingInfo{"estimator", "", "renewal (default) or paper (eq. 12)"});
+}
 
 struct SweepPoint {
     double noise = 0, tau = 0;

@@ -27,6 +27,17 @@ struct WhiteNoiseRequest {
     std::vector<double> velocities;
 };
 
+template <class Visitor>
+void visit_settings(WhiteNoiseRequest& r, Visitor&& v) {
+    visit_settings(r.params, skip_settings(v, {"tau"}));
+    v(r.v0, SettingInfo{"v0", "m/s", "initial velocity of the first moment"});
+    v(NumberList{r.times}, SettingInfo{"times", "s", "times t >= 0, comma-separated or lo:hi:n (log-spaced)"});
+    v(NumberList{r.velocities, true},
+      SettingInfo{"velocities", "m/s",
+                  "velocities v, comma-separated or lo:hi:n (n evenly spaced): adds the stationary density p(v) and, "
+                  "with --times, the transition density p(v, t | v0) (json)"});
+}
+
 struct WhiteNoiseResult {
     WhiteNoiseRequest request;
     WhiteNoiseReference reference;       ///< M0 [m/s], D [m^2/s], Var(V) [m^2/s^2]

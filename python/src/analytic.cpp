@@ -200,20 +200,6 @@ void bind_analytic(py::module_& m) {
                           r.request.velocities.size());
             return std::string(buf);
         });
-    m.def(
-        "_white_noise",
-        [](const ModelParams& p, double v0, const std::vector<double>& times, const std::vector<double>& velocities) {
-            WhiteNoiseRequest req;
-            req.params = p;
-            req.params.tau = 0.0; // as the CLI: tau is not used
-            req.v0 = v0;
-            req.times = times;
-            req.velocities = velocities;
-            validate(req);
-            py::gil_scoped_release nogil;
-            return compute_white_noise(req);
-        },
-        py::arg("params"), py::arg("v0"), py::arg("times"), py::arg("velocities"));
 }
 
 } // namespace stickslip::python

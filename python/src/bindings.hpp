@@ -22,6 +22,11 @@ namespace py = pybind11;
 py::array_t<double> to_array(const std::vector<double>& v);
 py::array_t<std::int64_t> to_array(const std::vector<int>& v);
 
+/// A Python value as the text of a setting (setting.hpp): numbers by their
+/// repr (which reads back exactly), booleans as True/False, strings as they
+/// are, sequences (lists, tuples, NumPy arrays) as comma-separated items.
+std::string setting_text(const py::handle& v);
+
 /// json.loads(text).
 py::object json_loads(const std::string& text);
 
@@ -35,8 +40,9 @@ struct EstimateSeries {
 /// Python repr of a float ("inf" written as float('inf')).
 std::string float_repr(double x);
 
-void bind_core(py::module_& m);     // exceptions, Params, Scales, Estimate, EstimateSeries, EngineSettings
-void bind_results(py::module_& m);  // simulations and their result classes
+void bind_core(py::module_& m);     // exceptions, Params, Scales, Estimate, EstimateSeries
+void bind_results(py::module_& m);  // the result classes of the simulations
+void bind_requests(py::module_& m); // the request structures and run()
 void bind_analytic(py::module_& m); // closed forms and white-noise references
 
 } // namespace stickslip::python

@@ -1,7 +1,9 @@
-// The `stickslip._core` extension module: exceptions, parameters, estimates.
-// The public, documented API is the pure-Python package `stickslip`
-// (python/stickslip/__init__.py), which re-exports these classes and wraps the
-// compute functions with keyword arguments and docstrings.
+// The `stickslip._core` extension module: exceptions, parameters, estimates
+// (here), the request structures and their run entry point (requests.cpp),
+// the result classes (results.cpp) and the closed forms (analytic.cpp). The
+// public, documented API is the pure-Python package `stickslip`
+// (python/stickslip/__init__.py), which re-exports these classes and makes
+// one keyword function per request from the requests' own settings.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -10,7 +12,6 @@
 #include "bindings.hpp"
 #include "stickslip/config.hpp"
 #include "stickslip/diffusivity.hpp"
-#include "stickslip/excursion.hpp"
 #include "stickslip/runner.hpp"
 
 namespace stickslip::python {
@@ -28,6 +29,26 @@ py::array_t<std::int64_t> to_array(const std::vector<int>& v) {
     return a;
 }
 
+std::string setting_text(const py::handle& v) {
+    if (PyBool_Check(v.ptr())) return v.ptr() == Py_True ? "True" : "False";
+    if (PyFloat_Check(v.ptr())) return py::repr(v).cast<std::string>();
+    if (PyLong_Check(v.ptr())) return py::str(v).cast<std::string>();
+    if (PyUnicode_Check(v.ptr())) return v.cast<std::string>();
+    if (py::hasattr(v, "ravel")) return setting_text(v.attr("ravel")().attr("tolist")()); // a NumPy array
+    if (PyIndex_Check(v.ptr())) return py::str(py::int_(py::reinterpret_borrow<py::object>(v))).cast<std::string>();
+    if (py::hasattr(v, "__float__") && !py::hasattr(v, "__len__"))
+        return py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>();
+    if (PyList_Check(v.ptr()) || PyTuple_Check(v.ptr())) {
+        std::string s;
+        for (const py::handle item : v) {
+            if (!s.empty()) s += ',';
+            s += setting_text(item);
+        }
+        return s.empty() ? std::string() : s;
+    }
+    return py::str(v).cast<std::string>();
+}
+
 py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
 std::string float_repr(double x) {
@@ -41,26 +62,73 @@ namespace {
 PyObject* g_invalid_parameter = nullptr;
 PyObject* g_capped = nullptr;
 
-double checked(const char* name, double x) {
-    if (std::isnan(x)) throw InvalidParameter(name, std::string(name) + " must be a number, got NaN");
-    return x;
+/// The model parameters' fields, in order: (name, unit, help, value).
+struct ParamField {
+    std::string name, unit, help;
+    double value;
+};
+
+std::vector<ParamField> param_fields(ModelParams p) {
+    std::vector<ParamField> out;
+    visit_settings(p, [&](double& field, const SettingInfo& info) { out.push_back({info.name, info.unit, info.help, field}); });
+    return out;
 }
 
-ModelParams make_params(double friction, double noise, double tau, double relaxation, double bias) {
-    ModelParams p;
-    p.friction = checked("friction", friction);
-    p.noise = checked("noise", noise);
-    p.tau = checked("tau", tau);
-    p.relaxation = checked("relaxation", relaxation);
-    p.bias = checked("bias", bias);
-    validate(p);
-    return p;
+/// `base` with the fields given as keywords changed (each read by the
+/// library's parser, so a bad value gets the CLI's message), validated.
+ModelParams params_with(ModelParams base, const py::kwargs& kw, const char* function) {
+    for (auto item : kw) {
+        const auto key = item.first.cast<std::string>();
+        bool found = false;
+        visit_settings(base, [&](double& field, const SettingInfo& info) {
+            if (key != info.name) return;
+            found = true;
+            parse_setting(info, setting_text(item.second), field);
+        });
+        if (!found) throw py::type_error(std::string(function) + " got an unexpected keyword argument '" + key + "'");
+    }
+    validate(base);
+    return base;
 }
 
 std::string params_repr(const ModelParams& p) {
-    return "Params(friction=" + float_repr(p.friction) + ", noise=" + float_repr(p.noise) +
-           ", tau=" + float_repr(p.tau) + ", relaxation=" + float_repr(p.relaxation) +
-           ", bias=" + float_repr(p.bias) + ")";
+    std::string out = "Params(";
+    for (const auto& f : param_fields(p)) out += (out.size() > 7 ? ", " : "") + f.name + "=" + float_repr(f.value);
+    return out + ")";
+}
+
+py::tuple params_tuple(const ModelParams& p) {
+    py::list values;
+    for (const auto& f : param_fields(p)) values.append(f.value);
+    return py::tuple(values);
+}
+
+/// The docstring of Params: the model, then every field with its unit, range
+/// and default, from the library's description of the settings.
+const char* params_doc() {
+    static std::string doc = [] {
+        std::string d = R"doc(Physical parameters of the model, SI units (immutable).
+
+    dV/dt + friction*sgn(V) = -V/relaxation + bias + sqrt(noise/2)*X(t),
+    tau dX = -X dt + sqrt(2) dW,   E[X(0)X(t)] = exp(-|t|/tau)/tau.
+
+As tau -> 0 the random force sqrt(noise/2)*X tends to a white noise of
+intensity `noise` (<f(t)f(s)> = noise*delta(t-s)); tau = 0 is that white noise.
+Keyword arguments only; relaxation=float('inf') means no viscous drag (then
+|bias| < friction is needed for a stationary state).
+
+)doc";
+        std::string call = "Params(";
+        for (const auto& f : param_fields(ModelParams{})) {
+            call += (call.size() > 7 ? ", " : "") + f.name + "=" + float_repr(f.value);
+            std::string line = "  " + f.name;
+            line.resize(14, ' ');
+            d += line + f.help + " [" + f.unit + "]\n";
+        }
+        return call + ")\n\n" + d + "\nDefaults are the paper's Fig. 2 case. Invalid values raise\n"
+                                    "InvalidParameterError (a ValueError) with the CLI's message.";
+    }();
+    return doc.c_str();
 }
 
 std::string estimate_repr(const Estimate& e) {
@@ -147,33 +215,20 @@ void bind_core(py::module_& m) {
         });
 
     // ---- Params -----------------------------------------------------------------------
-    py::class_<ModelParams>(m, "Params", R"doc(Physical parameters of the model, SI units (immutable).
-
-    dV/dt + friction*sgn(V) = -V/relaxation + bias + sqrt(noise/2)*X(t),
-    tau dX = -X dt + sqrt(2) dW,   E[X(0)X(t)] = exp(-|t|/tau)/tau.
-
-As tau -> 0 the random force sqrt(noise/2)*X tends to a white noise of
-intensity `noise` (<f(t)f(s)> = noise*delta(t-s)); tau = 0 is that white noise.
-
-Params(friction=3.84, noise=5.0, tau=0.5, relaxation=0.067, bias=0.342)
-
-  friction    Delta, dry-friction coefficient [m s^-2], > 0
-  noise       Gamma, noise intensity [m^2 s^-3], > 0
-  tau         noise correlation time [s], >= 0 (0: white noise)
-  relaxation  viscous relaxation time [s], > 0, or float('inf') for no drag
-              (then |bias| < friction is needed for a stationary state)
-  bias        constant force, e.g. gravity on an incline [m s^-2]
-
-Defaults are the paper's Fig. 2 case. Invalid values raise
-InvalidParameterError (a ValueError) with the CLI's message.)doc")
-        .def(py::init(&make_params), py::kw_only(), py::arg("friction") = 3.84, py::arg("noise") = 5.0,
-             py::arg("tau") = 0.5, py::arg("relaxation") = 0.067, py::arg("bias") = 0.342)
-        .def_readonly("friction", &ModelParams::friction, "Delta, dry-friction coefficient [m s^-2]")
-        .def_readonly("noise", &ModelParams::noise, "Gamma, noise intensity [m^2 s^-3]")
-        .def_readonly("tau", &ModelParams::tau, "noise correlation time [s] (0: white noise)")
-        .def_readonly("relaxation", &ModelParams::relaxation, "viscous relaxation time [s] (inf: no drag)")
-        .def_readonly("bias", &ModelParams::bias, "constant force [m s^-2]")
-        .def_property_readonly("force_amplitude", &ModelParams::force_amplitude,
+    py::class_<ModelParams> params(m, "Params", params_doc());
+    params.def(py::init([](const py::kwargs& kw) { return params_with(ModelParams{}, kw, "Params()"); }));
+    for (const auto& f : param_fields(ModelParams{})) {
+        const std::string name = f.name;
+        params.def_property_readonly(
+            name.c_str(),
+            [name](const ModelParams& p) {
+                for (const auto& g : param_fields(p))
+                    if (g.name == name) return g.value;
+                return 0.0;
+            },
+            (f.help + " [" + f.unit + "]").c_str());
+    }
+    params        .def_property_readonly("force_amplitude", &ModelParams::force_amplitude,
                                "amplitude a = sqrt(noise/2) of the random force a*X [m s^-2 per s^-1/2]")
         .def_property_readonly("white", &ModelParams::white, "True for white noise (tau = 0)")
         .def_property_readonly("upper_threshold", &ModelParams::upper_threshold,
@@ -188,8 +243,12 @@ InvalidParameterError (a ValueError) with the CLI's message.)doc")
         .def("scales", &scales_of, "Units of the nondimensional system, in SI (a Scales).")
         .def_static(
             "from_nondimensional",
-            [](const ModelParams& nd, double friction, double noise) {
-                const ModelParams p = from_nondimensional(nd, checked("friction", friction), checked("noise", noise));
+            [](const ModelParams& nd, const py::object& friction, const py::object& noise) {
+                py::kwargs units;
+                units["friction"] = friction;
+                units["noise"] = noise;
+                const ModelParams given = params_with(ModelParams{}, units, "from_nondimensional()");
+                const ModelParams p = from_nondimensional(nd, given.friction, given.noise);
                 validate(p);
                 return p;
             },
@@ -197,50 +256,31 @@ InvalidParameterError (a ValueError) with the CLI's message.)doc")
             "Inverse of nondimensional(): the SI parameters with the given friction [m s^-2] and noise "
             "[m^2 s^-3] whose nondimensional form is `nd`.")
         .def(
-            "replace",
-            [](const ModelParams& p, const py::kwargs& kw) {
-                double v[5] = {p.friction, p.noise, p.tau, p.relaxation, p.bias};
-                static const char* const names[5] = {"friction", "noise", "tau", "relaxation", "bias"};
-                for (auto item : kw) {
-                    const auto key = item.first.cast<std::string>();
-                    int k = 0;
-                    while (k < 5 && key != names[k]) ++k;
-                    if (k == 5) throw py::type_error("replace() got an unexpected keyword argument '" + key + "'");
-                    v[k] = item.second.cast<double>();
-                }
-                return make_params(v[0], v[1], v[2], v[3], v[4]);
-            },
+            "replace", [](const ModelParams& p, const py::kwargs& kw) { return params_with(p, kw, "replace()"); },
             "A copy with some fields changed: p.replace(tau=0.125).")
-        .def("to_dict",
-             [](const ModelParams& p) {
-                 py::dict d;
-                 d["friction"] = p.friction;
-                 d["noise"] = p.noise;
-                 d["tau"] = p.tau;
-                 d["relaxation"] = p.relaxation;
-                 d["bias"] = p.bias;
-                 return d;
-             },
-             "{'friction', 'noise', 'tau', 'relaxation', 'bias'} as floats (Params(**d) gives it back).")
+        .def(
+            "to_dict",
+            [](const ModelParams& p) {
+                py::dict d;
+                for (const auto& f : param_fields(p)) d[py::str(f.name)] = f.value;
+                return d;
+            },
+            "The fields as a dict of floats (Params(**d) gives it back).")
         .def("__repr__", &params_repr)
         .def("__eq__",
              [](const ModelParams& a, const py::object& other) -> py::object {
                  if (!py::isinstance<ModelParams>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
-                 const auto& b = other.cast<const ModelParams&>();
-                 return py::bool_(a.friction == b.friction && a.noise == b.noise && a.tau == b.tau &&
-                                  a.relaxation == b.relaxation && a.bias == b.bias);
+                 return py::bool_(params_tuple(a).equal(params_tuple(other.cast<const ModelParams&>())));
              })
-        .def("__hash__",
-             [](const ModelParams& p) {
-                 return py::hash(py::make_tuple(p.friction, p.noise, p.tau, p.relaxation, p.bias));
-             })
-        .def(py::pickle(
-            [](const ModelParams& p) { return py::make_tuple(p.friction, p.noise, p.tau, p.relaxation, p.bias); },
-            [](const py::tuple& t) {
-                if (t.size() != 5) throw std::runtime_error("Params: bad pickle state");
-                return make_params(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(),
-                                   t[3].cast<double>(), t[4].cast<double>());
-            }));
+        .def("__hash__", [](const ModelParams& p) { return py::hash(params_tuple(p)); })
+        .def(py::pickle([](const ModelParams& p) { return params_tuple(p); },
+                        [](const py::tuple& t) {
+                            const auto fields = param_fields(ModelParams{});
+                            if (t.size() != fields.size()) throw std::runtime_error("Params: bad pickle state");
+                            py::kwargs kw;
+                            for (std::size_t k = 0; k < fields.size(); ++k) kw[py::str(fields[k].name)] = t[k];
+                            return params_with(ModelParams{}, kw, "Params()");
+                        }));
 
     // ---- Estimate ----------------------------------------------------------------------
     py::class_<Estimate>(m, "Estimate",
@@ -334,22 +374,6 @@ InvalidParameterError (a ValueError) with the CLI's message.)doc")
             return out + ")";
         });
 
-    // ---- engine settings (internal: the Python layer builds it from keyword arguments) ----
-    py::class_<EngineSettings>(m, "_EngineSettings")
-        .def(py::init([](const std::string& engine, double dt, double grid, double lattice_bound,
-                         const std::string& stop_rule, double white_level, std::uint64_t max_steps) {
-                 EngineSettings s;
-                 s.engine = parse_engine(engine);
-                 s.dt = checked("dt", dt);
-                 s.grid = checked("grid", grid);
-                 s.lattice_bound = checked("lattice-bound", lattice_bound);
-                 s.stop_rule = parse_stop_rule(stop_rule);
-                 s.white_level = checked("white-level", white_level);
-                 s.max_work_per_excursion = max_steps;
-                 return s;
-             }),
-             py::arg("engine"), py::arg("dt"), py::arg("grid"), py::arg("lattice_bound"), py::arg("stop_rule"),
-             py::arg("white_level"), py::arg("max_steps"));
 }
 
 } // namespace stickslip::python
@@ -358,5 +382,6 @@ PYBIND11_MODULE(_core, m) {
     m.doc() = "stickslip._core: the compiled part of the stickslip package (use `import stickslip`).";
     stickslip::python::bind_core(m);
     stickslip::python::bind_results(m);
+    stickslip::python::bind_requests(m);
     stickslip::python::bind_analytic(m);
 }

@@ -1,27 +1,12 @@
-// Simulations from Python: the compute functions of diffusivity.hpp,
-// observables.hpp and sweep.hpp, run off the Python thread with the GIL
-// released, interruptible by Ctrl-C, and their result classes.
-//
-// Interruption: the library reports progress through RunControl::progress,
-// called from whichever worker thread merges a block, and stops the run
-// (RunCancelled) when it returns false. Python runs signal handlers only in
-// its main thread, so the computation runs on a helper thread while the
-// calling thread waits, waking every 50 ms to take the GIL and call
-// PyErr_CheckSignals(). When a handler raises (KeyboardInterrupt), the flag
-// the progress callback reads is set, the run stops after the current block,
-// and the pending Python exception is re-raised.
-#include <atomic>
-#include <chrono>
+// The result classes of the simulations (what stickslip.run returns for each
+// request, requests.cpp): attributes as NumPy arrays and Estimates, and the
+// CLI's renderings (to_dict() is the CLI's JSON).
 #include <cmath>
 #include <cstdio>
-#include <functional>
-#include <future>
-#include <limits>
-#include <mutex>
-#include <optional>
 #include <string>
 
 #include "bindings.hpp"
+#include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
@@ -30,131 +15,6 @@
 namespace stickslip::python {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/// Shared between the computation (progress callbacks, any thread) and the
-/// waiting Python thread.
-struct Monitor {
-    std::atomic<bool> cancel{false};
-    std::mutex mutex;
-    std::uint64_t done = 0, total = 0;
-    double seconds = 0;
-    std::string label;
-    bool seen = false;
-
-    std::function<bool(const Progress&)> callback(std::string what) {
-        return [this, what = std::move(what)](const Progress& p) {
-            {
-                std::lock_guard<std::mutex> lock(mutex);
-                done = p.done;
-                total = p.total;
-                seconds = p.seconds;
-                label = what;
-                seen = true;
-            }
-            return !cancel.load();
-        };
-    }
-
-    /// One progress line on sys.stderr (needs the GIL). Errors are ignored.
-    void print(bool final) {
-        std::uint64_t d, t;
-        double s;
-        std::string what;
-        {
-            std::lock_guard<std::mutex> lock(mutex);
-            if (!seen) return;
-            d = done;
-            t = total;
-            s = seconds;
-            what = label;
-        }
-        const double rate = s > 0 ? static_cast<double>(d) / s : 0.0;
-        const double left = rate > 0 ? static_cast<double>(t - d) / rate : 0.0;
-        char buf[400];
-        std::snprintf(buf, sizeof buf, "\r%llu/%llu %s, %.1f s elapsed, ~%.0f s left   %s",
-                      static_cast<unsigned long long>(d), static_cast<unsigned long long>(t), what.c_str(), s, left,
-                      final ? "\n" : "");
-        try {
-            py::object err = py::module_::import("sys").attr("stderr");
-            if (err.is_none()) return;
-            err.attr("write")(std::string(buf));
-            err.attr("flush")();
-        } catch (py::error_already_set&) {
-        }
-    }
-};
-
-/// Runs work() on a helper thread with the GIL released; Ctrl-C (any Python
-/// exception raised by a signal handler) cancels it through `mon` and is
-/// re-raised. Called with the GIL held.
-template <class Result>
-Result run_interruptible(std::function<Result()> work, Monitor& mon, bool show_progress) {
-    std::optional<py::error_already_set> interrupted;
-    std::future<Result> fut;
-    {
-        py::gil_scoped_release nogil;
-        fut = std::async(std::launch::async, std::move(work));
-        auto last_print = std::chrono::steady_clock::now();
-        while (fut.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
-            py::gil_scoped_acquire gil;
-            if (!interrupted && PyErr_CheckSignals() != 0) {
-                interrupted.emplace(); // fetches (and clears) the pending exception
-                mon.cancel = true;
-            }
-            const auto now = std::chrono::steady_clock::now();
-            if (show_progress && !interrupted && now - last_print >= std::chrono::milliseconds(500)) {
-                last_print = now;
-                mon.print(false);
-            }
-        }
-    }
-    if (show_progress && interrupted) {
-        try {
-            py::module_::import("sys").attr("stderr").attr("write")("\n");
-        } catch (py::error_already_set&) {
-        }
-    }
-    try {
-        Result r = fut.get();
-        if (interrupted) throw *interrupted; // finished before it could stop: still honour Ctrl-C
-        if (show_progress) mon.print(true);
-        return r;
-    } catch (const RunCancelled&) {
-        if (interrupted) throw *interrupted;
-        throw;
-    }
-}
-
-struct RunArgs {
-    std::uint64_t seed = 1;
-    unsigned threads = 0;
-    double level = 0.95;
-    bool progress = false;
-};
-
-void apply(RunControl& c, const RunArgs& a) {
-    c.seed = a.seed;
-    c.threads = a.threads;
-    c.progress_interval = 0.0; // check the cancel flag after every merged block
-}
-
-template <class Request, class Result>
-Result run_request(Request& req, Result (*compute)(const Request&), const RunArgs& a, const char* what) {
-    apply(req.control, a);
-    validate(req); // bad input fails here, before any thread starts
-    Monitor mon;
-    req.control.progress = mon.callback(what);
-    req.control.cancel = &mon.cancel; // stops the workers within one sample
-
-    Result r = run_interruptible<Result>([&req, compute] { return compute(req); }, mon, a.progress);
-    r.request.control.progress = nullptr; // it points to `mon`, about to go
-    r.request.control.cancel = nullptr;
-    return r;
-}
-
-double none_to_nan(const py::object& x) { return x.is_none() ? kNaN : x.cast<double>(); }
 
 // ---- renderings shared by every result class -------------------------------------
 
@@ -232,13 +92,6 @@ py::array_t<double> widths(const std::vector<double>& edges) {
 } // namespace
 
 void bind_results(py::module_& m) {
-    py::class_<RunArgs>(m, "_RunArgs")
-        .def(py::init([](std::uint64_t seed, unsigned threads, double level, bool progress) {
-                 if (std::isnan(level)) throw InvalidParameter("level", "level must be a number, got NaN");
-                 return RunArgs{seed, threads, level, progress};
-             }),
-             py::arg("seed"), py::arg("threads"), py::arg("level"), py::arg("progress"));
-
     // ---- histograms and paths ----------------------------------------------------------------
     py::class_<VelocityHistogram>(m, "Histogram",
                                   "A velocity density histogram with error bars. `density` is the density of the "
@@ -328,23 +181,7 @@ void bind_results(py::module_& m) {
                        " s, completed=" + std::to_string(r.estimates.excursions) + ", engine='" +
                        to_string(r.request.engine.engine) + "')";
             });
-        m.def(
-            "_diffusivity",
-            [](const ModelParams& p, const EngineSettings& e, std::uint64_t excursions, const std::string& estimator,
-               bool allow_capped, double rel_precision, std::uint64_t max_excursions, const RunArgs& a) {
-                DiffusivityRequest req;
-                req.params = p;
-                req.engine = e;
-                req.excursions = excursions;
-                req.estimator = parse_estimator(estimator);
-                req.allow_capped = allow_capped;
-                req.rel_precision = rel_precision;
-                req.max_excursions = max_excursions;
-                req.level = a.level;
-                return run_request(req, &compute_diffusivity, a, "excursions");
-            },
-            py::arg("params"), py::arg("engine"), py::arg("excursions"), py::arg("estimator"),
-            py::arg("allow_capped"), py::arg("rel_precision"), py::arg("max_excursions"), py::arg("run"));
+
     }
 
     // ---- bruteforce ---------------------------------------------------------------------------
@@ -374,22 +211,7 @@ void bind_results(py::module_& m) {
                        " m/s, time=" + g4(r.estimates.horizon) +
                        " s, trajectories=" + std::to_string(r.estimates.trajectories) + ")";
             });
-        m.def(
-            "_bruteforce",
-            [](const ModelParams& p, const EngineSettings& e, double time, std::uint64_t trajectories,
-               const py::object& x0, double v0, const RunArgs& a) {
-                BruteForceRequest req;
-                req.params = p;
-                req.engine = e;
-                req.horizon = time;
-                req.trajectories = trajectories;
-                req.x0 = none_to_nan(x0);
-                req.v0 = v0;
-                req.level = a.level;
-                return run_request(req, &compute_bruteforce, a, "trajectories");
-            },
-            py::arg("params"), py::arg("engine"), py::arg("time"), py::arg("trajectories"), py::arg("x0"),
-            py::arg("v0"), py::arg("run"));
+
     }
 
     // ---- stationary density -------------------------------------------------------------------
@@ -426,24 +248,7 @@ void bind_results(py::module_& m) {
                        ") m/s, stuck=" + estimate_short(r.histogram.stuck) + ", mean=" + estimate_short(r.mean) +
                        " m/s, completed=" + std::to_string(r.estimates.excursions) + ")";
             });
-        m.def(
-            "_density",
-            [](const ModelParams& p, const EngineSettings& e, std::uint64_t excursions, int bins, double lo,
-               double hi, double sample_dt, bool allow_capped, const RunArgs& a) {
-                StationaryDensityRequest req;
-                req.params = p;
-                req.engine = e;
-                req.excursions = excursions;
-                req.bins.count = bins;
-                req.bins.lo = lo;
-                req.bins.hi = hi;
-                req.sample_dt = sample_dt;
-                req.allow_capped = allow_capped;
-                req.level = a.level;
-                return run_request(req, &compute_stationary_density, a, "excursions");
-            },
-            py::arg("params"), py::arg("engine"), py::arg("excursions"), py::arg("bins"), py::arg("lo"),
-            py::arg("hi"), py::arg("sample_dt"), py::arg("allow_capped"), py::arg("run"));
+
     }
 
     // ---- correlation -----------------------------------------------------------------------------
@@ -475,23 +280,7 @@ void bind_results(py::module_& m) {
                        (r.covariance.empty() ? std::string("-") : estimate_short(r.covariance.front())) +
                        " m^2/s^2, completed=" + std::to_string(r.estimates.excursions) + ")";
             });
-        m.def(
-            "_correlation",
-            [](const ModelParams& p, const EngineSettings& e, std::uint64_t excursions, double max_lag, int lags,
-               double sample_dt, bool allow_capped, const RunArgs& a) {
-                CorrelationRequest req;
-                req.params = p;
-                req.engine = e;
-                req.excursions = excursions;
-                req.max_lag = max_lag;
-                req.lags = lags;
-                req.sample_dt = sample_dt;
-                req.allow_capped = allow_capped;
-                req.level = a.level;
-                return run_request(req, &compute_correlation, a, "excursions");
-            },
-            py::arg("params"), py::arg("engine"), py::arg("excursions"), py::arg("max_lag"), py::arg("lags"),
-            py::arg("sample_dt"), py::arg("allow_capped"), py::arg("run"));
+
     }
 
     // ---- moments (transient) -----------------------------------------------------------------
@@ -525,28 +314,7 @@ void bind_results(py::module_& m) {
                        " m/s, trajectories=" + std::to_string(r.request.trajectories) +
                        ", density=" + (r.density.empty() ? "False" : "True") + ")";
             });
-        m.def(
-            "_moments",
-            [](const ModelParams& p, const EngineSettings& e, double v0, const py::object& x0,
-               const std::vector<double>& times, std::uint64_t trajectories, bool density, int bins, double lo,
-               double hi, const RunArgs& a) {
-                TransientRequest req;
-                req.params = p;
-                req.engine = e;
-                req.v0 = v0;
-                req.x0 = none_to_nan(x0);
-                req.times = times;
-                req.trajectories = trajectories;
-                req.with_density = density;
-                req.bins.count = bins;
-                req.bins.lo = lo;
-                req.bins.hi = hi;
-                req.level = a.level;
-                return run_request(req, &compute_transient, a, "trajectories");
-            },
-            py::arg("params"), py::arg("engine"), py::arg("v0"), py::arg("x0"), py::arg("times"),
-            py::arg("trajectories"), py::arg("density"), py::arg("bins"), py::arg("lo"), py::arg("hi"),
-            py::arg("run"));
+
     }
 
     // ---- trajectory ----------------------------------------------------------------------------
@@ -586,24 +354,7 @@ void bind_results(py::module_& m) {
                                              : std::string()) +
                        ")";
             });
-        m.def(
-            "_trajectory",
-            [](const ModelParams& p, const EngineSettings& e, std::uint64_t index, std::uint64_t paths, double time,
-               const py::object& x0, double v0, double every, std::uint64_t max_points, const RunArgs& a) {
-                TrajectoryRequest req;
-                req.params = p;
-                req.engine = e;
-                req.index = index;
-                req.paths = paths;
-                req.horizon = time;
-                req.x0 = none_to_nan(x0);
-                req.v0 = v0;
-                req.every = every;
-                req.max_points = max_points;
-                return run_request(req, &compute_trajectory, a, "paths");
-            },
-            py::arg("params"), py::arg("engine"), py::arg("index"), py::arg("paths"), py::arg("time"),
-            py::arg("x0"), py::arg("v0"), py::arg("every"), py::arg("max_points"), py::arg("run"));
+
     }
 
     // ---- sweep ---------------------------------------------------------------------------------
@@ -688,40 +439,7 @@ void bind_results(py::module_& m) {
                        ", noises=" + std::to_string(r.request.noises.size()) +
                        ", excursions=" + std::to_string(r.request.excursions) + " per point)";
             });
-        m.def(
-            "_sweep",
-            [](const ModelParams& p, const EngineSettings& e, const std::vector<double>& noises,
-               const std::vector<double>& taus, std::uint64_t excursions, const std::string& estimator,
-               bool allow_capped, const RunArgs& a) {
-                SweepRequest req;
-                req.params = p;
-                req.params.noise = 1.0; // placeholders, as in the CLI: every point sets its own
-                req.params.tau = 1.0;
-                req.engine = e;
-                req.noises = noises;
-                req.taus = taus;
-                req.excursions = excursions;
-                req.estimator = parse_estimator(estimator);
-                req.allow_capped = allow_capped;
-                req.level = a.level;
-                apply(req.control, a);
-                validate(req);
-                Monitor mon;
-                req.point_progress = [&mon](std::size_t k, std::size_t n, double noise, double tau) {
-                    char what[160];
-                    std::snprintf(what, sizeof what, "excursions (point %zu/%zu: noise %g, tau %g)", k + 1, n,
-                                  noise, tau);
-                    return mon.callback(what);
-                };
-                req.control.cancel = &mon.cancel; // every point's run stops within one sample
-                SweepResult r =
-                    run_interruptible<SweepResult>([&req] { return compute_sweep(req); }, mon, a.progress);
-                r.request.point_progress = nullptr; // it points to `mon`, about to go
-                r.request.control.cancel = nullptr;
-                return r;
-            },
-            py::arg("params"), py::arg("engine"), py::arg("noises"), py::arg("taus"), py::arg("excursions"),
-            py::arg("estimator"), py::arg("allow_capped"), py::arg("run"));
+
     }
 }
 

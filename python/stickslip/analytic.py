@@ -40,6 +40,7 @@ Example: pure dry friction in nondimensional units, D = 5/4::
 import numpy as _np
 
 from . import _core
+from ._commands import command
 
 __all__ = [
     "hayakawa_density", "hayakawa_probability", "hayakawa_potential", "hayakawa_moments",
@@ -189,31 +190,18 @@ def propagator(params, v, t, v0):
     return _shaped(out, shape)
 
 
-def white_noise(params, *, v0=0.0, times=None, velocities=None):
-    """Every exact white-noise reference for one parameter set: what ``stickslip analytic`` prints.
+white_noise = command("white_noise", _core.WhiteNoiseRequest, """\
+Every exact white-noise reference for one parameter set: what ``stickslip analytic`` prints.
 
-    Parameters
-    ----------
-    params : Params
-        friction, noise, relaxation, bias (tau is not used).
-    v0 : float
-        Initial velocity of the first moment and the transition density [m/s].
-    times : sequence of float or None
-        Times t >= 0 [s]: adds E[V(t)|v0] and <V(t)V(0)>.
-    velocities : sequence of float or None
-        Velocities v [m/s]: adds the stationary density p(v) and, with times,
-        the transition density p(v, t | v0).
-
-    Returns
-    -------
+    M0, D and Var(V) by quadrature of Hayakawa's density for any drift; with
+    times, E[V(t)|v0] and <V(t)V(0)> (closed forms for pure dry friction, a
+    Fokker-Planck solution otherwise); with velocities, the stationary density
+    p(v) and the transition density p(v, t | v0).""", """\
     WhiteNoiseResult
         .mobility, .diffusivity, .variance (floats); .times, .first_moment,
         .autocorrelation (n,); .velocities, .stationary_density (m,);
         .transient_density (n, m) (NaN rows at t = 0); .method;
-        .to_dict() is the CLI's JSON.
-    """
-    from . import _number, _numbers_list
-
-    times = [] if times is None else _numbers_list("times", times)
-    velocities = [] if velocities is None else _numbers_list("velocities", velocities)
-    return _core._white_noise(_check(params), _number("v0", v0), times, velocities)
+        .to_dict() is the CLI's JSON.""", params_doc="""\
+    params : Params
+        friction, noise, relaxation, bias (tau is not used).""")
+white_noise.__module__ = __name__

@@ -55,6 +55,7 @@ def without_work(d):
     """A CLI/to_dict() JSON object without its timing parts ("work", also per sweep point)."""
     d = dict(d)
     d.pop("work", None)
+    d.pop("revision", None)
     if "points" in d and isinstance(d["points"], list):
         d["points"] = [{k: v for k, v in p.items() if k != "work"} for p in d["points"]]
     return d

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
 
 namespace sstest {

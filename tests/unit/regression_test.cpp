@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/pdmp.hpp"
 

@@ -1,0 +1,84 @@
+// stickslip/engine.hpp -- the numerical settings of the two engines.
+//
+// Two engines sample long excursions (theory.md, sections 4 to 6): `pdmp`, an
+// exact event-driven simulation in which the noise is a jump process on a
+// lattice of step `grid`, and `inclusion`, a time-stepping scheme of step `dt`
+// for the differential inclusion, with the noise's exact step law. The
+// per-run constants each engine derives from these settings are in pdmp.hpp
+// and inclusion.hpp.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "setting.hpp"
+
+namespace stickslip {
+
+enum class Engine { Inclusion, Pdmp };
+
+/// How a time-stepping HLE detects its end (theory.md, section 6).
+///  * Bridge ("rule Q"): stuck at the start of the step and the noise path
+///    reaches the opposite threshold during it (endpoint beyond it, or a
+///    Brownian-bridge crossing). Flat in dt; the right rule when dt << tau.
+///  * Stuck ("rule P"): the object was genuinely stuck during the previous step
+///    and the step's force leaves the band the other way. Converges like
+///    sqrt(dt/tau); used when dt is not small against tau.
+///  * Auto: Bridge when dt <= auto_bridge_ratio * tau, else Stuck.
+/// The paper's literal test ("rule A") is biased and deliberately absent.
+enum class StopRule { Auto, Bridge, Stuck };
+
+/// dt/tau at or below which StopRule::Auto selects the bridge rule.
+inline constexpr double auto_bridge_ratio = 0.1;
+
+std::string to_string(Engine e);
+std::string to_string(StopRule r);
+Engine parse_engine(const std::string& s);     ///< "inclusion" | "pdmp"
+StopRule parse_stop_rule(const std::string& s); ///< "auto" | "bridge" | "stuck"
+
+/// Numerical settings of the engines, SI units.
+struct EngineSettings {
+    Engine engine = Engine::Inclusion;
+    double dt = 1e-4;        ///< time step h of the inclusion engine [s]
+    double grid = 0.125;     ///< lattice step delta of the PDMP noise [s^-1/2]
+    /// Half-width L of the PDMP lattice [s^-1/2]; 0 chooses it (see pdmp.hpp).
+    double lattice_bound = 0.0;
+    StopRule stop_rule = StopRule::Auto;
+    /// White noise only: the regeneration velocity levels +-c [m/s]; 0 chooses
+    /// c = white_level_default(params).
+    double white_level = 0.0;
+    /// Runaway guard: most steps (inclusion) or events (PDMP) in one long
+    /// excursion. An excursion that reaches it is dropped and counted as capped.
+    std::uint64_t max_work_per_excursion = 200'000'000;
+};
+
+/// The engine settings, as the command line, config files and Python name them.
+template <class Visitor>
+void visit_settings(EngineSettings& s, Visitor&& v) {
+    v(s.engine, SettingInfo{"engine", "", "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)"});
+    v(s.dt, SettingInfo{"dt", "s", "time step of the inclusion engine, > 0"});
+    v(s.grid, SettingInfo{"grid", "s^-1/2", "lattice step delta of the pdmp noise, > 0"});
+    v(s.lattice_bound, SettingInfo{"lattice-bound", "s^-1/2",
+                                   "pdmp lattice half-width L; 0 = 8 tau^-1/2 (or what tau*grid*L < 2 allows)"});
+    v(s.stop_rule, SettingInfo{"stop-rule", "",
+                               "inclusion HLE end test: auto (bridge if dt <= tau/10, else stuck), bridge (rule Q), "
+                               "stuck (rule P)"});
+    v(s.white_level, SettingInfo{"white-level", "m/s", "white noise only: regeneration velocity levels +-c; 0 chooses c"});
+    v(s.max_work_per_excursion, SettingInfo{"max-steps", "",
+                                            "runaway guard: most steps (inclusion) or events (pdmp) per long excursion"});
+}
+
+/// Throws InvalidParameter for a non-positive or non-finite dt or grid, a
+/// negative lattice bound or white level, or a zero work cap. Both step
+/// settings are checked whatever the engine.
+void validate(const EngineSettings& s);
+
+// Text forms of the enums (setting.hpp).
+std::string format_setting(Engine e);
+std::string format_setting(StopRule r);
+void parse_setting(const SettingInfo& info, const std::string& text, Engine& out);
+void parse_setting(const SettingInfo& info, const std::string& text, StopRule& out);
+const char* setting_form(const Engine&);
+const char* setting_form(const StopRule&);
+
+} // namespace stickslip

@@ -1,0 +1,93 @@
+// stickslip/run.hpp -- what every run shares: the model, the engine, the run
+// control and the confidence level (RunSettings), the number of excursions
+// (ExcursionSettings), and the engine constants a run is prepared with.
+//
+// Every request of the library (diffusivity.hpp, bruteforce.hpp,
+// observables.hpp, sweep.hpp) is a RunSettings, and the long-excursion ones an
+// ExcursionSettings too, plus the fields of its own; each setting is declared
+// once, with its default, in one of these structs, and described once, in the
+// visit_settings() beside it (setting.hpp).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "engine.hpp"
+#include "inclusion.hpp"
+#include "params.hpp"
+#include "pdmp.hpp"
+#include "runner.hpp"
+#include "setting.hpp"
+
+namespace stickslip {
+
+/// The settings of every run: model, engine, run control and interval level.
+/// Of the run control, seed and threads are settings; the progress callback,
+/// the cancel flag and the process split are set by the caller.
+struct RunSettings {
+    ModelParams params;
+    EngineSettings engine;
+    RunControl control;
+    double level = 0.95; ///< confidence level of the intervals, in (0, 1)
+};
+
+template <class Visitor>
+void visit_settings(RunSettings& r, Visitor&& v) {
+    visit_settings(r.params, v);
+    visit_settings(r.engine, v);
+    v(SeedValue{r.control.seed}, SettingInfo{"seed", "", "random seed (64-bit); same seed, same result"});
+    v(r.control.threads, SettingInfo{"threads", "", "worker threads; 0 = all cores"});
+    v(r.level, SettingInfo{"level", "", "confidence level of the intervals, in (0, 1)"});
+}
+
+/// The settings of runs over long excursions.
+struct ExcursionSettings {
+    std::uint64_t excursions = 10000; ///< number of long excursions, >= 2 (a sweep: per point)
+    bool allow_capped = false;        ///< if false, capped excursions make the result an error
+};
+
+template <class Visitor>
+void visit_settings(ExcursionSettings& e, Visitor&& v) {
+    v(e.excursions, SettingInfo{"excursions", "", "number N of long excursions (>= 2; a sweep: per point)"});
+    v(e.allow_capped, SettingInfo{"allow-capped", "",
+                                  "report a result even if some excursions hit --max-steps (they are dropped; biased)"});
+}
+
+/// Engine details resolved for a run, reported alongside the estimates.
+struct ResolvedEngine {
+    std::string stop_rule;   ///< "bridge" | "stuck" | "velocity-levels" (white) | "exact" (PDMP)
+    double lattice_bound = 0; ///< PDMP: L [s^-1/2]
+    int lattice_points = 0;   ///< PDMP: 2N+1
+    double truncated_mass = 0;///< PDMP: stationary Gaussian mass of X beyond +-L
+    double jump_rate = 0;     ///< PDMP: Lambda [s^-1]
+    double white_level = 0;   ///< white noise: regeneration level c [m/s]
+    double upper_threshold = 0, lower_threshold = 0; ///< x*, x-* [s^-1/2] (colored)
+};
+
+/// The engine of a run, prepared once: the chosen engine's constants (the
+/// other engine's are left empty) and the details a report shows.
+struct PreparedEngine {
+    ModelParams params;
+    EngineSettings settings;
+    InclusionConstants inclusion{};
+    PdmpConstants pdmp{};
+    ResolvedEngine resolved;
+};
+
+/// Validates the model and the engine settings together (InvalidParameter on
+/// the first problem) and builds the engine's constants.
+PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s);
+
+/// The resolved details alone: prepare_engine(p, s).resolved.
+ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s);
+
+/// Checks the settings every run shares (the model with the engine, the level,
+/// the thread count; InvalidParameter on the first problem) and prepares the
+/// engine: the one validation of a run's shared settings.
+PreparedEngine prepare(const RunSettings& r);
+/// prepare(r), for its checks alone.
+void validate(const RunSettings& r);
+/// Checks the number of excursions (>= 2).
+void validate(const ExcursionSettings& e);
+
+} // namespace stickslip

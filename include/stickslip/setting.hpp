@@ -1,0 +1,142 @@
+// stickslip/setting.hpp -- one user setting: its name, unit and help, and its
+// text form.
+//
+// Every setting a user can give (a model parameter, an engine setting, a run
+// option, a field of a request) is declared once, as a struct member with its
+// default, and described once, in that struct's visit_settings() right below
+// it: the name, the unit and a one-line help that states the valid range. The
+// name is the command-line flag (--name), the config-file key and, with '-'
+// read as '_', the Python keyword. The command line, config files,
+// --print-config and the Python module are all generated from these
+// descriptions, and every value they take goes through the text conversions
+// below, so a value is parsed, and a bad one refused, with the same words
+// everywhere (InvalidParameter names the setting). Checks that involve more
+// than one setting live in the struct's validate().
+//
+// A visitor is any callable `v(field, info)` taking, as `field`, a reference to
+// a double, std::uint64_t, unsigned, int, bool or enum member, or one of the
+// small reference wrappers below for settings whose text form is special.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace stickslip {
+
+/// Thrown for invalid input. `parameter()` is the name of the offending
+/// parameter as spelled on the command line (e.g. "friction", "dt").
+class InvalidParameter : public std::invalid_argument {
+public:
+    InvalidParameter(std::string parameter, const std::string& message)
+        : std::invalid_argument(message), parameter_(std::move(parameter)) {}
+    const std::string& parameter() const noexcept { return parameter_; }
+
+private:
+    std::string parameter_;
+};
+
+/// How a setting is named and explained wherever it appears.
+struct SettingInfo {
+    const char* name; ///< "max-steps": flag --max-steps, config key max-steps, Python max_steps
+    const char* unit; ///< SI unit ("s", "m s^-2", ...); "" when it has none
+    const char* help; ///< one line: what it is and its valid range
+    /// The value's form in --help when it is not the type's ("NUM|inf"); nullptr: setting_form().
+    const char* form = nullptr;
+};
+
+/// A number that may be left unset (stored as NaN): its default then depends
+/// on other settings (e.g. a start velocity of one velocity unit). Text: empty
+/// when unset.
+struct OptionalNumber {
+    double& value;
+};
+
+/// A random seed: a decimal integer in [0, 2^64), never rounded through a double.
+struct SeedValue {
+    std::uint64_t& value;
+};
+
+/// A list of numbers. Text: comma-separated, or lo:hi:n for n values from lo
+/// to hi, spaced evenly in log (lo, hi > 0) or, when `linear`, evenly.
+struct NumberList {
+    std::vector<double>& values;
+    bool linear = false;
+};
+
+/// A range lo,hi [m/s]; lo == hi == 0 means "automatic". Text: "lo,hi", or
+/// empty for automatic.
+struct NumberRange {
+    double& lo;
+    double& hi;
+};
+
+// ---- text forms -------------------------------------------------------------
+// format_setting gives the shortest text that reads back to the same value
+// (so `--print-config` then `--config` reproduces a run bit for bit);
+// parse_setting reads it, throwing InvalidParameter(info.name, message) for
+// anything that is not a value of the setting's type. Range checks are the
+// struct's validate().
+
+std::string format_setting(double x);
+std::string format_setting(std::uint64_t x);
+std::string format_setting(unsigned x);
+std::string format_setting(int x);
+std::string format_setting(bool x);
+std::string format_setting(const OptionalNumber& x);
+std::string format_setting(const SeedValue& x);
+std::string format_setting(const NumberList& x);
+std::string format_setting(const NumberRange& x);
+
+void parse_setting(const SettingInfo& info, const std::string& text, double& out);
+void parse_setting(const SettingInfo& info, const std::string& text, std::uint64_t& out);
+void parse_setting(const SettingInfo& info, const std::string& text, unsigned& out);
+void parse_setting(const SettingInfo& info, const std::string& text, int& out);
+void parse_setting(const SettingInfo& info, const std::string& text, bool& out);
+void parse_setting(const SettingInfo& info, const std::string& text, const OptionalNumber& out);
+void parse_setting(const SettingInfo& info, const std::string& text, const SeedValue& out);
+void parse_setting(const SettingInfo& info, const std::string& text, const NumberList& out);
+void parse_setting(const SettingInfo& info, const std::string& text, const NumberRange& out);
+
+/// What --help shows as the value's form: NUM, INT, NUM|inf, LIST, LO,HI, ...
+const char* setting_form(const double&);
+const char* setting_form(const std::uint64_t&);
+const char* setting_form(const unsigned&);
+const char* setting_form(const int&);
+const char* setting_form(const bool&);
+const char* setting_form(const OptionalNumber&);
+const char* setting_form(const SeedValue&);
+const char* setting_form(const NumberList&);
+const char* setting_form(const NumberRange&);
+
+/// n values from lo to hi, spaced evenly in log (lo, hi > 0) or, when linear,
+/// evenly; the endpoints are exact. What "lo:hi:n" means in a NumberList.
+std::vector<double> spaced_values(double lo, double hi, std::uint64_t n, bool linear = false);
+
+/// A visitor that passes every setting on to `inner` except those named in
+/// `skipped` (e.g. a sweep takes --noise and --tau as lists, not as the model's
+/// numbers). Make it in the call that uses it: it refers to the list.
+template <class Visitor>
+struct SkipSettings {
+    Visitor& inner;
+    std::initializer_list<std::string_view> skipped;
+
+    template <class Field>
+    void operator()(Field&& field, const SettingInfo& info) const {
+        for (auto s : skipped)
+            if (s == info.name) return;
+        inner(std::forward<Field>(field), info);
+    }
+};
+
+template <class Visitor>
+SkipSettings<Visitor> skip_settings(Visitor& v, std::initializer_list<std::string_view> skipped) {
+    return SkipSettings<Visitor>{v, skipped};
+}
+
+} // namespace stickslip

@@ -1,0 +1,16 @@
+// stickslip/version.hpp -- which stickslip this is: the release version and,
+// when the library was built from a git checkout, the source revision. Every
+// JSON report names both, so a result can be traced to the code that made it.
+#pragma once
+
+namespace stickslip {
+
+/// The release version, "MAJOR.MINOR.PATCH" (STICKSLIP_VERSION_STRING).
+const char* version();
+
+/// The source revision the library was built from: the commit (12 hex digits)
+/// followed by "-dirty" when the checkout had uncommitted changes; "" when the
+/// build did not come from a git checkout.
+const char* source_revision();
+
+} // namespace stickslip

@@ -1,0 +1,356 @@
+// The library's request structures, bound as they are, and the one entry
+// point that runs any of them.
+//
+// A request is built from its C++ defaults; the Python functions set only the
+// keywords they are given, through set(name, value), which writes the value
+// as text and reads it with the library's own parser (setting.hpp): every
+// default, range check and error message is the library's, exactly as on the
+// command line. settings() describes every setting (name, unit, help,
+// default), from which the Python layer writes each function's signature and
+// docstring.
+//
+// Running: the computation runs on a helper thread with the GIL released,
+// while the calling thread wakes every 50 ms to run Python's signal handlers.
+// When a handler raises (KeyboardInterrupt), the run's cancel flag is set, the
+// workers stop within one sample, and the exception is re-raised. The library
+// reports progress through RunControl::progress on whichever worker merged a
+// block; with progress=True the waiting thread prints it on sys.stderr.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <future>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <type_traits>
+
+#include "bindings.hpp"
+#include "stickslip/bruteforce.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/observables.hpp"
+#include "stickslip/sweep.hpp"
+#include "stickslip/white_noise.hpp"
+
+namespace stickslip::python {
+
+namespace {
+
+// ---- the settings as Python values ---------------------------------------------------
+
+/// A setting's value as a Python object (the defaults of the signatures):
+/// None for the settings whose default depends on others or is a list.
+template <class Field>
+py::object python_value(const Field& f) {
+    using T = std::decay_t<Field>;
+    if constexpr (std::is_same_v<T, bool>) return py::bool_(f);
+    else if constexpr (std::is_same_v<T, double>) return py::float_(f);
+    else if constexpr (std::is_integral_v<T>) return py::int_(f);
+    else if constexpr (std::is_same_v<T, SeedValue>) return py::int_(f.value);
+    else if constexpr (std::is_enum_v<T>) return py::str(format_setting(f));
+    else return py::none(); // OptionalNumber, NumberList, NumberRange
+}
+
+/// The Python type of a setting, as its docstring names it.
+template <class Field>
+const char* python_type(const Field&) {
+    using T = std::decay_t<Field>;
+    if constexpr (std::is_same_v<T, bool>) return "bool";
+    else if constexpr (std::is_same_v<T, double>) return "float";
+    else if constexpr (std::is_integral_v<T> || std::is_same_v<T, SeedValue>) return "int";
+    else if constexpr (std::is_enum_v<T>) return "str";
+    else if constexpr (std::is_same_v<T, OptionalNumber>) return "float or None";
+    else if constexpr (std::is_same_v<T, NumberList>) return "sequence of float or None";
+    else return "(float, float) or None"; // NumberRange
+}
+
+/// Is `field` a member of the request's model parameters? Those come from the
+/// `params` argument, not from keywords.
+template <class Request, class Field>
+bool in_params(const Request& r, const Field& field) {
+    if constexpr (std::is_same_v<Field, double>) {
+        const auto* p = reinterpret_cast<const char*>(&field);
+        const auto* lo = reinterpret_cast<const char*>(&r.params);
+        return p >= lo && p < lo + sizeof(ModelParams);
+    }
+    return false;
+}
+
+std::string keyword_of(const char* name) {
+    std::string k = name;
+    for (char& c : k)
+        if (c == '-') c = '_';
+    return k;
+}
+
+/// The keyword settings of a request, in order: (keyword, flag, unit, help,
+/// default value, default text, form).
+template <class Request>
+py::list describe() {
+    Request r;
+    py::list out;
+    visit_settings(r, [&](auto&& field, const SettingInfo& info) {
+        if (in_params(r, field)) return;
+        py::dict d;
+        d["keyword"] = keyword_of(info.name);
+        d["flag"] = std::string("--") + info.name;
+        d["unit"] = info.unit;
+        d["help"] = info.help;
+        d["default"] = python_value(field);
+        d["default_text"] = format_setting(field);
+        d["form"] = info.form ? info.form : setting_form(field);
+        d["type"] = python_type(field);
+        out.append(d);
+    });
+    return out;
+}
+
+/// request.set(keyword, value): the value read by the library's parser; None
+/// restores the default.
+template <class Request>
+void set_setting(Request& r, const std::string& keyword, const py::object& value) {
+    Request defaults;
+    bool found = false;
+    std::string default_text;
+    std::size_t k = 0, index = 0;
+    visit_settings(defaults, [&](auto&& field, const SettingInfo& info) {
+        if (!in_params(defaults, field) && keyword_of(info.name) == keyword) {
+            found = true;
+            index = k;
+            default_text = format_setting(field);
+        }
+        ++k;
+    });
+    if (!found) throw py::type_error("unexpected keyword argument '" + keyword + "'");
+    const std::string text = value.is_none() ? default_text : setting_text(value);
+    k = 0;
+    visit_settings(r, [&](auto&& field, const SettingInfo& info) {
+        if (k++ == index) parse_setting(info, text, field);
+    });
+}
+
+/// request.get(keyword): the value as a Python object (lists as lists, unset
+/// optional numbers as None).
+template <class Request>
+py::object get_setting(Request& r, const std::string& keyword) {
+    py::object out;
+    bool found = false;
+    visit_settings(r, [&](auto&& field, const SettingInfo& info) {
+        if (found || in_params(r, field) || keyword_of(info.name) != keyword) return;
+        found = true;
+        using T = std::decay_t<decltype(field)>;
+        if constexpr (std::is_same_v<T, NumberList>) out = py::cast(field.values);
+        else if constexpr (std::is_same_v<T, NumberRange>)
+            out = field.lo == 0 && field.hi == 0 ? py::object(py::none()) : py::object(py::make_tuple(field.lo, field.hi));
+        else if constexpr (std::is_same_v<T, OptionalNumber>)
+            out = std::isnan(field.value) ? py::object(py::none()) : py::object(py::float_(field.value));
+        else out = python_value(field);
+    });
+    if (!found) throw py::attribute_error("no setting '" + keyword + "'");
+    return out;
+}
+
+// ---- running --------------------------------------------------------------------------
+
+/// Shared between the computation (progress callbacks, any thread) and the
+/// waiting Python thread.
+struct Monitor {
+    std::atomic<bool> cancel{false};
+    std::mutex mutex;
+    std::uint64_t done = 0, total = 0;
+    double seconds = 0;
+    std::string label;
+    bool seen = false;
+
+    std::function<bool(const Progress&)> callback(std::string what) {
+        return [this, what = std::move(what)](const Progress& p) {
+            {
+                std::lock_guard<std::mutex> lock(mutex);
+                done = p.done;
+                total = p.total;
+                seconds = p.seconds;
+                label = what;
+                seen = true;
+            }
+            return !cancel.load();
+        };
+    }
+
+    /// One progress line on sys.stderr (needs the GIL). Errors are ignored.
+    void print(bool final) {
+        std::uint64_t d, t;
+        double s;
+        std::string what;
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!seen) return;
+            d = done;
+            t = total;
+            s = seconds;
+            what = label;
+        }
+        const double rate = s > 0 ? static_cast<double>(d) / s : 0.0;
+        const double left = rate > 0 ? static_cast<double>(t - d) / rate : 0.0;
+        char buf[400];
+        std::snprintf(buf, sizeof buf, "\r%llu/%llu %s, %.1f s elapsed, ~%.0f s left   %s",
+                      static_cast<unsigned long long>(d), static_cast<unsigned long long>(t), what.c_str(), s, left,
+                      final ? "\n" : "");
+        try {
+            py::object err = py::module_::import("sys").attr("stderr");
+            if (err.is_none()) return;
+            err.attr("write")(std::string(buf));
+            err.attr("flush")();
+        } catch (py::error_already_set&) {
+        }
+    }
+};
+
+/// Runs work() on a helper thread with the GIL released; Ctrl-C (any Python
+/// exception raised by a signal handler) cancels it through `mon` and is
+/// re-raised. Called with the GIL held.
+template <class Result>
+Result run_interruptible(std::function<Result()> work, Monitor& mon, bool show_progress) {
+    std::optional<py::error_already_set> interrupted;
+    std::future<Result> fut;
+    {
+        py::gil_scoped_release nogil;
+        fut = std::async(std::launch::async, std::move(work));
+        auto last_print = std::chrono::steady_clock::now();
+        while (fut.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+            py::gil_scoped_acquire gil;
+            if (!interrupted && PyErr_CheckSignals() != 0) {
+                interrupted.emplace(); // fetches (and clears) the pending exception
+                mon.cancel = true;
+            }
+            const auto now = std::chrono::steady_clock::now();
+            if (show_progress && !interrupted && now - last_print >= std::chrono::milliseconds(500)) {
+                last_print = now;
+                mon.print(false);
+            }
+        }
+    }
+    if (show_progress && interrupted) {
+        try {
+            py::module_::import("sys").attr("stderr").attr("write")("\n");
+        } catch (py::error_already_set&) {
+        }
+    }
+    try {
+        Result r = fut.get();
+        if (interrupted) throw *interrupted; // finished before it could stop: still honour Ctrl-C
+        if (show_progress) mon.print(true);
+        return r;
+    } catch (const RunCancelled&) {
+        if (interrupted) throw *interrupted;
+        throw;
+    }
+}
+
+/// What the progress line counts for each request.
+const char* samples_of(const DiffusivityRequest&) { return "excursions"; }
+const char* samples_of(const BruteForceRequest&) { return "trajectories"; }
+const char* samples_of(const StationaryDensityRequest&) { return "excursions"; }
+const char* samples_of(const CorrelationRequest&) { return "excursions"; }
+const char* samples_of(const TransientRequest&) { return "trajectories"; }
+const char* samples_of(const TrajectoryRequest&) { return "paths"; }
+
+template <class Request, class Result>
+Result run_request(Request req, Result (*compute)(const Request&), bool progress) {
+    Monitor mon;
+    req.control.progress_interval = 0.0; // check the cancel flag after every merged block
+    req.control.progress = mon.callback(samples_of(req));
+    req.control.cancel = &mon.cancel; // stops the workers within one sample
+    Result r = run_interruptible<Result>([&req, compute] { return compute(req); }, mon, progress);
+    r.request.control.progress = nullptr; // it points to `mon`, about to go
+    r.request.control.cancel = nullptr;
+    return r;
+}
+
+SweepResult run_sweep(SweepRequest req, bool progress) {
+    Monitor mon;
+    req.control.progress_interval = 0.0;
+    req.point_progress = [&mon](std::size_t k, std::size_t n, double noise, double tau) {
+        char what[160];
+        std::snprintf(what, sizeof what, "excursions (point %zu/%zu: noise %g, tau %g)", k + 1, n, noise, tau);
+        return mon.callback(what);
+    };
+    req.control.cancel = &mon.cancel; // every point's run stops within one sample
+    SweepResult r = run_interruptible<SweepResult>([&req] { return compute_sweep(req); }, mon, progress);
+    r.request.point_progress = nullptr; // it points to `mon`, about to go
+    r.request.control.cancel = nullptr;
+    return r;
+}
+
+/// Binds one request type: construction from the defaults, set/get, the
+/// model parameters, validate(), the settings' descriptions.
+template <class Request>
+void bind_request(py::module_& m, const char* name, const char* doc) {
+    py::class_<Request>(m, name, doc)
+        .def(py::init<>(), "A request with every setting at its default (the CLI's).")
+        .def("set", &set_setting<Request>, py::arg("keyword"), py::arg("value"),
+             "Set one setting from a Python value (number, bool, str, sequence; None restores the default), read "
+             "by the library's parser: bad values raise InvalidParameterError with the CLI's message.")
+        .def("get", &get_setting<Request>, py::arg("keyword"), "The current value of one setting.")
+        .def_property(
+            "params", [](const Request& r) { return r.params; },
+            [](Request& r, const ModelParams& p) { r.params = p; }, "The model parameters (Params).")
+        .def("validate", [](const Request& r) { validate(r); },
+             "Check the request as a run would (InvalidParameterError on the first problem).")
+        .def_static("settings", &describe<Request>,
+                    "The keyword settings, in order: dicts with 'keyword', 'flag', 'unit', 'help', 'default', "
+                    "'default_text', 'form'.");
+}
+
+} // namespace
+
+void bind_requests(py::module_& m) {
+    bind_request<DiffusivityRequest>(m, "DiffusivityRequest", "The settings of a diffusivity run.");
+    bind_request<BruteForceRequest>(m, "BruteForceRequest", "The settings of a brute-force run.");
+    bind_request<StationaryDensityRequest>(m, "DensityRequest", "The settings of a stationary density run.");
+    bind_request<CorrelationRequest>(m, "CorrelationRequest", "The settings of an autocorrelation run.");
+    bind_request<TransientRequest>(m, "MomentsRequest", "The settings of a transient moments run.");
+    bind_request<TrajectoryRequest>(m, "TrajectoryRequest", "The settings of a sample-path run.");
+    bind_request<SweepRequest>(m, "SweepRequest", "The settings of a sweep over noise and tau.");
+    bind_request<WhiteNoiseRequest>(m, "WhiteNoiseRequest", "The settings of the exact white-noise references.");
+
+    const char* run_doc = "Run a request (the GIL is released; Ctrl-C raises KeyboardInterrupt; progress=True prints "
+                          "a progress line on sys.stderr) and return its result.";
+    m.def(
+         "run", [](const DiffusivityRequest& r, bool p) { return run_request(r, &compute_diffusivity, p); },
+         py::arg("request"), py::arg("progress") = false, run_doc)
+        .def(
+            "run", [](const BruteForceRequest& r, bool p) { return run_request(r, &compute_bruteforce, p); },
+            py::arg("request"), py::arg("progress") = false)
+        .def(
+            "run",
+            [](const StationaryDensityRequest& r, bool p) { return run_request(r, &compute_stationary_density, p); },
+            py::arg("request"), py::arg("progress") = false)
+        .def(
+            "run", [](const CorrelationRequest& r, bool p) { return run_request(r, &compute_correlation, p); },
+            py::arg("request"), py::arg("progress") = false)
+        .def(
+            "run", [](const TransientRequest& r, bool p) { return run_request(r, &compute_transient, p); },
+            py::arg("request"), py::arg("progress") = false)
+        .def(
+            "run", [](const TrajectoryRequest& r, bool p) { return run_request(r, &compute_trajectory, p); },
+            py::arg("request"), py::arg("progress") = false)
+        .def(
+            "run", [](const SweepRequest& r, bool p) { return run_sweep(r, p); }, py::arg("request"),
+            py::arg("progress") = false)
+        .def(
+            "run",
+            [](const WhiteNoiseRequest& r, bool) {
+                py::gil_scoped_release nogil; // quadratures and closed forms: quick, nothing to interrupt
+                return compute_white_noise(r);
+            },
+            py::arg("request"), py::arg("progress") = false);
+
+    m.def(
+        "spaced_values",
+        [](double lo, double hi, std::uint64_t n, bool linear) { return spaced_values(lo, hi, n, linear); },
+        py::arg("lo"), py::arg("hi"), py::arg("n"), py::arg("linear") = false,
+        "n values from lo to hi, log-spaced (or evenly, linear=True), endpoints exact: what lo:hi:n means.");
+}
+
+} // namespace stickslip::python

@@ -1,0 +1,83 @@
+"""The keyword functions of the package (stickslip.diffusivity, ...), made
+from the library's request structures: one function per request, whose
+keywords, defaults, units and help all come from the request's own settings
+(Request.settings()), and whose values are read by the library's parser, so
+nothing is restated here.
+"""
+import inspect as _inspect
+
+from ._core import Params, run
+
+
+_PARAMS_DOC = f"""\
+    params : Params, optional
+        Physical parameters, SI units (see help(Params)); default
+        {Params()!r},
+        the paper's Fig. 2 case. A dict of Params fields is accepted too."""
+
+_PROGRESS_DOC = """\
+    progress : bool
+        Print a progress line on sys.stderr (default False)."""
+
+_RAISES_DOC = """\
+    Raises
+    ------
+    InvalidParameterError (ValueError)
+        Invalid input; str(e) is the CLI's "--<parameter>: <message>".
+    CappedExcursionsError (RuntimeError)
+        Some excursions hit `max_steps` (unless allow_capped=True).
+    KeyboardInterrupt
+        Ctrl-C (or any exception raised by a signal handler) while it runs: the
+        run stops within one block of 64 samples per thread."""
+
+
+def params_of(params):
+    if params is None:
+        return Params()
+    if isinstance(params, Params):
+        return params
+    if isinstance(params, dict):
+        return Params(**params)
+    raise TypeError(f"params must be a stickslip.Params (or a dict of its fields), got {type(params).__name__}")
+
+
+def _setting_doc(s):
+    unit = f" [{s['unit']}]" if s["unit"] else ""
+    default = f" (default {s['default_text']})" if s["default_text"] else ""
+    kind = s["type"]
+    if s["form"] and "|" in s["form"] and kind == "str":  # a choice: {"a", "b"}
+        kind = "{" + ", ".join(f'"{c}"' for c in s["form"].split("|")) + "}"
+    return f"    {s['keyword']} : {kind}\n        {s['help']}{unit}{default}."
+
+
+def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC):
+    """The keyword function `name`: Request() from its defaults, the keywords
+    given set through the library's parser, then run()."""
+    settings = request.settings()
+
+    def call(params=None, **keywords):
+        req = request()
+        req.params = params_of(params)
+        progress = bool(keywords.pop("progress", False))
+        for key, value in keywords.items():
+            try:
+                req.set(key, value)
+            except TypeError as e:
+                if str(e).startswith("unexpected keyword"):
+                    raise TypeError(f"{name}() got an {e}") from None
+                raise
+        return run(req, progress)
+
+    kw = _inspect.Parameter.KEYWORD_ONLY
+    call.__signature__ = _inspect.Signature(
+        [_inspect.Parameter("params", _inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None)]
+        + [_inspect.Parameter(s["keyword"], kw, default=s["default"]) for s in settings]
+        + [_inspect.Parameter("progress", kw, default=False)])
+    call.__name__ = call.__qualname__ = name
+    call.__module__ = "stickslip"
+    call.__doc__ = (summary + "\n\n    Parameters\n    ----------\n" + params_doc + "\n"
+                    + "\n".join(_setting_doc(s) for s in settings) + "\n" + _PROGRESS_DOC
+                    + "\n\n    Returns\n    -------\n" + returns + "\n\n" + _RAISES_DOC + example)
+    return call
+
+

@@ -1,0 +1,216 @@
+#include "report_common.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "format.hpp"
+#include "stickslip/version.hpp"
+
+namespace stickslip::detail {
+
+// ---- JSON -------------------------------------------------------------------
+
+ordered_json json_number(double x) {
+    if (std::isnan(x)) return nullptr;
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    return x;
+}
+
+ordered_json estimate_json(const Estimate& e, bool with_ci) {
+    ordered_json j;
+    j["value"] = e.value;
+    j["stderr"] = e.std_error;
+    if (with_ci) {
+        j["ci"] = {e.lo, e.hi};
+        j["level"] = e.level;
+    }
+    return j;
+}
+
+ordered_json series_point(const char* key, double where, const Estimate& e) {
+    ordered_json j;
+    j[key] = where;
+    j["value"] = json_number(e.value);
+    j["stderr"] = json_number(e.std_error);
+    j["ci"] = {json_number(e.lo), json_number(e.hi)};
+    return j;
+}
+
+ordered_json long_excursion_json(const LongExcursionEstimates& e) {
+    ordered_json j;
+    j["diffusivity"] = estimate_json(e.diffusivity);
+    j["mobility"] = estimate_json(e.mobility);
+    j["mean_duration"] = estimate_json(e.mean_duration, false);
+    j["completed"] = e.excursions;
+    return j;
+}
+
+ordered_json report_head(const char* quantity, const EngineSettings& s, const char* estimator,
+                         const std::string* stop_rule) {
+    ordered_json j;
+    if (quantity) j["quantity"] = quantity;
+    j["engine"] = to_string(s.engine);
+    if (estimator) j["estimator"] = estimator;
+    if (stop_rule) j["stop_rule"] = *stop_rule;
+    return j;
+}
+
+ordered_json params_json(const RunSettings& r) {
+    const ModelParams& p = r.params;
+    ordered_json j;
+    j["friction"] = p.friction;
+    j["noise"] = p.noise;
+    j["tau"] = p.tau;
+    j["relaxation"] = json_number(p.relaxation);
+    j["bias"] = p.bias;
+    if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid;
+    else j["dt"] = r.engine.dt;
+    j["seed"] = r.control.seed;
+    return j;
+}
+
+ordered_json nondimensional_json(const RunSettings& r) {
+    const ModelParams nd = to_nondimensional(r.params);
+    const Scales sc = scales_of(r.params);
+    ordered_json j;
+    j["tau"] = nd.tau;
+    j["relaxation"] = json_number(nd.relaxation);
+    j["bias"] = nd.bias;
+    if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid / sc.noise_level;
+    else j["dt"] = r.engine.dt / sc.time;
+    j["time_unit"] = sc.time;
+    j["length_unit"] = sc.length;
+    j["velocity_unit"] = sc.velocity;
+    j["diffusivity_unit"] = sc.diffusivity;
+    return j;
+}
+
+ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) {
+    ordered_json j;
+    if (!r.params.white()) {
+        j["upper_threshold"] = e.upper_threshold;
+        j["lower_threshold"] = e.lower_threshold;
+    }
+    if (r.engine.engine == Engine::Pdmp) {
+        j["lattice_bound"] = e.lattice_bound;
+        j["lattice_points"] = e.lattice_points;
+        j["truncated_mass"] = e.truncated_mass;
+        j["jump_rate"] = e.jump_rate;
+    } else if (r.params.white()) {
+        j["white_level"] = e.white_level;
+    }
+    j["max_work_per_excursion"] = r.engine.max_work_per_excursion;
+    return j;
+}
+
+ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
+    ordered_json work;
+    work[s.engine == Engine::Pdmp ? "events" : "steps"] = t.work;
+    work["seconds"] = t.seconds;
+    work["threads"] = t.threads;
+    return work;
+}
+
+void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings) {
+    if (work) j["work"] = *work;
+    j["warnings"] = warnings;
+    j["version"] = version();
+    if (*source_revision()) j["revision"] = source_revision();
+}
+
+void append_members(ordered_json& into, const ordered_json& from) {
+    for (auto it = from.begin(); it != from.end(); ++it) into[it.key()] = it.value();
+}
+
+std::string dump(const ordered_json& j, int indent) { return j.dump(indent) + "\n"; }
+
+// ---- tables -------------------------------------------------------------------
+
+std::string relaxation_text(double relaxation) {
+    return std::isinf(relaxation) ? std::string("inf") : format_number(relaxation) + " s";
+}
+
+std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra) {
+    std::ostringstream os;
+    os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
+       << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : "dt " + format_number(s.dt) + " s")
+       << extra << "\n";
+    return os.str();
+}
+
+std::string param_line(const ModelParams& p, const EngineSettings& s) {
+    std::ostringstream os;
+    os << "friction " << format_number(p.friction) << " m/s^2, noise " << format_number(p.noise) << " m^2/s^3, tau "
+       << format_number(p.tau) << " s, relaxation " << relaxation_text(p.relaxation) << ", bias "
+       << format_number(p.bias) << " m/s^2\n";
+    const ModelParams nd = to_nondimensional(p);
+    const Scales sc = scales_of(p);
+    os << "nondimensional: tau' " << format_number(nd.tau) << ", relaxation' "
+       << (std::isinf(nd.relaxation) ? std::string("inf") : format_number(nd.relaxation)) << ", bias' "
+       << format_number(nd.bias);
+    if (s.engine == Engine::Pdmp) os << ", grid' " << format_number(s.grid / sc.noise_level);
+    else os << ", dt' " << format_number(s.dt / sc.time);
+    os << "  (time unit " << format_number(sc.time) << " s, length unit " << format_number(sc.length) << " m)\n";
+    return os.str();
+}
+
+std::string work_line(std::uint64_t samples, const char* what, std::uint64_t seed, const EngineSettings& s,
+                      const RunTotals& t, const std::string& extra) {
+    std::ostringstream os;
+    os << samples << " " << what << " (seed " << seed << "), " << t.work
+       << (s.engine == Engine::Pdmp ? " events" : " steps") << ", " << format_number(t.seconds, 3) << " s on "
+       << t.threads << " thread" << (t.threads > 1 ? "s" : "") << extra << "\n";
+    return os.str();
+}
+
+std::string notes(const std::vector<std::string>& warnings) {
+    std::string s;
+    for (const auto& w : warnings) s += "note: " + w + "\n";
+    return s;
+}
+
+std::string table_head(double level) {
+    // Built with append: GCC 12 warns (-Wrestrict, a false positive) on " " + std::string.
+    std::string interval = "  ";
+    interval.append(format_number(100 * level, 3)).append("% interval");
+    char head[200];
+    std::snprintf(head, sizeof head, "%-14s %13s  %-13s %-25s  %-7s %11s\n", "quantity", "value", "+- stderr",
+                  interval.c_str() + 1, "unit", "nondim");
+    return head;
+}
+
+void table_row(std::ostringstream& os, const std::string& name, const Estimate& e, double unit,
+               const std::string& units, bool ci) {
+    char buf[256];
+    if (ci)
+        std::snprintf(buf, sizeof buf, "%-14s %13.6g  +- %-10.3g [%11.6g, %11.6g]  %-7s %11.6g\n", name.c_str(),
+                      e.value, e.std_error, e.lo, e.hi, units.c_str(), e.value / unit);
+    else
+        std::snprintf(buf, sizeof buf, "%-14s %13.6g  +- %-10.3g %27s  %-7s %11.6g\n", name.c_str(), e.value,
+                      e.std_error, "", units.c_str(), e.value / unit);
+    os << buf;
+}
+
+std::string estimate_cell(const Estimate& e) {
+    char buf[80];
+    std::snprintf(buf, sizeof buf, "%12.6g +- %-10.3g", e.value, e.std_error);
+    return buf;
+}
+
+// ---- CSV --------------------------------------------------------------------------
+
+std::string csv_number(double x) {
+    if (std::isnan(x)) return ""; // undefined (e.g. a slope from one point): an empty cell, never "nan"
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    return format_number(x, 12);
+}
+
+std::string csv_estimate_header(const std::string& name) {
+    return name + "," + name + "_stderr," + name + "_lo," + name + "_hi";
+}
+
+std::string csv_estimate(const Estimate& e) {
+    return csv_number(e.value) + "," + csv_number(e.std_error) + "," + csv_number(e.lo) + "," + csv_number(e.hi);
+}
+
+} // namespace stickslip::detail

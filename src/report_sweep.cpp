@@ -1,0 +1,116 @@
+// Reports of parameter sweeps (report.hpp): JSON, table, CSV.
+#include <cmath>
+#include <cstdio>
+
+#include "format.hpp"
+#include "report_common.hpp"
+#include "stickslip/report.hpp"
+
+namespace stickslip {
+
+using namespace detail;
+
+// ---- sweep ------------------------------------------------------------------------------------
+
+std::string to_json(const SweepResult& r, int indent) {
+    const auto& q = r.request;
+    const std::string estimator = to_string(q.estimator);
+    ordered_json j = report_head("sweep", q.engine, estimator.c_str(), nullptr);
+    auto params = params_json(q);
+    params.erase("noise");
+    params.erase("tau");
+    params["noises"] = q.noises;
+    params["taus"] = q.taus;
+    params["excursions"] = q.excursions;
+    params["level"] = q.level;
+    j["params"] = params;
+    ordered_json pts = ordered_json::array();
+    for (const auto& p : r.points) {
+        ModelParams mp = q.params;
+        mp.noise = p.noise;
+        mp.tau = p.tau;
+        const Scales sc = scales_of(mp);
+        ordered_json o;
+        o["noise"] = p.noise;
+        o["tau"] = p.tau;
+        o["stop_rule"] = p.stop_rule;
+        append_members(o, long_excursion_json(p.estimates));
+        o["slope"] = {{"value", json_number(p.slope.value)}, {"stderr", json_number(p.slope.std_error)}};
+        o["nondimensional"] = {{"tau", p.tau / sc.time},
+                               {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},
+                               {"mobility", p.estimates.mobility.value / sc.velocity},
+                               {"mean_duration", p.estimates.mean_duration.value / sc.time}};
+        o["work"] = {{q.engine.engine == Engine::Pdmp ? "events" : "steps", p.work}, {"seconds", p.seconds}};
+        pts.push_back(o);
+    }
+    j["points"] = pts;
+    ordered_json ex = ordered_json::array();
+    for (const auto& e : r.exponents) {
+        ordered_json o;
+        o["tau"] = e.tau;
+        o["exponent"] = estimate_json(e.exponent);
+        o["chi2_per_dof"] = json_number(e.chi2_per_dof);
+        o["points"] = e.points;
+        ex.push_back(o);
+    }
+    j["exponents"] = ex;
+    const ordered_json work = {{"seconds", r.seconds}};
+    add_report_tail(j, &work, r.warnings);
+    return dump(j, indent);
+}
+
+std::string to_table(const SweepResult& r) {
+    const auto& q = r.request;
+    std::ostringstream os;
+    os << engine_line("sweep", q.engine,
+                      ", " + std::to_string(q.excursions) + " excursions per point, estimator " +
+                          to_string(q.estimator));
+    os << "friction " << format_number(q.params.friction) << " m/s^2, relaxation "
+       << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias) << " m/s^2\n\n";
+    char buf[300];
+    std::snprintf(buf, sizeof buf, "%10s %10s  %-25s %-25s %-20s %-20s\n", "tau [s]", "noise", "D [m^2/s]",
+                  "M0 [m/s]", "E[t1] [s]", "dlogD/dlogGamma");
+    os << buf;
+    for (const auto& p : r.points) {
+        char slope[64];
+        if (std::isnan(p.slope.value)) std::snprintf(slope, sizeof slope, "%s", "-");
+        else std::snprintf(slope, sizeof slope, "%7.3f +- %-7.3f", p.slope.value, p.slope.std_error);
+        std::snprintf(buf, sizeof buf, "%10.4g %10.4g  %s %s %10.4g +- %-7.2g %s\n", p.tau, p.noise,
+                      estimate_cell(p.estimates.diffusivity).c_str(), estimate_cell(p.estimates.mobility).c_str(),
+                      p.estimates.mean_duration.value, p.estimates.mean_duration.std_error, slope);
+        os << buf;
+    }
+    if (!r.exponents.empty()) {
+        os << "\nfitted D ~ noise^alpha per tau (weighted least squares in log-log):\n";
+        for (const auto& e : r.exponents) {
+            const std::string chi2 = std::isnan(e.chi2_per_dof) ? "-" : format_number(e.chi2_per_dof, 2);
+            std::snprintf(buf, sizeof buf, "  tau %10.4g s: alpha = %.3f +- %.3f (chi2/dof %s over %d points)\n",
+                          e.tau, e.exponent.value, e.exponent.std_error, chi2.c_str(), e.points);
+            os << buf;
+        }
+    }
+    os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3) << " s (seed " << q.control.seed << ")\n"
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const SweepResult& r) {
+    std::ostringstream os;
+    os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
+       << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions\n";
+    for (const auto& p : r.points) {
+        ModelParams mp = r.request.params;
+        mp.noise = p.noise;
+        mp.tau = p.tau;
+        const Scales sc = scales_of(mp);
+        os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << csv_estimate(p.estimates.diffusivity) << ","
+           << csv_estimate(p.estimates.mobility) << "," << csv_number(p.estimates.mean_duration.value) << ","
+           << csv_number(p.estimates.mean_duration.std_error) << "," << csv_number(p.slope.value) << ","
+           << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time) << ","
+           << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << ","
+           << p.estimates.excursions << "\n";
+    }
+    return os.str();
+}
+
+} // namespace stickslip

@@ -1,0 +1,57 @@
+#include "stickslip/run.hpp"
+
+#include <cmath>
+
+#include "stickslip/estimators.hpp"
+
+namespace stickslip {
+
+PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s) {
+    PreparedEngine e;
+    e.params = p;
+    e.settings = s;
+    // Building an engine's constants validates the model, both step settings
+    // and how they fit together.
+    ResolvedEngine& r = e.resolved;
+    if (s.engine == Engine::Pdmp) {
+        e.pdmp = make_pdmp_constants(p, s);
+        const PdmpConstants& c = e.pdmp;
+        r.stop_rule = "exact";
+        r.lattice_bound = c.n_max * c.delta;
+        r.lattice_points = 2 * c.n_max + 1;
+        r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
+        r.jump_rate = c.rate;
+    } else {
+        e.inclusion = make_inclusion_constants(p, s);
+        const InclusionConstants& c = e.inclusion;
+        if (c.white) {
+            r.stop_rule = "velocity-levels";
+            r.white_level = c.level;
+        } else {
+            r.stop_rule = to_string(c.rule);
+        }
+    }
+    if (!p.white()) {
+        r.upper_threshold = p.upper_threshold();
+        r.lower_threshold = p.lower_threshold();
+    }
+    return e;
+}
+
+ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s) { return prepare_engine(p, s).resolved; }
+
+PreparedEngine prepare(const RunSettings& r) {
+    PreparedEngine e = prepare_engine(r.params, r.engine);
+    normal_quantile_two_sided(r.level); // validates the level
+    check_run_control(r.control);
+    return e;
+}
+
+void validate(const RunSettings& r) { prepare(r); }
+
+void validate(const ExcursionSettings& e) {
+    if (e.excursions < 2)
+        throw InvalidParameter("excursions", "excursions must be >= 2 (got " + std::to_string(e.excursions) + ")");
+}
+
+} // namespace stickslip

@@ -1,0 +1,57 @@
+#include "run_checks.hpp"
+
+#include <cmath>
+
+#include "format.hpp"
+#include "stickslip/diffusivity.hpp"
+
+namespace stickslip::detail {
+
+void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
+                               std::vector<std::string>& warnings) {
+    const ModelParams& p = e.params;
+    const EngineSettings& s = e.settings;
+    const ResolvedEngine& resolved = e.resolved;
+    const std::uint64_t done = totals.moments.count();
+    if (totals.capped > 0) {
+        const std::string msg = std::to_string(totals.capped) + " of " + std::to_string(totals.requested) +
+                                " excursions hit the runaway guard of " + std::to_string(s.max_work_per_excursion) +
+                                (s.engine == Engine::Pdmp ? " events" : " steps") +
+                                " and were dropped: the estimates are biased towards short excursions";
+        if (!allow_capped) throw CappedExcursions(msg + " (raise --max-steps, or pass --allow-capped)");
+        warnings.push_back(msg);
+    }
+    if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
+    if (s.engine == Engine::Pdmp && resolved.truncated_mass > 1e-9)
+        warnings.push_back("the pdmp lattice is truncated at L = " + format_number(resolved.lattice_bound) +
+                           " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
+                           format_number(resolved.truncated_mass) + "; use a finer grid");
+    if (done < few_excursions)
+        warnings.push_back("only " + std::to_string(done) +
+                           " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
+                           "themselves uncertain; use 10000 or more for reliable intervals");
+    const ModelParams nd = to_nondimensional(p);
+    if (s.engine == Engine::Pdmp && !p.white())
+        warnings.push_back("pdmp mean_duration runs between the lattice points beyond the thresholds: it exceeds the "
+                           "continuum E[t1] by a few % (about 12% at tau = 1 s, grid 0.125); halve --grid to see it "
+                           "converge. D and M0 are not affected");
+    if (p.white())
+        warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
+                           format_number(resolved.white_level) + " m/s, not a stick-slip excursion");
+    else if (nd.tau < 0.1 || (s.engine == Engine::Inclusion && s.dt > 0.01 * p.tau))
+        warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
+                           "is not << tau; report it with that caveat, not as a check");
+}
+
+void check_start(double x0, double v0) {
+    if (!std::isfinite(v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+    if (std::isinf(x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+}
+
+double default_start_noise(const PreparedEngine& e) {
+    if (e.params.white()) return 0.0;
+    if (e.settings.engine == Engine::Pdmp) return (e.pdmp.k_plus + 1) * e.pdmp.delta;
+    return e.params.upper_threshold();
+}
+
+} // namespace stickslip::detail

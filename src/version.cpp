@@ -1,0 +1,11 @@
+#include "stickslip/version.hpp"
+
+#include "stickslip/config.hpp"
+#include "stickslip_revision.h" // generated at build time by cmake/source_revision.cmake
+
+namespace stickslip {
+
+const char* version() { return STICKSLIP_VERSION_STRING; }
+const char* source_revision() { return STICKSLIP_SOURCE_REVISION; }
+
+} // namespace stickslip
