@@ -517,7 +517,7 @@ def main():
                    + (" --jobs %d" % args.jobs if args.jobs != 1 else "")
                    + (" --reps %d" % args.reps if args.reps else "")
                    + (" --cases " + args.cases if args.cases != ",".join(DEFAULT_CASES) else ""),
-        "cli_version": version, "cli": args.binary, "cli_sha256": binary_sha, "host": platform.node(), "cpus": os.cpu_count(), "jobs": args.jobs,
+        "cli_version": version, "cli": os.path.relpath(args.binary, REPO) if os.path.isabs(args.binary) else args.binary, "cli_sha256": binary_sha, "host": platform.node(), "cpus": os.cpu_count(), "jobs": args.jobs,
         "sizes": sizes, "seconds": total,
         "cpu_seconds_in_cli": sum(r["reference"]["seconds"] + sum(b["le"]["seconds"] + sum(x["seconds"] for x in b["bf"])
                                                                     for b in r["budgets"]) for r in results),

@@ -224,7 +224,7 @@ LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, doubl
     r.mobility = make_estimate(m0, s2 / (tbar * tbar), n, q, level);
     r.mean_duration = make_estimate(tbar, mu(0, 2), n, q, level);
     if (estimator == Estimator::RenewalReward) {
-        // Influence function (MODEL.md section 6): ((w^2 - D t) - 2 c w) / E[t].
+        // Influence function (theory.md, section 7): ((w^2 - D t) - 2 c w) / E[t].
         const double d = s2 / tbar;
         const double c = ew(1, 1) / tbar;
         const double var_g = (ew(4, 0) - s2 * s2) + d * d * mu(0, 2) + 4 * c * c * s2 - 2 * d * ew(2, 1) -

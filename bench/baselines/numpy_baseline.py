@@ -2,7 +2,7 @@
 """NumPy baseline: the Fig. 2 case, vectorised across excursions in flight.
 
 The way users write this computation today in Python. Inclusion scheme of
-MODEL.md section 5 (exact OU pair step, soft threshold, left-point U) with the
+docs/theory.md section 5 (exact OU pair step, soft threshold, left-point U) with the
 long excursions of section 6: rule Q stop test (while stuck at the start of the
 step, the excursion half ends if X's endpoint is beyond the opposite threshold
 or, both ends inside, with the Brownian-bridge probability

@@ -2,7 +2,7 @@
 // today": one thread, std::mt19937_64 + std::normal_distribution, no library.
 //
 // Fig. 2 case of the paper (friction 3.84, noise 5, tau 0.5, relaxation 0.067,
-// bias 0.342, SI units), inclusion scheme of MODEL.md section 5: exact OU pair
+// bias 0.342, SI units), inclusion scheme of docs/theory.md section 5: exact OU pair
 // step, soft threshold, left-point displacement; long excursions of section 6
 // with rule Q (Brownian-bridge stop test while stuck), the detecting step not
 // applied, each half excursion restarted exactly at its threshold state.
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    // Renewal-reward estimator and delta-method standard error (MODEL.md section 6).
+    // Renewal-reward estimator and delta-method standard error (docs/theory.md, section 7).
     const double n = static_cast<double>(n_exc);
     double su = 0, st = 0;
     for (std::uint64_t k = 0; k < n_exc; ++k) { su += U[k]; st += T[k]; }

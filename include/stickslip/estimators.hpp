@@ -1,5 +1,5 @@
 // stickslip/estimators.hpp -- renewal-reward estimators with delta-method
-// confidence intervals (MODEL.md section 6).
+// confidence intervals (theory.md, section 7).
 //
 // From N i.i.d. long excursions with displacements U_k [m] and durations t_k [s]:
 //   M0_hat = sum U / sum t                      (mobility, eq. 8)

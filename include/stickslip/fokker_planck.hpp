@@ -1,5 +1,5 @@
 // stickslip/fokker_planck.hpp -- numerical transient law of the white-noise
-// velocity diffusion, for any drift b (MODEL.md sections 1, 2, 7).
+// velocity diffusion, for any drift b (theory.md, sections 1, 2 and 8).
 //
 // The white-noise limit of the model (p.tau is ignored) is the diffusion
 //   dV = (b(V) - Delta sgn V) dt + sqrt(Gamma) dW,   b(v) = -v/tauL + gbar,
@@ -9,7 +9,7 @@
 // al.); this solver is their independent numerical check and the way to get
 // E[V(t)|v0], <V(t)V(0)> and p(v,t|v0) when b has drag or a bias.
 //
-// Method (all internally in the nondimensional variables of MODEL.md section 3):
+// Method (all internally in the nondimensional variables of theory.md, section 3):
 // * Space: finite volumes of equal width h on a truncated interval, with a cell
 //   face at v = 0 so the kink of the drift lies on a face, zero-flux ends.
 //   The flux between neighbouring cells is exponentially fitted: writing

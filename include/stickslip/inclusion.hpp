@@ -1,6 +1,6 @@
 // stickslip/inclusion.hpp -- the differential-inclusion (time-stepping) engine.
 //
-// One step of length h (MODEL.md section 5): draw the exact OU pair
+// One step of length h (theory.md, section 5): draw the exact OU pair
 // (mean of X over the step, X at its end), form the free-flight velocity
 // f = V + h (b(V) + a*xbar), and apply the resolvent of h*dphi, the soft
 // threshold V' = f - clamp(f, -h Delta, h Delta): the object sticks exactly

@@ -2,7 +2,7 @@
 //
 // The paper's X solves tau dX = -X dt + sqrt(2) dW (stationary variance 1/tau).
 // Over a step h the pair (mean of X over the step, X at the end of the step) is
-// exactly Gaussian, N(X0 m(h), Sigma(h)) (MODEL.md section 5). Computing it
+// exactly Gaussian, N(X0 m(h), Sigma(h)) (theory.md, section 5). Computing it
 // exactly, rather than Euler-stepping X, is what lets the time step be chosen by
 // the velocity dynamics alone; tau = 1e-5 s with h = 1e-4 s is a case the paper
 // runs, so the coefficients must stay accurate for h/tau anywhere in 1e-8..1e8:

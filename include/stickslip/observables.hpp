@@ -1,5 +1,5 @@
 // stickslip/observables.hpp -- velocity statistics from both engines, with
-// error bars (MODEL.md section 1, "quantities of interest").
+// error bars (theory.md, section 1, "quantities of interest").
 //
 // Stationary quantities (velocity density, atom at V = 0, autocorrelation,
 // normalised covariance) are renewal-reward ratios over long excursions: for a

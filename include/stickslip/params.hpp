@@ -1,11 +1,11 @@
 // stickslip/params.hpp -- the physical model's parameters, their validation and
-// the nondimensional system of MODEL.md section 3.
+// the nondimensional system of theory.md, section 3.
 //
-// Model (MODEL.md section 1): dV/dt + dphi(V) contains b(V) + force(t), with
+// Model (theory.md, section 1): dV/dt + dphi(V) contains b(V) + force(t), with
 // phi(v) = friction*|v| and b(v) = -v/relaxation + bias. The random force is
 // sqrt(noise/2)*X(t), X the paper's Ornstein-Uhlenbeck process with
 // E[X(0)X(t)] = exp(-|t|/tau)/tau, so that as tau -> 0 the force tends to a white
-// noise of intensity `noise` (MODEL.md section 2). tau = 0 is white noise.
+// noise of intensity `noise` (theory.md, section 2). tau = 0 is white noise.
 //
 // Everything is in SI units (m, s). The nondimensional system takes
 // friction = noise = 1: time unit noise/friction^2, length unit noise^2/friction^3.
@@ -49,7 +49,7 @@ void visit_settings(ModelParams& p, Visitor&& v) {
     v(p.bias, SettingInfo{"bias", "m s^-2", "constant force gbar, e.g. gravity on an incline"});
 }
 
-/// Units of the nondimensional system (MODEL.md section 3), in SI.
+/// Units of the nondimensional system (theory.md, section 3), in SI.
 struct Scales {
     double time;         ///< tau0 = noise/friction^2 [s]
     double length;       ///< u0 = noise^2/friction^3 [m]

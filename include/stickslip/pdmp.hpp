@@ -1,4 +1,4 @@
-// stickslip/pdmp.hpp -- the exact, event-driven PDMP engine (MODEL.md section 4).
+// stickslip/pdmp.hpp -- the exact, event-driven PDMP engine (theory.md, section 4).
 //
 // The OU noise X is replaced by a jump process on the lattice delta*Z cap [-L, L]
 // (rate Lambda = 2/(tau delta)^2; up with probability (1 - tau delta x/2)/2,

@@ -7,7 +7,7 @@ For white noise (tau = 0) the velocity is the diffusion
 (noise convention: intensity Gamma = noise, Fokker-Planck diffusion coefficient
 noise/2). These functions give its exact stationary law and, for pure dry
 friction (relaxation = inf, bias = 0), the closed forms of Touchette, Van der
-Straeten and Just (2010) restated in MODEL.md's variables; with drag or a bias
+Straeten and Just (2010) restated in the project's variables (docs/theory.md, section 8); with drag or a bias
 the transient quantities come from the Fokker-Planck solver (FokkerPlanck).
 ``params.tau`` is ignored throughout: these are the references of the
 white-noise limit of any tau. SI units everywhere.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Stop-rule check (MODEL.md section 6), outside the CI suite because it is slow:
+# Stop-rule check (docs/theory.md, section 6), outside the CI suite because it is slow:
 # pure dry friction, tau' = 0.1, dt' = 1e-3 (nondimensional: friction = noise = 1).
 # Compares the long-excursion D with the bridge rule (Q) and the stuck rule (P)
 # against the rule-free brute-force estimator at two horizons, extrapolated in

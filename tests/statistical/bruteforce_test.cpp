@@ -29,7 +29,7 @@ TEST(BruteForce, AgreesWithLongExcursionsOnFig2Case) {
 }
 
 TEST(BruteForce, DrivenCaseRenewalAgreesAndPaperEq12Disagrees) {
-    // MODEL.md section 6: relaxation 0.067, bias 2.0, friction 3.84, noise 3,
+    // theory.md, section 7: relaxation 0.067, bias 2.0, friction 3.84, noise 3,
     // tau 0.1: eq. (12) gives about 3.2e-3, renewal and brute force about 1.8e-3.
     const ss::ModelParams p{.friction = 3.84, .noise = 3.0, .tau = 0.1, .relaxation = 0.067, .bias = 2.0};
     ss::EngineSettings e;

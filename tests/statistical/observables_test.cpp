@@ -1,5 +1,5 @@
 // Velocity statistics (observables.hpp) against the white-noise closed forms of
-// MODEL.md section 9, against Hayakawa's density, and between the two engines.
+// theory.md, section 8, against Hayakawa's density, and between the two engines.
 // Every check uses the run's own standard errors and states its z-score.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// White-noise limit against the exact quadrature of MODEL.md section 7.
+// White-noise limit against the exact quadrature of theory.md, section 8.
 // Discretisation allowances are measured in docs/validation.md: the inclusion
 // scheme with white noise converges like sqrt(dt) (relative bias about
 // -0.35 sqrt(dt') on D for pure dry friction: -3.4% at dt' = 1e-2, under 1.2%

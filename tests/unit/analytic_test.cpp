@@ -1,4 +1,4 @@
-// Exact white-noise references (analytic.hpp, MODEL.md sections 7 and 9): the
+// Exact white-noise references (analytic.hpp, theory.md, section 8): the
 // closed forms for pure dry friction, the viscous limit, the normalisation of
 // Hayakawa's density, unit scaling, and an independent grid quadrature of the
 // M0/D formulas for a case with every force present. The transient closed forms
@@ -44,7 +44,7 @@ ss::ModelParams dry(double friction, double noise, double bias) {
                                          << err << " > " << tol;
 }
 
-// Independent reference for M0, Var and D by grid quadrature (MODEL.md section 7):
+// Independent reference for M0, Var and D by grid quadrature (theory.md, section 8):
 // p ~ exp(-phi), phi(v) = v^2/(noise tauL) + 2 friction |v|/noise - 2 bias v/noise;
 // M0 = int v p, F(v) = int_{-inf}^v (u - M0) p du, D = (4/noise) int F^2/p dv.
 // Grid with v = 0 as a node; F by 3-point Gauss-Legendre per cell (taken from the
@@ -135,7 +135,7 @@ TEST(WhiteNoiseReference, DryFrictionWithBiasMatchesClosedForms) {
             const ss::ModelParams p = dry(friction, noise, g * friction);
             const std::string where = "g=" + std::to_string(g) + " friction=" + std::to_string(friction) +
                                       " noise=" + std::to_string(noise);
-            // MODEL.md section 9, written out here independently of analytic.cpp.
+            // theory.md, section 8, written out here independently of analytic.cpp.
             const double g2 = g * g, vel = noise / friction, diff = std::pow(noise, 3) / std::pow(friction, 4);
             const double m0 = vel * g / (1 - g2);
             const double var = vel * vel * (1 + g2) / (2 * std::pow(1 - g2, 2));
@@ -212,7 +212,7 @@ TEST(Hayakawa, DensityIsNormalisedAndHasTheRightShape) {
         for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
             total += gauss_kronrod<double, 61>::integrate(dens, cuts[k], cuts[k + 1], 15, 1e-14);
         EXPECT_NEAR(total, 1.0, 1e-10) << "bias " << bias;
-        // Ratios against MODEL.md section 7: p ~ exp(-v^2/(noise tauL) - 2 friction |v|/noise + 2 bias v/noise).
+        // Ratios against theory.md, section 8: p ~ exp(-v^2/(noise tauL) - 2 friction |v|/noise + 2 bias v/noise).
         auto logp = [&](double v) {
             return -v * v / (p.noise * p.relaxation) - 2 * p.friction * std::fabs(v) / p.noise + 2 * bias * v / p.noise;
         };
@@ -353,7 +353,7 @@ TEST(HayakawaDensity, RejectsParametersWithoutStationaryState) {
 // ---- Touchette, Van der Straeten and Just: pure dry friction -------------------
 
 TEST(Touchette, FirstMomentReproducesTableI) {
-    // MODEL.md section 9: E[V(t)|v0 = 1], Delta = Gamma = 1.
+    // theory.md, section 8: E[V(t)|v0 = 1], Delta = Gamma = 1.
     const ss::ModelParams p = dry(1.0, 1.0, 0.0);
     const std::vector<std::pair<double, double>> table = {{0.05, 0.950000}, {0.125, 0.875248}, {0.25, 0.757249},
                                                           {0.5, 0.567963},  {1.0, 0.336204},   {2.5, 0.090194}};

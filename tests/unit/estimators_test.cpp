@@ -1,5 +1,5 @@
 // Renewal-reward estimators and their mergeable moments (estimators.hpp,
-// MODEL.md section 6). References are computed directly from the stored samples
+// theory.md, section 7). References are computed directly from the stored samples
 // in long double (two-pass), never from the library's moment algebra.
 #include <gtest/gtest.h>
 
@@ -234,7 +234,7 @@ struct Direct {
     long double se_d, se_m0, se_t, se_paper;
 };
 
-// Estimators computed directly from the sample (MODEL.md section 6).
+// Estimators computed directly from the sample (theory.md, section 7).
 Direct direct_estimates(const Sample& s) {
     const std::size_t n = s.size();
     const long double N = static_cast<long double>(n);

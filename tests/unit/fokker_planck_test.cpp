@@ -139,7 +139,7 @@ TEST(FokkerPlanck, BiasedViscousCaseRelaxesToHayakawa) {
 }
 
 TEST(FokkerPlanck, DryFrictionWithBiasMatchesItsClosedForms) {
-    // No drag, g = 0.5: M0' = g/(1-g^2), Var' = (1+g^2)/(2(1-g^2)^2), D' of MODEL.md section 9.
+    // No drag, g = 0.5: M0' = g/(1-g^2), Var' = (1+g^2)/(2(1-g^2)^2), D' of theory.md, section 8.
     const double g = 0.5;
     const ss::ModelParams p = dry(1.0, 1.0, g);
     const ss::WhiteNoiseFokkerPlanck fp(p);

@@ -1,4 +1,4 @@
-// Differential-inclusion engine (inclusion.hpp, MODEL.md section 5): the
+// Differential-inclusion engine (inclusion.hpp, theory.md, section 5): the
 // resolvent, the constants and their validation, one hand-computed step, and
 // the Brownian-bridge crossing probability of stop rule Q.
 #include <gtest/gtest.h>
@@ -160,7 +160,7 @@ struct HandStep {
     double x_scale, f_scale; // sums of the magnitudes of the terms: the rounding scale
 };
 
-// MODEL.md section 5, evaluated with 50 digits:
+// theory.md, section 5, evaluated with 50 digits:
 //   m = (tau/h (1 - e^{-r}), e^{-r}),
 //   Sigma11 = tau/h^2 (2r - 3 + 4e^{-r} - e^{-2r}), Sigma12 = (1 - e^{-r})^2/h, Sigma22 = (1 - e^{-2r})/tau,
 //   (xbar, x_next) = m x + L (z1, z2), L the Cholesky factor of Sigma,

@@ -1,4 +1,4 @@
-// Exact one-step law of the OU noise (noise.hpp, MODEL.md sections 2 and 5).
+// Exact one-step law of the OU noise (noise.hpp, theory.md, sections 2 and 5).
 //
 // References, all independent of the library's formulas:
 //  * direct numerical integration (Boost.Math Gauss-Kronrod, long double, single
@@ -6,7 +6,7 @@
 //      E[X_s] = x e^{-s/tau},
 //      Cov(X_s, X_u) = (1/tau)(e^{-|s-u|/tau} - e^{-(s+u)/tau})
 //                    = -(1/tau) e^{-|s-u|/tau} expm1(-2 min(s,u)/tau)   (no cancellation);
-//  * the closed forms of MODEL.md section 5 evaluated with 50 significant digits
+//  * the closed forms of theory.md, section 5 evaluated with 50 significant digits
 //    (Boost.Multiprecision), which is exact to ~1e-25 even where double loses every digit;
 //  * the small-r Taylor series and the large-r asymptote, in long double.
 #include <gtest/gtest.h>
@@ -82,7 +82,7 @@ Reference quadrature_reference(double r) {
     return it->second;
 }
 
-// MODEL.md section 5 closed forms with 50 digits (tau = 1).
+// theory.md, section 5 closed forms with 50 digits (tau = 1).
 Reference closed_form_reference(double r_in) {
     const big r = r_in;
     const big e1 = exp(-r), e2 = exp(-2 * r);
@@ -109,7 +109,7 @@ Reference closed_form_reference(double r_in) {
 
 TEST(OUStep, QuadratureReferenceAgreesWithClosedForm) {
     // Guards the references themselves: the integration of the OU law and the
-    // closed forms of MODEL.md section 5 (50 digits) must agree to ~1e-15.
+    // closed forms of theory.md, section 5 (50 digits) must agree to ~1e-15.
     for (double r : kQuadRatios) {
         const Reference q = quadrature_reference(r), c = closed_form_reference(r);
         EXPECT_TRUE(rel_close("quad m1", r, q.m1, c.m1, 1e-15L));

@@ -1,4 +1,4 @@
-// PDMP engine constants and kernels (pdmp.hpp, MODEL.md section 4) against
+// PDMP engine constants and kernels (pdmp.hpp, theory.md, section 4) against
 // independent references: a classical RK4 solve of the between-jump ODE
 //   dV/dt = |y| (-V/tauL + bias + a x - y friction),  dU/dt = V,
 // brute-force scans of the lattice for the thresholds, and the exact
