@@ -19,6 +19,14 @@ std::string to_string(StopRule r) {
     }
 }
 
+std::string to_string(Scheme s) { return s == Scheme::Event ? "event" : "resolvent"; }
+
+Scheme parse_scheme(const std::string& s) {
+    if (s == "resolvent") return Scheme::Resolvent;
+    if (s == "event") return Scheme::Event;
+    throw InvalidParameter("scheme", "scheme must be 'resolvent' or 'event', got '" + s + "'");
+}
+
 Engine parse_engine(const std::string& s) {
     if (s == "inclusion") return Engine::Inclusion;
     if (s == "pdmp") return Engine::Pdmp;
@@ -54,7 +62,10 @@ std::string format_setting(Engine e) { return to_string(e); }
 std::string format_setting(StopRule r) { return to_string(r); }
 void parse_setting(const SettingInfo&, const std::string& text, Engine& out) { out = parse_engine(text); }
 void parse_setting(const SettingInfo&, const std::string& text, StopRule& out) { out = parse_stop_rule(text); }
+std::string format_setting(Scheme s) { return to_string(s); }
+void parse_setting(const SettingInfo&, const std::string& text, Scheme& out) { out = parse_scheme(text); }
 const char* setting_form(const Engine&) { return "inclusion|pdmp"; }
+const char* setting_form(const Scheme&) { return "resolvent|event"; }
 const char* setting_form(const StopRule&) { return "auto|bridge|stuck"; }
 
 } // namespace stickslip

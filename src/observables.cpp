@@ -39,7 +39,7 @@ double sampling_interval(const EngineSettings& s, double sample_dt) {
     if (!std::isfinite(sample_dt) || sample_dt < 0)
         throw InvalidParameter("sample-dt", "sample-dt must be a finite number >= 0 (s), got " +
                                                 detail::format_number(sample_dt));
-    if (s.engine == Engine::Inclusion) return s.dt;
+    if (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent) return s.dt;
     return sample_dt > 0 ? sample_dt : s.dt;
 }
 
@@ -116,11 +116,65 @@ PdmpGridSampler<F> grid_sampler(const PdmpConstants& c, double dt, F f, double p
     return PdmpGridSampler<F>{c, dt, std::move(f), phase};
 }
 
+/// The event scheme's path sampled on the grid phase + n * dt, like
+/// PdmpGridSampler: within a piece the velocity is interpolated linearly
+/// between its exact ends (0 throughout a stuck piece), so a sample's error
+/// is second order in the piece's length; the random phase makes the
+/// Riemann sums unbiased on that grid. `offset` [s] continues a path after a
+/// regeneration.
+template <class F>
+struct EventGridSampler {
+    const EventConstants& c;
+    double dt;
+    F f;
+    double phase = 0.0;
+    std::uint64_t next = 0;
+    double offset = 0.0;
+    std::uint64_t stop_at = ~std::uint64_t{0};
+
+    void operator()(const EventPiece& p) {
+        const double t0 = offset + c.leaf * static_cast<double>(p.t0), t1 = offset + c.leaf * static_cast<double>(p.t1);
+        while (next < stop_at) {
+            const double g = phase + static_cast<double>(next) * dt;
+            if (!(g < t1)) break;
+            const double q = t1 > t0 ? (g - t0) / (t1 - t0) : 0.0;
+            const double v = p.phase == 0 ? 0.0 : p.v0 + (p.v1 - p.v0) * q;
+            f(p.x0 + (p.x1 - p.x0) * q, p.phase, v, p.u0 + (p.u1 - p.u0) * q);
+            ++next;
+        }
+    }
+};
+
+template <class F>
+EventGridSampler<F> event_sampler(const EventConstants& c, double dt, F f, double phase = 0.0) {
+    return EventGridSampler<F>{c, dt, std::move(f), phase};
+}
+
+/// Runs the event walk w on (a new long excursion from s+ after each
+/// regeneration) until `more()` is false: the continuation of a path past
+/// the end of its excursion. Returns the work done.
+template <class Rng, class RefRng, class Observer, class More>
+std::uint64_t event_continue(const EventConstants& c, Rng& rng, RefRng& ref, Observer& observe, More more) {
+    EventWalk w;
+    event_start_half(c, w, +1);
+    while (more()) {
+        const EventStatus st = event_step(c, w, 0, rng, ref, observe);
+        if (st == EventStatus::Capped) break;
+        if (st == EventStatus::HalfDone) event_start_half(c, w, -w.dir);
+    }
+    return w.steps + w.midpoints;
+}
+
 /// The random grid phase of excursion k, from its own stream (the excursion's
 /// draws are untouched, so D stays that of `diffusivity`).
 double sampling_phase(std::uint64_t seed, std::uint64_t k, double dt) {
     CounterRng rng(seed, StreamPurpose::SamplingPhase, k);
     return dt * (1.0 - rng.uniform()); // uniform() is in (0, 1]: phase in [0, dt)
+}
+
+std::string event_sampling_note(double dt) {
+    return "event-scheme path sampled every " + detail::format_number(dt) +
+           " s (--sample-dt) with a random phase per excursion, V interpolated within pieces";
 }
 
 std::string pdmp_sampling_note(double dt) {
@@ -143,6 +197,13 @@ public:
             auto sampler = grid_sampler(e_.pdmp, dt, [&](double, int, double v, double) { on_v(v); },
                                         random_phase ? sampling_phase(seed, k, dt) : 0.0);
             return pdmp_long_excursion(e_.pdmp, rng, sampler);
+        }
+        if (e_.settings.scheme == Scheme::Event) {
+            BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
+            CounterRng ref(seed, StreamPurpose::Refinement, k);
+            auto sampler = event_sampler(e_.event, dt, [&](double, int, double v, double) { on_v(v); },
+                                         random_phase ? sampling_phase(seed, k, dt) : 0.0);
+            return event_long_excursion(e_.event, rng, ref, sampler);
         }
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
         return inclusion_long_excursion(e_.inclusion, rng, [&](double, double v) { on_v(v); });
@@ -284,7 +345,8 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
     const double r1 = total.mom.ratio(0), r2 = total.mom.ratio(1);
     out.variance = make_interval(r2 - r1 * r1, std::sqrt(total.mom.delta_variance({{0, -2 * r1}, {1, 1.0}})),
                                  req.level);
-    if (req.engine.engine == Engine::Inclusion && (req.params.white() || req.engine.dt > 0.01 * req.params.tau))
+    if (req.engine.engine == Engine::Inclusion && req.engine.scheme == Scheme::Resolvent &&
+        (req.params.white() || req.engine.dt > 0.01 * req.params.tau))
         out.warnings.push_back("dt is not << tau: P(V = 0) includes the scheme's O(dt) quantisation of V near 0 "
                                "(a few 1e-3 at dt' = 1e-3); refine dt to see the physical atom");
     const double outside = out.histogram.below.value + out.histogram.above.value;
@@ -292,6 +354,7 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
         out.warnings.push_back("probability " + detail::format_number(outside) +
                                " of V lies outside the histogram range; widen --range");
     if (req.engine.engine == Engine::Pdmp) out.warnings.push_back(pdmp_sampling_note(dt));
+    else if (req.engine.scheme == Scheme::Event) out.warnings.push_back(event_sampling_note(dt));
     return out;
 }
 
@@ -395,6 +458,29 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 return res;
             },
             merge, total);
+    } else if (req.engine.scheme == Scheme::Event) {
+        const EventConstants& c = prepared.event;
+        out.totals = detail::run_blocks(
+            req.excursions, req.control, make,
+            [&](std::uint64_t k, RatioMoments& acc) {
+                thread_local LagState st;
+                reset(st);
+                auto sampler =
+                    event_sampler(c, dt, [&](double, int, double v, double) { push(st, v); }, sampling_phase(seed, k, dt));
+                BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
+                CounterRng ref(seed, StreamPurpose::Refinement, k);
+                const ExcursionOutcome o = event_long_excursion(c, rng, ref, sampler);
+                if (o.capped || st.m == 0) return o;
+                // Continue from the regeneration state s+ until every lag of every start is seen.
+                st.limit = st.m;
+                sampler.offset = o.duration;
+                sampler.stop_at = st.limit + lmax;
+                ExcursionOutcome res = o;
+                res.work += event_continue(c, rng, ref, sampler, [&] { return sampler.next < sampler.stop_at; });
+                acc.add(st.y.data(), static_cast<double>(st.limit));
+                return res;
+            },
+            merge, total);
     } else {
         const InclusionConstants& c = prepared.inclusion;
         out.totals = detail::run_blocks(
@@ -443,6 +529,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
         out.normalised.push_back(make_interval(hj / h0, std::sqrt(var_r), req.level));
     }
     if (req.engine.engine == Engine::Pdmp) out.warnings.push_back(pdmp_sampling_note(dt));
+    else if (req.engine.scheme == Scheme::Event) out.warnings.push_back(event_sampling_note(dt));
     return out;
 }
 
@@ -551,6 +638,37 @@ TransientResult compute_transient(const TransientRequest& req_in) {
                     });
                 }
                 while (j < nt) record(y, j++, s.v);
+                acc.add(y.data(), 1.0);
+                return o;
+            },
+            merge, total);
+    } else if (req.engine.scheme == Scheme::Event) {
+        // Exact times (to a leaf): the walk advances to each time in turn.
+        const EventConstants& c = prepared.event;
+        std::vector<std::uint64_t> at(nt);
+        for (std::size_t j = 0; j < nt; ++j) at[j] = static_cast<std::uint64_t>(std::llround(times[j] / c.leaf));
+        for (std::size_t j = 0; j < nt; ++j) out.time.push_back(static_cast<double>(at[j]) * c.leaf);
+        out.totals = detail::run_blocks(
+            req.trajectories, req.control, make,
+            [&](std::uint64_t k, RatioMoments& acc) {
+                thread_local std::vector<double> y;
+                y.assign(dim, 0.0);
+                BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
+                CounterRng ref(seed, StreamPurpose::Refinement, k);
+                const double x = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
+                EventWalk w = event_walk_from(c, x, req.v0);
+                NoPieceObserver none;
+                ExcursionOutcome o;
+                for (std::size_t j = 0; j < nt; ++j) {
+                    if (event_advance_to(c, w, at[j], rng, ref, none) == EventStatus::Capped) {
+                        o.capped = true;
+                        break;
+                    }
+                    record(y, j, w.v);
+                }
+                o.duration = c.leaf * static_cast<double>(w.t);
+                o.displacement = w.u;
+                o.work = w.steps + w.midpoints;
                 acc.add(y.data(), 1.0);
                 return o;
             },
@@ -669,6 +787,24 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
                 }
                 if (!out.excursion.capped) // the regeneration state that ends it
                     append(path, out.excursion.duration, c.delta * (c.k_plus + 1), 1, 0.0, out.excursion.displacement);
+            } else if (req.engine.scheme == Scheme::Event) {
+                // Every piece's start, so events are in the path at their times (or a grid with --every).
+                const EventConstants& c = prepared.event;
+                CounterRng ref(seed, StreamPurpose::Refinement, req.index);
+                if (req.every > 0) {
+                    auto sampler = event_sampler(c, req.every, [&](double x, int y, double v, double u) {
+                        guard(path);
+                        append(path, static_cast<double>(path.t.size()) * req.every, x, y, v, u);
+                    });
+                    out.excursion = event_long_excursion(c, rng, ref, sampler);
+                } else {
+                    out.excursion = event_long_excursion(c, rng, ref, [&](const EventPiece& p) {
+                        guard(path);
+                        append(path, c.leaf * static_cast<double>(p.t0), p.x0, p.phase, p.v0, p.u0);
+                    });
+                }
+                if (!out.excursion.capped) // the regeneration state that ends it
+                    append(path, out.excursion.duration, c.x_up, 1, 0.0, out.excursion.displacement);
             } else {
                 const InclusionConstants& c = prepared.inclusion;
                 const auto stride =
@@ -714,6 +850,16 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
             const double horizon = static_cast<double>(npoints - 1) * every;
             const ExcursionOutcome o = pdmp_path(c, s, horizon, rng, sampler);
             if (path.t.size() < npoints) append(path, horizon, c.delta * s.i, s.y, s.v, o.displacement);
+        } else if (req.engine.scheme == Scheme::Event) {
+            const EventConstants& c = prepared.event;
+            CounterRng ref(seed, StreamPurpose::Refinement, k);
+            EventWalk w = event_walk_from(c, x0, req.v0);
+            NoPieceObserver none;
+            for (std::uint64_t i = 0; i < npoints; ++i) {
+                const auto at = static_cast<std::uint64_t>(std::llround(static_cast<double>(i) * every / c.leaf));
+                if (event_advance_to(c, w, at, rng, ref, none) == EventStatus::Capped) break;
+                append(path, c.leaf * static_cast<double>(w.t), w.x, w.phase, w.v, w.u);
+            }
         } else {
             const InclusionConstants& c = prepared.inclusion;
             const auto stride = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(every / c.h)));

@@ -96,8 +96,9 @@ ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) 
         j["lattice_points"] = e.lattice_points;
         j["truncated_mass"] = e.truncated_mass;
         j["jump_rate"] = e.jump_rate;
-    } else if (r.params.white()) {
-        j["white_level"] = e.white_level;
+    } else {
+        j["scheme"] = to_string(r.engine.scheme);
+        if (r.params.white()) j["white_level"] = e.white_level;
     }
     j["max_work_per_excursion"] = r.engine.max_work_per_excursion;
     return j;
@@ -134,7 +135,7 @@ std::string engine_line(const char* what, const EngineSettings& s, const std::st
     std::ostringstream os;
     os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
        << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : "dt " + format_number(s.dt) + " s")
-       << extra << "\n";
+       << (s.engine == Engine::Inclusion && s.scheme == Scheme::Event ? ", event scheme" : "") << extra << "\n";
     return os.str();
 }
 

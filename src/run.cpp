@@ -21,6 +21,9 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s) {
         r.lattice_points = 2 * c.n_max + 1;
         r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
         r.jump_rate = c.rate;
+    } else if (s.scheme == Scheme::Event) {
+        e.event = make_event_constants(p, s);
+        r.stop_rule = "exact";
     } else {
         e.inclusion = make_inclusion_constants(p, s);
         const InclusionConstants& c = e.inclusion;

@@ -38,7 +38,8 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
     if (p.white())
         warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
                            format_number(resolved.white_level) + " m/s, not a stick-slip excursion");
-    else if (nd.tau < 0.1 || (s.engine == Engine::Inclusion && s.dt > 0.01 * p.tau))
+    else if (nd.tau < 0.1 ||
+             (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent && s.dt > 0.01 * p.tau))
         warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
                            "is not << tau; report it with that caveat, not as a check");
 }

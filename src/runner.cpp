@@ -40,6 +40,14 @@ RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions,
             return pdmp_long_excursion(c, rng);
         });
     }
+    if (e.settings.scheme == Scheme::Event) {
+        const EventConstants& c = e.event;
+        return run_samples(excursions, ctl, [&c, seed](std::uint64_t k) {
+            BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
+            CounterRng ref(seed, StreamPurpose::Refinement, k);
+            return event_long_excursion(c, rng, ref);
+        });
+    }
     const InclusionConstants& c = e.inclusion;
     NoExtra none;
     return detail::run_blocks(
@@ -72,6 +80,22 @@ RunTotals run_bruteforce(const PreparedEngine& e, double horizon, double x0, dou
         return run_samples(trajectories, ctl, [&c, seed, horizon, x0, v0](std::uint64_t k) {
             BatchedUniformRng rng(seed, StreamPurpose::BruteForce, k);
             return pdmp_trajectory(c, x0, v0, horizon, rng);
+        });
+    }
+    if (e.settings.scheme == Scheme::Event) {
+        const EventConstants& c = e.event;
+        const auto at = static_cast<std::uint64_t>(std::llround(horizon / c.leaf));
+        return run_samples(trajectories, ctl, [&c, seed, x0, v0, at](std::uint64_t k) {
+            BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);
+            CounterRng ref(seed, StreamPurpose::Refinement, k);
+            EventWalk w = event_walk_from(c, x0, v0);
+            NoPieceObserver none;
+            ExcursionOutcome o;
+            o.capped = event_advance_to(c, w, at, rng, ref, none) == EventStatus::Capped;
+            o.displacement = w.u;
+            o.duration = c.leaf * static_cast<double>(w.t);
+            o.work = w.steps + w.midpoints;
+            return o;
         });
     }
     const InclusionConstants& c = e.inclusion;

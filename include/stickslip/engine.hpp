@@ -28,17 +28,29 @@ enum class Engine { Inclusion, Pdmp };
 /// The paper's literal test ("rule A") is biased and deliberately absent.
 enum class StopRule { Auto, Bridge, Stuck };
 
+/// How the inclusion engine steps (theory.md, section 10).
+///  * Resolvent: the paper's Algorithm 3, corrected: the exact OU pair, an
+///    explicit drift and the resolvent of the friction, events on the grid of
+///    steps; first order.
+///  * Event: exact Gaussian steps within a phase, events (landings, exits,
+///    the end of a half) located by refinement and placed at their times
+///    (event_scheme.hpp).
+enum class Scheme { Resolvent, Event };
+
 /// dt/tau at or below which StopRule::Auto selects the bridge rule.
 inline constexpr double auto_bridge_ratio = 0.1;
 
 std::string to_string(Engine e);
 std::string to_string(StopRule r);
+std::string to_string(Scheme s);
 Engine parse_engine(const std::string& s);     ///< "inclusion" | "pdmp"
+Scheme parse_scheme(const std::string& s);     ///< "resolvent" | "event"
 StopRule parse_stop_rule(const std::string& s); ///< "auto" | "bridge" | "stuck"
 
 /// Numerical settings of the engines, SI units.
 struct EngineSettings {
     Engine engine = Engine::Inclusion;
+    Scheme scheme = Scheme::Resolvent; ///< how the inclusion engine steps
     double dt = 1e-4;        ///< time step h of the inclusion engine [s]
     double grid = 0.125;     ///< lattice step delta of the PDMP noise [s^-1/2]
     /// Half-width L of the PDMP lattice [s^-1/2]; 0 chooses it (see pdmp.hpp).
@@ -56,6 +68,9 @@ struct EngineSettings {
 template <class Visitor>
 void visit_settings(EngineSettings& s, Visitor&& v) {
     v(s.engine, SettingInfo{"engine", "", "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)"});
+    v(s.scheme, SettingInfo{"scheme", "",
+                            "inclusion time stepping: resolvent (the paper's, first order) or event (exact within "
+                            "phases, events at their times)"});
     v(s.dt, SettingInfo{"dt", "s", "time step of the inclusion engine, > 0"});
     v(s.grid, SettingInfo{"grid", "s^-1/2", "lattice step delta of the pdmp noise, > 0"});
     v(s.lattice_bound, SettingInfo{"lattice-bound", "s^-1/2",
@@ -78,7 +93,10 @@ std::string format_setting(Engine e);
 std::string format_setting(StopRule r);
 void parse_setting(const SettingInfo& info, const std::string& text, Engine& out);
 void parse_setting(const SettingInfo& info, const std::string& text, StopRule& out);
+std::string format_setting(Scheme s);
+void parse_setting(const SettingInfo& info, const std::string& text, Scheme& out);
 const char* setting_form(const Engine&);
 const char* setting_form(const StopRule&);
+const char* setting_form(const Scheme&);
 
 } // namespace stickslip

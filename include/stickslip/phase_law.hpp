@@ -1,5 +1,5 @@
 // stickslip/phase_law.hpp -- exact Gaussian laws of one step, and of its midpoint
-// bridge, within one phase (SCHEMES.md, "Within a phase the dynamics is linear").
+// bridge, within one phase (theory.md, section 10: within a phase the dynamics is linear).
 //
 // While the object slides in direction s (V != 0) the state Z = (X, V, U) solves
 // the linear SDE

@@ -45,6 +45,7 @@ enum class StreamPurpose : std::uint32_t {
     BruteForce = 2,
     Observable = 3,
     SamplingPhase = 4, ///< random phase of a PDMP path's sampling grid (observables)
+    Refinement = 5,    ///< the event scheme's refinement midpoints, one draw per midpoint, in order
     Test = 255,
 };
 
@@ -125,6 +126,28 @@ public:
         const Philox::ctr_type b = Philox()(ctr, key);
         return r123::u01<double>(join(b.v[0], b.v[1]));
     }
+
+    /// The side block of draw j as the event scheme uses it: a normal from its
+    /// first word (a rejected word is resolved from its own retry substream,
+    /// attempts from 2^14 on, apart from the main draws' retries) and a uniform
+    /// in (0, 1] from its second.
+    STICKSLIP_HD static NormalPair side_draw_of(const Philox::key_type& key, std::uint32_t c2, std::uint32_t c3,
+                                                std::uint64_t j) {
+        const Philox::ctr_type ctr = {{static_cast<std::uint32_t>(j),
+                                       0x40000000u | (static_cast<std::uint32_t>(j >> 32) & 0x7fffu), c2, c3}};
+        const Philox::ctr_type b = Philox()(ctr, key);
+        double x;
+        const std::uint64_t word = join(b.v[0], b.v[1]);
+        if (!ziggurat_fast(word, x)) {
+            RetryWords more{key, {{static_cast<std::uint32_t>(j), 0u, c2, c3}}, {}, static_cast<std::uint32_t>(j >> 32),
+                            0u, 0x4000u, 4};
+            x = ziggurat_resolve(word, more);
+        }
+        return {x, r123::u01<double>(join(b.v[2], b.v[3]))};
+    }
+
+    /// The event scheme's side draw of the last draw: {normal, uniform}.
+    STICKSLIP_HD NormalPair side_draw() const { return side_draw_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); }
 
     /// The side uniform of the last draw (call after at least one draw).
     STICKSLIP_HD double side_uniform() const { return side_uniform_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); }

@@ -101,6 +101,9 @@ public:
     /// The side uniform of the last draw; the same as CounterRng::side_uniform.
     double side_uniform() const { return CounterRng::side_uniform_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); }
 
+    /// The event scheme's side draw of the last draw; the same as CounterRng::side_draw.
+    NormalPair side_draw() const { return CounterRng::side_draw_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); }
+
     /// Number of 128-bit blocks drawn so far.
     std::uint64_t draws() const { return base_ + static_cast<std::uint64_t>(pos_) - batch; }
 

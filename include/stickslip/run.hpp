@@ -13,6 +13,7 @@
 #include <string>
 
 #include "engine.hpp"
+#include "event_scheme.hpp"
 #include "inclusion.hpp"
 #include "params.hpp"
 #include "pdmp.hpp"
@@ -55,7 +56,7 @@ void visit_settings(ExcursionSettings& e, Visitor&& v) {
 
 /// Engine details resolved for a run, reported alongside the estimates.
 struct ResolvedEngine {
-    std::string stop_rule;   ///< "bridge" | "stuck" | "velocity-levels" (white) | "exact" (PDMP)
+    std::string stop_rule;   ///< "bridge" | "stuck" | "velocity-levels" (white) | "exact" (PDMP, event scheme)
     double lattice_bound = 0; ///< PDMP: L [s^-1/2]
     int lattice_points = 0;   ///< PDMP: 2N+1
     double truncated_mass = 0;///< PDMP: stationary Gaussian mass of X beyond +-L
@@ -64,12 +65,13 @@ struct ResolvedEngine {
     double upper_threshold = 0, lower_threshold = 0; ///< x*, x-* [s^-1/2] (colored)
 };
 
-/// The engine of a run, prepared once: the chosen engine's constants (the
-/// other engine's are left empty) and the details a report shows.
+/// The engine of a run, prepared once: the chosen engine's (and scheme's)
+/// constants, the others left empty, and the details a report shows.
 struct PreparedEngine {
     ModelParams params;
     EngineSettings settings;
-    InclusionConstants inclusion{};
+    InclusionConstants inclusion{}; ///< inclusion engine, resolvent scheme
+    EventConstants event{};         ///< inclusion engine, event scheme
     PdmpConstants pdmp{};
     ResolvedEngine resolved;
 };

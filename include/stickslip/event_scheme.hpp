@@ -1,0 +1,462 @@
+// stickslip/event_scheme.hpp -- the event scheme of the inclusion engine: exact
+// Gaussian steps within a phase, events at their times (theory.md, section 10).
+//
+// Why: the resolvent step (inclusion.hpp) is exact for the noise but first
+// order for everything else -- the displacement by the left-point rule, the
+// drift taken explicitly, and above all the events (V landing on 0, X leaving
+// the static band) placed on the grid of steps. Within a phase the dynamics is
+// linear, so a step can be drawn exactly (phase_law.hpp); only the events need
+// care, and they are placed at their times by conditional refinement: given
+// the state at both ends of a step, the state at its midpoint is Gaussian with
+// a known law (the bridge), so a step where an event is possible is halved,
+// and halved again in the half where the first event can be, down to a bounded
+// depth. The step then stops at the event, with the event's state set exactly
+// (V = 0 at a landing, X beyond the threshold at an exit), and the next step
+// starts there: the process after the event depends on nothing but that
+// state (strong Markov), so what was drawn beyond it is simply dropped.
+//
+// Phases and events (coloured noise):
+//  * stuck (V = 0, X in the band [x-*, x*]): X is OU, U does not move; the
+//    phase ends when X reaches a threshold (the Brownian-bridge crossing test
+//    decides at the finest depth of a stuck step, event_exit_depth). Reaching the opposite threshold ends a half
+//    long excursion exactly at its regeneration state; the other one launches
+//    the object in its direction.
+//  * sliding in direction s: (X, V, U) is the linear Gaussian process of
+//    phase_law.hpp with c = bias - s friction; the phase ends when V reaches
+//    0. The force at that time decides: inside the band the object sticks,
+//    beyond it V passes through 0 and slides on the other way.
+// A step is refined where an event is possible: V changes sign, or comes
+// within event_sigma_margin standard deviations of 0 at the step's midpoint,
+// or heads for 0 fast enough at either end to reach it within the step; X
+// leaves the band, or its bridge crossing probability exceeds
+// event_crossing_floor. Right after a launch, V = 0 and the noise sits at the
+// threshold, where the true path sticks and re-launches on a set of ever
+// smaller intervals; there the refinement stops at event_launch_depth, so
+// that cascade is resolved to h / 2^event_launch_depth instead of
+// h / 2^event_depth (its total duration is of that order).
+//
+// Time is counted in leaves, h / 2^event_depth, as an integer: event times are
+// leaf boundaries, sums of durations are exact, and the grid of a path stays
+// aligned. Random numbers: step j of an excursion uses draw j of its stream
+// (two normals) and the side draw of draw j (a third normal); midpoint r of
+// the excursion uses draw r of its refinement stream (StreamPurpose::
+// Refinement, same index) and its side draw, and a leaf's crossing test the
+// next refinement draw's uniform. Every number is thus a pure function of
+// (seed, excursion, counter): results are bitwise the same for any thread
+// count and process split.
+//
+// White noise (tau = 0) has no event scheme yet: make_event_constants refuses it.
+//
+// Units are SI; the constants are built once per run by make_event_constants
+// (src/event_scheme.cpp), and the kernels below are STICKSLIP_HD, without
+// allocation or exceptions.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "config.hpp"
+#include "engine.hpp"
+#include "excursion.hpp"
+#include "params.hpp"
+#include "phase_law.hpp"
+#include "rng.hpp"
+
+namespace stickslip {
+
+/// Depth of the finest refinement: events are placed to h / 2^16.
+inline constexpr int event_depth = 16;
+/// Depth of the refinement within h / 2^6 after a launch (see above).
+inline constexpr int event_launch_depth = 6;
+
+/// A step is refined where V may come within this many conditional standard
+/// deviations of 0 at its midpoint (a miss is a 6-sigma event).
+inline constexpr double event_sigma_margin = 6.0;
+/// Bridge crossing probabilities below this count as no crossing.
+inline constexpr double event_crossing_floor = 1e-12;
+
+/// The laws of one refinement depth d: a step of length h / 2^d.
+struct EventLevel {
+    std::uint64_t leaves; ///< 2^(event_depth - d)
+    double len;           ///< h / 2^d [s]
+    // coloured noise
+    ColoredSlideLaw slide;     ///< sliding step
+    ColoredSlideBridge mid;    ///< its midpoint bridge
+    double v_mid_sd;           ///< conditional sd of V at the midpoint [m/s]
+    double x_keep, x_sd;       ///< stuck step: X' = x_keep X + x_sd n
+    double x_grow;             ///< e^{len/tau}: X e^{t/tau} is a Brownian motion (see first_passage)
+    double x_u_len;            ///< tau (e^{2 len/tau} - 1) / 2 [s]: the step in that motion's clock
+    double x_var_rate;         ///< its variance rate 2 / tau^2 [s^-2]
+    double x_tau;              ///< tau [s]
+};
+
+/// Per-run constants of the event scheme (SI units).
+struct EventConstants {
+    double h;             ///< step [s]
+    double leaf;          ///< h / 2^event_depth [s]: the unit of time
+    double amp;           ///< a = sqrt(noise/2) (coloured)
+    double bias, friction;
+    double inv_relaxation; ///< 1/tauL [s^-1], 0 without drag
+    double noise;          ///< Gamma [m^2 s^-3]
+    double x_up, x_down;   ///< x*, x-* [s^-1/2] (coloured)
+    std::uint64_t max_work; ///< runaway guard: steps and midpoints per long excursion
+    EventLevel lv[event_depth + 1];
+};
+
+/// Validates p and s (InvalidParameter) and builds the laws of every depth.
+EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s);
+
+/// A long excursion (or a path) of the event scheme between two steps.
+struct EventWalk {
+    double x = 0.0;              ///< noise X [s^-1/2] (0 for white noise)
+    double v = 0.0;              ///< velocity [m/s]
+    double u = 0.0;              ///< displacement since the start [m]
+    std::uint64_t t = 0;         ///< time since the start [leaves]
+    int phase = 0;               ///< 0 stuck, +1 / -1 sliding up / down
+    int dir = +1;                ///< +1: first half (+HLE), -1: second half
+    bool launched = false;       ///< a launch at time `launch` limits the refinement after it
+    std::uint64_t launch = 0;    ///< [leaves]
+    std::uint64_t first = 0;     ///< duration of the first half, once it is over [leaves]
+    std::uint64_t steps = 0;     ///< steps drawn (whole or cut short by an event)
+    std::uint64_t midpoints = 0; ///< refinement midpoints drawn
+};
+
+/// One piece of a path between two events or step ends: the phase is the same
+/// throughout, the state at both ends is exact. Times in leaves.
+struct EventPiece {
+    std::uint64_t t0, t1;
+    int phase;
+    double x0, v0, u0, x1, v1, u1;
+};
+
+/// Observer that ignores the path (the default of the long-excursion kernel).
+struct NoPieceObserver {
+    STICKSLIP_HD void operator()(const EventPiece&) const {}
+};
+
+enum class EventStatus { Running, HalfDone, Capped };
+
+namespace detail {
+
+/// Probability that a Brownian bridge between a and b (same side of `level`)
+/// with the given exponent factor touches the level: exp(-(a-l)(b-l) rate).
+STICKSLIP_HD inline double bridge_touch(double a, double b, double level, double rate) {
+    const double e = (a - level) * (b - level) * rate;
+    return e > 50.0 ? 0.0 : std::exp(-e);
+}
+
+/// Rounds a time within a step [s] to whole leaves, at least 1 and at most the step.
+STICKSLIP_HD inline std::uint64_t leaves_of(const EventConstants& c, double t, std::uint64_t step_leaves) {
+    const double n = t / c.leaf;
+    if (!(n >= 1.0)) return 1;
+    if (n >= static_cast<double>(step_leaves)) return step_leaves;
+    return static_cast<std::uint64_t>(n + 0.5);
+}
+
+/// Does the noise, stuck through a step of level L from distance da > 0 to
+/// distance db (signed: <= 0 beyond) of a threshold, reach it? Returns the
+/// time of the first passage within the step [s], or -1 if there is none.
+///
+/// Why this is (nearly) exact: X e^{t/tau} is a Brownian motion in the clock
+/// u = tau (e^{2t/tau} - 1)/2, with variance rate 2/tau^2, and the threshold
+/// becomes a boundary growing like e^{t/tau}, which over a step is a straight
+/// line to second order in step/tau. A Brownian bridge crosses a straight
+/// line with probability exp(-2 da db' / (sigma^2 u_len)) (db' the distance at
+/// the end in the new clock); the uniform `u` decides (u < probability). The first passage time
+/// of a bridge that crosses is that of the bridge reflected after it (the
+/// reflection principle: the end moves to -db'), and for a bridge that ends
+/// beyond the line it is, after the time change s = u/(1 - u/u_len), the
+/// first passage of a Brownian motion with drift: an inverse Gaussian, drawn
+/// from one normal and one uniform of the refinement stream.
+template <class RefRng>
+STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double db, double u, RefRng& ref) {
+    if (!(da > 0.0)) return 0.0; // at (or, after rounding, beyond) the threshold already
+    const double a = da, b = db * L.x_grow; // the distance at the end, in the new clock
+    double y = b;
+    if (b > 0.0) { // both ends short of it: cross with the bridge probability
+        const double e = 2.0 * a * b / (L.x_var_rate * L.x_u_len);
+        if (e > 50.0 || !(u < std::exp(-e))) return -1.0;
+        y = -b; // the reflected end
+    }
+    // s ~ IG(mean a u_len / |y|, shape a^2 / sigma^2), the hitting time of -a
+    // by a Brownian motion with drift y / u_len (Michael, Schucany, Haas 1976).
+    const NormalPair n = ref.normal2();
+    const double v = ref.side_draw().y;
+    double s_hit;
+    if (y == 0.0) {
+        s_hit = 1e300;
+    } else {
+        const double mu = a * L.x_u_len / -y, lambda = a * a / L.x_var_rate;
+        // The smaller root mu (1 + r - sqrt(r (r + 2))), r = mu nu^2 / (2 lambda),
+        // written without the cancellation that loses it when r is large.
+        const double r = mu * n.x * n.x / (2.0 * lambda);
+        const double root = mu / (1.0 + r + std::sqrt(r * (r + 2.0)));
+        s_hit = v * (mu + root) <= mu ? root : mu * mu / root;
+    }
+    const double t_u = L.x_u_len * s_hit / (L.x_u_len + s_hit); // back to the bridge's clock
+    return 0.5 * L.x_tau * std::log1p(2.0 * t_u / L.x_tau);    // and to real time
+}
+
+/// The lowest value of s V over a piece of depth level L between the
+/// sliding states a and b (with constant c): given both ends, V's conditional
+/// mean path is close to the cubic that matches V and its slope
+/// dV/dt = a X + c - V/tauL at both ends (exactly that cubic for an
+/// integrated Brownian motion); this returns the cubic's minimum on the piece,
+/// ends included.
+STICKSLIP_HD inline double cubic_low(const EventConstants& c, const EventLevel& L, const double a[3],
+                                     const double b[3], int s, double cs) {
+    const double va = s * a[1], vb = s * b[1];
+    const double ma = s * (c.amp * a[0] + cs - a[1] * c.inv_relaxation) * L.len;
+    const double mb = s * (c.amp * b[0] + cs - b[1] * c.inv_relaxation) * L.len;
+    // H(q) = va + ma q + c2 q^2 + c3 q^3 on q in [0, 1].
+    const double c2 = 3.0 * (vb - va) - 2.0 * ma - mb, c3 = 2.0 * (va - vb) + ma + mb;
+    double lowest = va < vb ? va : vb;
+    // Roots of H'(q) = ma + 2 c2 q + 3 c3 q^2 inside (0, 1).
+    const double qa = 3.0 * c3, qb = 2.0 * c2, qc = ma;
+    double roots[2];
+    int nroots = 0;
+    if (qa == 0.0) {
+        if (qb != 0.0) roots[nroots++] = -qc / qb;
+    } else {
+        const double disc = qb * qb - 4.0 * qa * qc;
+        if (disc >= 0.0) {
+            const double sq = std::sqrt(disc);
+            roots[nroots++] = (-qb - sq) / (2.0 * qa);
+            roots[nroots++] = (-qb + sq) / (2.0 * qa);
+        }
+    }
+    for (int k = 0; k < nroots; ++k) {
+        const double q = roots[k];
+        if (q > 0.0 && q < 1.0) {
+            const double hq = va + q * (ma + q * (c2 + q * c3));
+            if (hq < lowest) lowest = hq;
+        }
+    }
+    return lowest;
+}
+
+} // namespace detail
+
+/// One coloured-noise step of length h / 2^d0 from w, cut short at the first
+/// event. `observe(piece)` sees the piece it covered.
+template <class Rng, class RefRng, class Observer>
+STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, EventWalk& w, int d0, Rng& rng,
+                                                   RefRng& ref, Observer& observe) {
+    if (w.steps + w.midpoints >= c.max_work) return EventStatus::Capped;
+    ++w.steps;
+    const NormalPair z = rng.normal2();
+    const std::uint64_t t0 = w.t;
+    if (w.phase == 0) {
+        // Stuck: X alone, until it first reaches a threshold. No refinement:
+        // the crossing and its time are drawn from the step's ends (see
+        // detail::first_passage).
+        const EventLevel& L0 = c.lv[d0];
+        const double xa = w.x, xb = L0.x_keep * xa + L0.x_sd * z.x;
+        const NormalPair side = rng.side_draw();
+        const double up = detail::first_passage(L0, c.x_up - xa, c.x_up - xb, side.y, ref);
+        double down = -1.0;
+        // (1 - u for the other threshold: the two crossings are disjoint events.)
+        if (up < 0.0) down = detail::first_passage(L0, xa - c.x_down, xb - c.x_down, 1.0 - side.y, ref);
+        if (up < 0.0 && down < 0.0) {
+            observe(EventPiece{t0, t0 + L0.leaves, 0, xa, 0.0, w.u, xb, 0.0, w.u});
+            w.x = xb;
+            w.t = t0 + L0.leaves;
+            return EventStatus::Running;
+        }
+        const int exit_dir = up >= 0.0 ? +1 : -1;
+        const double x_exit = exit_dir > 0 ? c.x_up : c.x_down;
+        const std::uint64_t t_exit = t0 + detail::leaves_of(c, up >= 0.0 ? up : down, L0.leaves);
+        observe(EventPiece{t0, t_exit, 0, xa, 0.0, w.u, x_exit, 0.0, w.u});
+        w.x = x_exit;
+        w.t = t_exit;
+        if (w.dir != 0 && exit_dir == -w.dir) return EventStatus::HalfDone; // the half's regeneration state
+        w.phase = exit_dir;
+        w.launched = true;
+        w.launch = t_exit;
+        return EventStatus::Running;
+    }
+    // Sliding in direction s. Where V, pushed by the noise, comes back to 0
+    // and the force is inside the band, the object sticks until the noise
+    // pushes it off again: V is the free sliding path V_free reflected at 0,
+    // V = V_free - min(0, its running minimum) (in the direction s; exact
+    // without drag, and to first order in V/tauL with it). So within a step
+    // the object may stick and slip again without the step ending -- which
+    // is what happens, on ever smaller scales, right after every launch from
+    // a threshold. The step ends at a landing when V is at its running
+    // minimum at the end of a finest piece (the object is stuck there) and
+    // the noise is then away from the launching threshold: the stuck phase
+    // (or, beyond the opposite threshold, a pass-through) takes over.
+    const int s = w.phase;
+    const double cs = c.bias - s * c.friction;
+    const NormalPair side = rng.side_draw();
+    struct Node {
+        double a[3], b[3];
+        int d;
+        std::uint64_t t;
+    };
+    Node stack[event_depth + 1];
+    int top = 0;
+    const EventLevel& L0 = c.lv[d0];
+    const std::uint64_t t_end = t0 + L0.leaves;
+    Node cur{{w.x, w.v, w.u}, {0.0, 0.0, 0.0}, d0, t0};
+    {
+        const double n[3] = {z.x, z.y, side.x};
+        apply(L0.slide, cur.a, cs, n, cur.b);
+    }
+    const Node whole = cur;
+    const std::uint64_t window = std::uint64_t{1} << (event_depth - event_launch_depth);
+    double floor = 0.0; // min(0, running minimum of s V_free): V = V_free - s floor
+    double du = 0.0;    // the displacement that reflection adds, up to t_end [m]
+    bool landed = false;
+    for (;;) {
+        const EventLevel& L = c.lv[cur.d];
+        const double low = s * cur.b[1] <= floor ? s * cur.b[1] : detail::cubic_low(c, L, cur.a, cur.b, s, cs);
+        if (low < floor + event_sigma_margin * L.v_mid_sd) {
+            const int max_depth = w.launched && cur.t < w.launch + window ? event_launch_depth : event_depth;
+            if (cur.d >= max_depth) {
+                const double m = low < s * cur.b[1] ? low : s * cur.b[1];
+                const std::uint64_t t_b = cur.t + L.leaves;
+                if (m < floor) { // a new minimum: the reflection lifts the rest of the step
+                    du += s * (floor - m) * c.leaf * static_cast<double>(t_end - t_b);
+                    floor = m;
+                }
+                if (s * cur.b[1] <= floor && !(s > 0 ? cur.b[0] > c.x_up : cur.b[0] < c.x_down)) {
+                    landed = true; // stuck at the end of this piece
+                    break;
+                }
+            } else {
+                const NormalPair n01 = ref.normal2();
+                const NormalPair n2 = ref.side_draw();
+                ++w.midpoints;
+                const double n[3] = {n01.x, n01.y, n2.x};
+                // U relative to the start of the interval (translation invariance).
+                const double a_rel[3] = {cur.a[0], cur.a[1], 0.0};
+                const double b_rel[3] = {cur.b[0], cur.b[1], cur.b[2] - cur.a[2]};
+                double m[3];
+                apply(L.mid, a_rel, b_rel, cs, n, m);
+                m[2] += cur.a[2];
+                Node right{{m[0], m[1], m[2]}, {cur.b[0], cur.b[1], cur.b[2]}, cur.d + 1, cur.t + L.leaves / 2};
+                stack[top++] = right;
+                cur = Node{{cur.a[0], cur.a[1], cur.a[2]}, {m[0], m[1], m[2]}, cur.d + 1, cur.t};
+                continue;
+            }
+        }
+        if (top == 0) break;
+        cur = stack[--top];
+    }
+    if (!landed) {
+        const double v_end = whole.b[1] - s * floor, u_end = whole.b[2] + du;
+        observe(EventPiece{t0, t_end, s, w.x, w.v, w.u, whole.b[0], v_end, u_end});
+        w.x = whole.b[0];
+        w.v = v_end;
+        w.u = u_end;
+        w.t = t_end;
+        return EventStatus::Running;
+    }
+    // Stuck at the end of the piece: V = 0 there; the noise decides.
+    const std::uint64_t te = cur.t + c.lv[cur.d].leaves;
+    const double u_e = cur.b[2] + du - s * (-floor) * c.leaf * static_cast<double>(t_end - te);
+    observe(EventPiece{t0, te, s, w.x, w.v, w.u, cur.b[0], 0.0, u_e});
+    w.x = cur.b[0];
+    w.v = 0.0;
+    w.u = u_e;
+    w.t = te;
+    if (w.x >= c.x_down && w.x <= c.x_up) {
+        w.phase = 0; // sticks
+        w.launched = false;
+    } else {
+        w.phase = -s; // beyond the opposite threshold: passes through 0
+        w.launched = true;
+        w.launch = te;
+    }
+    return EventStatus::Running;
+}
+
+/// Puts w at the start of half `dir` at its current time: it launches from
+/// (x*, 0) upwards (+1) or from (x-*, 0) downwards (-1).
+STICKSLIP_HD inline void event_start_half(const EventConstants& c, EventWalk& w, int dir) {
+    w.dir = dir;
+    w.v = 0.0;
+    w.x = dir > 0 ? c.x_up : c.x_down;
+    w.phase = dir;
+    w.launched = true;
+    w.launch = w.t;
+}
+
+/// The outcome of a finished (or capped) walk.
+STICKSLIP_HD inline ExcursionOutcome event_walk_outcome(const EventConstants& c, const EventWalk& w, bool capped) {
+    ExcursionOutcome o;
+    o.first_half = c.leaf * static_cast<double>(w.first);
+    o.displacement = w.u;
+    o.duration = c.leaf * static_cast<double>(w.t);
+    o.work = w.steps + w.midpoints;
+    o.capped = capped;
+    return o;
+}
+
+template <class Rng, class RefRng, class Observer>
+STICKSLIP_HD inline EventStatus event_step(const EventConstants& c, EventWalk& w, int d0, Rng& rng, RefRng& ref,
+                                           Observer& observe);
+
+/// One long excursion (+HLE then -HLE) of the event scheme; `observe` sees
+/// every piece of it.
+template <class Rng, class RefRng, class Observer = NoPieceObserver>
+STICKSLIP_HD inline ExcursionOutcome event_long_excursion(const EventConstants& c, Rng& rng, RefRng& ref,
+                                                          Observer&& observe = Observer{}) {
+    EventWalk w;
+    event_start_half(c, w, +1);
+    EventStatus st;
+    while ((st = event_step(c, w, 0, rng, ref, observe)) == EventStatus::Running) {
+    }
+    if (st == EventStatus::HalfDone) {
+        w.first = w.t;
+        event_start_half(c, w, -1);
+        while ((st = event_step(c, w, 0, rng, ref, observe)) == EventStatus::Running) {
+        }
+    }
+    return event_walk_outcome(c, w, st == EventStatus::Capped);
+}
+
+/// One step of length h / 2^d0 of the event scheme.
+template <class Rng, class RefRng, class Observer>
+STICKSLIP_HD inline EventStatus event_step(const EventConstants& c, EventWalk& w, int d0, Rng& rng, RefRng& ref,
+                                           Observer& observe) {
+    return event_colored_step(c, w, d0, rng, ref, observe);
+}
+
+/// Advances w to time t_end [leaves], exactly: steps of h while a whole one
+/// fits, then the binary digits of what is left (h/2, h/4, ...), each cut
+/// short by its events as usual. For paths of a given length and fixed
+/// observation times. Returns Running, or Capped, or HalfDone when the walk
+/// reaches a regeneration state before t_end (only walks that track a half).
+template <class Rng, class RefRng, class Observer>
+STICKSLIP_HD inline EventStatus event_advance_to(const EventConstants& c, EventWalk& w, std::uint64_t t_end, Rng& rng,
+                                                 RefRng& ref, Observer& observe) {
+    while (w.t < t_end) {
+        const std::uint64_t left = t_end - w.t;
+        int d = 0;
+        while (d < event_depth && c.lv[d].leaves > left) ++d;
+        const EventStatus st = event_step(c, w, d, rng, ref, observe);
+        if (st != EventStatus::Running) return st;
+    }
+    return EventStatus::Running;
+}
+
+/// A walk that starts at noise x0 [s^-1/2] and velocity v0 [m/s] (a path, not
+/// a long excursion): sliding in v0's direction, or at V = 0 stuck inside the
+/// band and launched beyond it. `dir` 0: no half is tracked (reaching a
+/// threshold never ends it).
+STICKSLIP_HD inline EventWalk event_walk_from(const EventConstants& c, double x0, double v0) {
+    EventWalk w;
+    w.x = x0;
+    w.v = v0;
+    w.dir = 0;
+    if (v0 != 0.0) w.phase = v0 > 0 ? +1 : -1;
+    else if (x0 > c.x_up) w.phase = +1;
+    else if (x0 < c.x_down) w.phase = -1;
+    else w.phase = 0;
+    w.launched = w.phase != 0 && v0 == 0.0;
+    return w;
+}
+
+} // namespace stickslip

@@ -1,0 +1,57 @@
+// Construction of the event scheme's per-run constants: the exact laws of a
+// step and of its midpoint at every refinement depth.
+#include "stickslip/event_scheme.hpp"
+
+#include <cmath>
+
+#include "format.hpp"
+#include "stickslip/inclusion.hpp"
+
+namespace stickslip {
+
+EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s) {
+    validate(p);
+    validate(s);
+    require_stationary_state(p);
+    EventConstants c{};
+    c.h = s.dt;
+    c.leaf = std::ldexp(s.dt, -event_depth);
+    c.amp = p.force_amplitude();
+    c.bias = p.bias;
+    c.friction = p.friction;
+    c.inv_relaxation = p.inverse_relaxation();
+    c.noise = p.noise;
+    c.max_work = s.max_work_per_excursion;
+    if (p.white())
+        throw InvalidParameter("scheme", "the event scheme needs colored noise (tau > 0); for white noise use "
+                                         "--scheme resolvent");
+    c.x_up = p.upper_threshold();
+    c.x_down = p.lower_threshold();
+    // The laws reject what they cannot compute (tiny or huge ratios); say it with the flag's name.
+    try {
+        for (int d = 0; d <= event_depth; ++d) {
+            EventLevel& L = c.lv[d];
+            L.leaves = std::uint64_t{1} << (event_depth - d);
+            L.len = std::ldexp(s.dt, -d);
+            {
+                L.slide = colored_slide_law(p.tau, p.relaxation, c.amp, L.len);
+                L.mid = colored_slide_bridge(p.tau, p.relaxation, c.amp, L.len);
+                L.v_mid_sd = std::sqrt(L.mid.cov[1][1]);
+                const OUStep ou = ou_step(p.tau, L.len);
+                L.x_keep = ou.end_coef;
+                L.x_sd = std::sqrt(ou.s22);
+                L.x_grow = std::exp(L.len / p.tau);
+                L.x_u_len = 0.5 * p.tau * std::expm1(2.0 * L.len / p.tau);
+                L.x_var_rate = 2.0 / (p.tau * p.tau);
+                L.x_tau = p.tau;
+            }
+        }
+    } catch (const std::invalid_argument& e) {
+        throw InvalidParameter("dt", "dt = " + detail::format_number(s.dt) +
+                                         " s is outside the range the event scheme's laws can be computed for (" +
+                                         e.what() + ")");
+    }
+    return c;
+}
+
+} // namespace stickslip

@@ -1,0 +1,151 @@
+// The event scheme (event_scheme.hpp): time kept in whole leaves, results
+// bitwise the same for any thread count, paths that end exactly at their
+// times, the start of a walk from any state, the refusal of white noise, and
+// the first-passage law of a stuck step against its closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "stickslip/bruteforce.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/event_scheme.hpp"
+#include "stickslip/rng_batch.hpp"
+#include "stickslip/runner.hpp"
+
+namespace ss = stickslip;
+
+namespace {
+
+ss::EngineSettings event(double dt) {
+    ss::EngineSettings e;
+    e.scheme = ss::Scheme::Event;
+    e.dt = dt;
+    return e;
+}
+
+TEST(EventScheme, BitwiseTheSameForAnyThreadCount) {
+    const ss::ModelParams p;
+    ss::RunTotals t[3];
+    const unsigned threads[3] = {1, 2, 7};
+    for (int k = 0; k < 3; ++k) {
+        ss::RunControl ctl;
+        ctl.threads = threads[k];
+        ctl.seed = 99;
+        t[k] = ss::run_long_excursions(p, event(2e-2), 300, ctl);
+    }
+    for (int k = 1; k < 3; ++k) {
+        EXPECT_EQ(t[k].moments.mean_x(), t[0].moments.mean_x()) << threads[k] << " threads";
+        EXPECT_EQ(t[k].moments.central_sum(2, 0), t[0].moments.central_sum(2, 0)) << threads[k] << " threads";
+        EXPECT_EQ(t[k].moments.mean_y(), t[0].moments.mean_y()) << threads[k] << " threads";
+        EXPECT_EQ(t[k].work, t[0].work);
+    }
+}
+
+TEST(EventScheme, DurationIsWholeLeavesAndTheLongExcursionAlternates) {
+    const ss::EventConstants c = ss::make_event_constants(ss::ModelParams{}, event(3e-2));
+    EXPECT_EQ(c.leaf, std::ldexp(3e-2, -ss::event_depth));
+    for (std::uint64_t k = 0; k < 20; ++k) {
+        ss::BatchedCounterRng rng(5, ss::StreamPurpose::LongExcursion, k);
+        ss::CounterRng ref(5, ss::StreamPurpose::Refinement, k);
+        int last_phase = 2;
+        std::uint64_t last_t = 0;
+        bool ordered = true;
+        const auto o = ss::event_long_excursion(c, rng, ref, [&](const ss::EventPiece& piece) {
+            ordered = ordered && piece.t0 == last_t && piece.t1 > piece.t0;
+            last_t = piece.t1;
+            last_phase = piece.phase;
+            if (piece.phase == 0) ordered = ordered && piece.u0 == piece.u1 && piece.v0 == 0.0;
+        });
+        ASSERT_FALSE(o.capped);
+        EXPECT_TRUE(ordered) << "pieces must tile the excursion in time, stuck ones without motion";
+        EXPECT_EQ(o.duration, c.leaf * static_cast<double>(last_t));
+        EXPECT_GT(o.first_half, 0.0);
+        EXPECT_LT(o.first_half, o.duration);
+        EXPECT_EQ(last_phase, 0) << "a long excursion ends stuck, at its regeneration state";
+    }
+}
+
+TEST(EventScheme, PathsEndExactlyAtTheirTimes) {
+    const ss::EventConstants c = ss::make_event_constants(ss::ModelParams{}, event(2e-2));
+    ss::BatchedCounterRng rng(1, ss::StreamPurpose::BruteForce, 0);
+    ss::CounterRng ref(1, ss::StreamPurpose::Refinement, 0);
+    ss::EventWalk w = ss::event_walk_from(c, 3.0, 0.0); // beyond x*: launched upwards
+    EXPECT_EQ(w.phase, +1);
+    ss::NoPieceObserver none;
+    for (std::uint64_t at : {std::uint64_t{12345}, std::uint64_t{1} << 20, std::uint64_t{3'000'001}}) {
+        ASSERT_EQ(ss::event_advance_to(c, w, at, rng, ref, none), ss::EventStatus::Running);
+        EXPECT_EQ(w.t, at);
+    }
+    EXPECT_EQ(ss::event_walk_from(c, 0.0, 0.0).phase, 0);
+    EXPECT_EQ(ss::event_walk_from(c, -9.0, 0.0).phase, -1);
+    EXPECT_EQ(ss::event_walk_from(c, 0.0, -0.1).phase, -1);
+}
+
+TEST(EventScheme, CappedExcursionsAreCounted) {
+    ss::EngineSettings e = event(1e-2);
+    e.max_work_per_excursion = 50;
+    ss::RunControl ctl;
+    const auto t = ss::run_long_excursions(ss::ModelParams{}, e, 64, ctl);
+    EXPECT_GT(t.capped, 0u);
+    EXPECT_EQ(t.capped + t.moments.count(), 64u);
+}
+
+TEST(EventScheme, WhiteNoiseIsRefusedNamingTheScheme) {
+    ss::ModelParams p;
+    p.tau = 0;
+    try {
+        ss::make_event_constants(p, event(1e-2));
+        FAIL() << "white noise accepted";
+    } catch (const ss::InvalidParameter& e) {
+        EXPECT_EQ(e.parameter(), "scheme");
+    }
+}
+
+// The stuck step's crossing: for a Brownian bridge (tau large against the
+// step, where the clock change is the identity to first order) the crossing
+// probability is exp(-2 a b / (sigma^2 len)) and the first-passage time of a
+// bridge that ends beyond the level has the mean of its closed form
+// (integrated numerically here from the density a/sqrt(2 pi s^2 t^3) exp(...)).
+TEST(EventScheme, FirstPassageOfAStuckStepMatchesTheBridgeLaw) {
+    ss::ModelParams p;
+    p.tau = 1e6; // X is a Brownian motion over the step, to 1e-8
+    const ss::EventConstants c = ss::make_event_constants(p, event(1e-3));
+    const ss::EventLevel& L = c.lv[0];
+    const double sigma2 = L.x_var_rate, len = L.len;
+    const double a = 0.7 * std::sqrt(sigma2 * len), b = 0.4 * std::sqrt(sigma2 * len);
+    // Crossing probability, both ends on the near side.
+    const int n = 200000;
+    int crossed = 0;
+    ss::CounterRng u_rng(3, ss::StreamPurpose::Test, 0), ref(3, ss::StreamPurpose::Refinement, 0);
+    for (int k = 0; k < n; ++k) crossed += ss::detail::first_passage(L, a, b, u_rng.uniform(), ref) >= 0.0;
+    const double p_exact = std::exp(-2 * a * b / (sigma2 * len)), f = static_cast<double>(crossed) / n;
+    const double se = std::sqrt(p_exact * (1 - p_exact) / n);
+    EXPECT_LE(std::fabs(f - p_exact), 4 * se) << "crossing frequency " << f << " vs " << p_exact
+                                              << ", z = " << (f - p_exact) / se;
+    // Mean first-passage time of the bridge from a to -b (it must cross).
+    double mean = 0, mean2 = 0;
+    for (int k = 0; k < n; ++k) {
+        const double t = ss::detail::first_passage(L, a, -b, 0.5, ref);
+        mean += t;
+        mean2 += t * t;
+    }
+    mean /= n;
+    const double sd = std::sqrt(mean2 / n - mean * mean) / std::sqrt(static_cast<double>(n));
+    // Density of the hitting time of 0 by a bridge from a to -b over [0, len]:
+    // f(t) = a / sqrt(2 pi sigma2 t^3) e^{-a^2/(2 sigma2 t)} phi_{len-t}(b) / phi_len(a + b).
+    auto phi = [&](double x, double t) { return std::exp(-x * x / (2 * sigma2 * t)) / std::sqrt(2 * M_PI * sigma2 * t); };
+    double exact = 0, norm = 0;
+    const int m = 200000;
+    for (int i = 0; i < m; ++i) {
+        const double t = len * (i + 0.5) / m;
+        const double fd = a / std::sqrt(2 * M_PI * sigma2 * t * t * t) * std::exp(-a * a / (2 * sigma2 * t)) *
+                          phi(b, len - t) / phi(a + b, len);
+        exact += t * fd * len / m;
+        norm += fd * len / m;
+    }
+    EXPECT_NEAR(norm, 1.0, 1e-3) << "the reference density must integrate to 1";
+    EXPECT_LE(std::fabs(mean - exact / norm), 4 * sd) << "mean first passage " << mean << " vs " << exact / norm
+                                                      << ", z = " << (mean - exact / norm) / sd;
+}
+
+} // namespace
