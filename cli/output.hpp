@@ -1,11 +1,16 @@
 // The output contract of every subcommand: --format table|json|csv, and
-// --output FILE written atomically (a temporary file next to it, renamed into
-// place when the run succeeds; a run that fails leaves an existing file
-// untouched and nothing else behind).
+// --output FILE. A regular file (or a new one) is written atomically: a
+// temporary file beside it, renamed into place when the run succeeds, so a run
+// that fails or is killed leaves an existing file untouched and nothing else
+// behind; the file keeps its mode and owner, and a symlink stays a link (its
+// target is what gets replaced). Anything else (a device such as /dev/null or
+// a terminal, a FIFO, a socket, /dev/stdout) is written through, as any other
+// program would write it: replacing it by a regular file would break it.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <sys/types.h>
 #include <vector>
 
 namespace stickslip::cli {
@@ -19,10 +24,12 @@ struct OutputFlags {
 
 void add_output_flags(CLI::App* app, OutputFlags& o);
 
-/// Validates --format and, when --output is given, opens the temporary file
-/// next to it before any work starts (so a bad path fails in a second, not
-/// after an hour). commit() writes the text and renames it into place; a run
-/// that fails leaves nothing behind.
+/// Validates --format and --output before any work starts (so a bad path
+/// fails in a second, not after an hour); for a regular file it opens the
+/// temporary beside the target there. commit() writes the text: renames the
+/// temporary into place, or writes a device, FIFO or descriptor directly.
+/// A run that fails (any exception, or a terminating signal) leaves nothing
+/// behind.
 class Output {
 public:
     explicit Output(const OutputFlags& o);
@@ -36,8 +43,22 @@ public:
     void commit(const std::string& text, const std::vector<std::string>& warnings);
 
 private:
-    std::string format_, path_, temp_;
+    enum class Sink {
+        standard_output, ///< no --output
+        atomic,          ///< a regular or new file at target_, via temp_
+        direct,          ///< a device, FIFO or socket at target_, opened at commit
+        descriptor,      ///< /dev/stdout, /dev/fd/N...: this process's descriptor_
+    };
+    void open_temporary(std::string& error);
+    void write_all(int fd, const std::string& text) const;
+    void commit_atomic(const std::string& text);
+    void discard() noexcept;
+
+    std::string format_, path_, target_, temp_;
+    Sink sink_ = Sink::standard_output;
     int fd_ = -1;
+    int descriptor_ = -1;
+    mode_t umask_ = 022;
     bool quiet_ = false;
 };
 
