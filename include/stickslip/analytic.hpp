@@ -1,4 +1,4 @@
-// stickslip/analytic.hpp -- exact white-noise references (MODEL.md sections 7, 9).
+// stickslip/analytic.hpp -- exact white-noise references (theory.md, section 8).
 //
 // For white noise (tau = 0) the velocity is a one-dimensional diffusion
 // dV = (b(V) - Delta sgn V) dt + sqrt(Gamma) dW whose stationary density is
@@ -10,7 +10,7 @@
 // references for every white-noise-limit test. All in SI units; p.tau is ignored
 // throughout (the references are those of the white-noise limit).
 //
-// Noise convention (MODEL.md section 2): the white-noise limit has intensity
+// Noise convention (theory.md, section 2): the white-noise limit has intensity
 // Gamma = p.noise, i.e. the Fokker-Planck diffusion coefficient is Gamma/2.
 #pragma once
 
@@ -19,7 +19,14 @@
 namespace stickslip {
 
 /// Exact white-noise stationary quantities for the drift and friction of p
-/// (p.tau is ignored). Throws InvalidParameter when no stationary state exists.
+/// (p.tau is ignored), to a few units of double rounding for every valid p:
+/// closed forms without drag, the viscous values (D = relaxation^2 noise,
+/// Var = noise relaxation/2, M0 = the mode) once the mode is more than ~9
+/// standard deviations from the kink, otherwise quadratures that never cancel
+/// (analytic.cpp). Throws InvalidParameter when no stationary state exists
+/// ("bias"), or when a result is outside what a double holds to 12 digits
+/// (beyond 1.8e308, or deep among the denormals): "relaxation" with drag,
+/// "bias" without (as |bias| -> friction) and for M0 or a mode out of range.
 struct WhiteNoiseReference {
     double mobility;    ///< M0 [m/s]
     double diffusivity; ///< D [m^2/s]
@@ -32,10 +39,15 @@ WhiteNoiseReference white_noise_reference(const ModelParams& p);
 /// p(v) = exp(-phi(v)) / Z with phi(v) = v^2/(Gamma tauL) + 2 Delta |v|/Gamma
 /// - 2 gbar v/Gamma shifted so that min phi = 0; phi is convex and piecewise
 /// quadratic with a kink at v = 0. Build it once and evaluate it many times:
-/// the constructor does the quadratures (about a millisecond), the calls are
-/// a few flops. p.tau is ignored. Throws InvalidParameter (like every function
-/// here: "friction", "noise", ... from validate(), or "bias" when no
-/// stationary state exists, i.e. relaxation = inf and |bias| >= friction).
+/// the constructor does the quadratures (well under a millisecond), the calls
+/// are a few flops. phi is evaluated without cancellation (a2 (v - mode)^2 with
+/// a double-double mode on the mode's side), so density, potential and
+/// probabilities are exact to rounding however far the mode is from 0 in
+/// standard deviations. p.tau is ignored. Throws InvalidParameter (like every
+/// function here: "friction", "noise", ... from validate(), "bias" when no
+/// stationary state exists, i.e. relaxation = inf and |bias| >= friction, or
+/// when the mean or mode is out of the range of double; like
+/// white_noise_reference when the variance is).
 class HayakawaDensity {
 public:
     explicit HayakawaDensity(const ModelParams& p);
@@ -54,20 +66,24 @@ public:
     double variance() const { return variance_; }
     /// phi(v) = -log(p(v)/p(mode)) >= 0 [1]: the potential, 0 at the mode.
     double potential(double v) const;
-    /// The most probable velocity [m/s] (0 unless |bias| > friction with drag).
+    /// The most probable velocity [m/s] (0 unless |bias| > friction with drag),
+    /// rounded to double: where |mode| >> sd that double may sit a fraction of
+    /// sd off the exact mode, and potential(mode()) is then not 0.
     double mode() const { return mode_; }
 
 private:
-    template <class Visit>
-    void visit_nodes(double a, double b, Visit&& visit) const;
-
-    double a2_ = 0, cp_ = 0, cm_ = 0; // phi = a2 v^2 + cp v (v >= 0), a2 v^2 - cm v (v < 0), unshifted [s^2/m^2, s/m]
-    double mode_ = 0, phi_min_ = 0;   // argmin and min of the unshifted phi
-    double lo_ = 0, hi_ = 0;          // where phi - phi_min = 700: the density is 0 in double beyond
+    // phi(v) = a2 v^2 + kp v (v >= 0), a2 v^2 + km |v| (v < 0), shifted to min 0
+    // and evaluated without cancellation (analytic.cpp): a2 (v - mode)^2 on the
+    // side of the mode, kink + a2 v^2 + k |v| on the other.
+    long double a2_ = 0, kp_ = 0, km_ = 0; // [s^2/m^2], [s/m], [s/m]
+    long double kink_ = 0;                 // phi(0)
+    int side_ = 0;                         // sign of the mode (0: the mode is v = 0)
+    double mode_ = 0, mode_lo_ = 0;        // the mode as a double-double mode_ + mode_lo_ [m/s]
     double inv_z_ = 0, mean_ = 0, variance_ = 0;
 };
 
-/// Unnormalised log of Hayakawa's density, -log p(v) + const [dimensionless].
+/// Unnormalised log of Hayakawa's density, -log p(v) + const [dimensionless]
+/// (the constant makes its minimum 0, as HayakawaDensity::potential).
 double hayakawa_potential(const ModelParams& p, double v);
 
 /// Normalised Hayakawa stationary density p(v) [s/m]. Convenience wrapper of
@@ -76,7 +92,9 @@ double hayakawa_potential(const ModelParams& p, double v);
 double hayakawa_density(const ModelParams& p, double v);
 
 /// Closed forms for pure dry friction with a constant force (no viscous drag),
-/// |bias| < friction; g = bias/friction. SI units.
+/// |bias| < friction; g = bias/friction. SI units; evaluated with
+/// 1 - g^2 = (friction - bias)(friction + bias)/friction^2, so they keep their
+/// digits as |bias| -> friction. Not validated (see white_noise_reference).
 double dry_friction_mobility(const ModelParams& p);    ///< (Gamma/Delta) g/(1-g^2)
 double dry_friction_diffusivity(const ModelParams& p); ///< Gamma^3/Delta^4 (5g^4+22g^2+5)/(4(1-g^2)^4)
 
@@ -85,7 +103,7 @@ double dry_friction_diffusivity(const ModelParams& p); ///< Gamma^3/Delta^4 (5g^
 // dV = -Delta sgn(V) dt + sqrt(Gamma) dW: relaxation must be inf and bias 0
 // (InvalidParameter "relaxation" or "bias" otherwise; p.tau is ignored). Their
 // formulas (2.10), (2.11), (2.13) are written in x = 2v', s = 2t'; here they are
-// restated in the MODEL.md nondimensional variables v' = v Delta/Gamma,
+// restated in the nondimensional variables (theory.md, section 3) v' = v Delta/Gamma,
 // t' = t Delta^2/Gamma (section 9) and returned in SI. Evaluated in extended
 // precision with scaled complementary error functions, so they neither
 // overflow (e^{2|v0|} Phi(-...) is never formed) nor lose the small values
