@@ -1,5 +1,6 @@
 #include "distributed.hpp"
 
+#include "stickslip/exact_sum.hpp"
 #include "stickslip/params.hpp"
 
 #include <cstdlib>
@@ -24,39 +25,34 @@ bool under_launcher() {
     return false;
 }
 
-constexpr int kRecordDoubles = 3 + BivariateMoments::raw_size;
+/// The MPI user operation of exact sums: inout[k] += in[k] for every ExactSum
+/// of the buffer (a datatype of ExactSum::words 64-bit words). Exact, so it is
+/// commutative and associative: any reduction tree gives the same words.
+void merge_exact_sums(void* in, void* inout, int* len, MPI_Datatype*) {
+    const auto* a = static_cast<const std::uint64_t*>(in);
+    auto* b = static_cast<std::uint64_t*>(inout);
+    for (int k = 0; k < *len; ++k) ExactSum::merge_words(a + k * ExactSum::words, b + k * ExactSum::words);
+}
 
-/// All-gathers every process's block records (block, capped, work, raw moments).
-std::vector<BlockRecord> all_gather(std::vector<BlockRecord> mine) {
-    std::vector<double> send(mine.size() * kRecordDoubles);
-    for (std::size_t k = 0; k < mine.size(); ++k) {
-        double* p = &send[k * kRecordDoubles];
-        p[0] = static_cast<double>(mine[k].block); // block numbers < 2^50: exact
-        p[1] = static_cast<double>(mine[k].capped);
-        p[2] = static_cast<double>(mine[k].work);
-        mine[k].moments.to_raw(p + 3);
-    }
-    // MPI counts are ints: refuse (on every process alike) rather than overflow.
-    const bool fits = send.size() * g_ranks < static_cast<std::size_t>(std::numeric_limits<int>::max());
-    if (!all_ok(fits))
-        throw InvalidParameter("excursions", "too many sample blocks to gather across processes; use fewer "
-                                             "excursions per run");
-    int count = static_cast<int>(send.size());
-    std::vector<int> counts(g_ranks), offsets(g_ranks, 0);
-    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    for (unsigned r = 1; r < g_ranks; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-    std::vector<double> recv(static_cast<std::size_t>(offsets.back() + counts.back()));
-    MPI_Allgatherv(send.data(), count, MPI_DOUBLE, recv.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-                   MPI_COMM_WORLD);
-    std::vector<BlockRecord> all(recv.size() / kRecordDoubles);
-    for (std::size_t k = 0; k < all.size(); ++k) {
-        const double* p = &recv[k * kRecordDoubles];
-        all[k].block = static_cast<std::uint64_t>(p[0]);
-        all[k].capped = static_cast<std::uint64_t>(p[1]);
-        all[k].work = static_cast<std::uint64_t>(p[2]);
-        all[k].moments = BivariateMoments::from_raw(p + 3);
-    }
-    return all;
+/// Replaces this process's exact sums and counts by their totals over every
+/// process: one all-reduce each, of a size that does not depend on the run.
+void all_reduce(std::vector<std::uint64_t>& words, std::vector<std::uint64_t>& counts) {
+    static MPI_Datatype chunk = [] {
+        MPI_Datatype t;
+        MPI_Type_contiguous(static_cast<int>(ExactSum::words), MPI_UINT64_T, &t);
+        MPI_Type_commit(&t);
+        return t;
+    }();
+    static MPI_Op op = [] {
+        MPI_Op o;
+        MPI_Op_create(&merge_exact_sums, 1, &o);
+        return o;
+    }();
+    const auto chunks = static_cast<int>(words.size() / ExactSum::words);
+    if (chunks > 0) MPI_Allreduce(MPI_IN_PLACE, words.data(), chunks, chunk, op, MPI_COMM_WORLD);
+    if (!counts.empty())
+        MPI_Allreduce(MPI_IN_PLACE, counts.data(), static_cast<int>(counts.size()), MPI_UINT64_T, MPI_SUM,
+                      MPI_COMM_WORLD);
 }
 #endif
 } // namespace
@@ -110,7 +106,7 @@ void distribute(RunControl& control) {
     if (g_ranks > 1) {
         control.rank = g_rank;
         control.ranks = g_ranks;
-        control.combine = all_gather;
+        control.reduce = all_reduce;
     }
 #else
     (void)control;

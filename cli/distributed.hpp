@@ -1,9 +1,10 @@
 // Runs across processes (MPI). Built in with -DSTICKSLIP_MPI=ON; MPI is
 // started only when the command is launched by mpirun/srun (so the same binary
 // runs alone without an MPI runtime). Every process parses and validates the
-// same flags, computes its share of the sample blocks, and the blocks are
-// all-gathered and merged in block order: the result is bitwise that of one
-// process with the same seed. Only the first process prints or writes.
+// same flags and computes its share of the sample blocks; their exact sums are
+// all-reduced at the end (a few kilobytes, whatever the run's size), so the
+// result is bitwise that of one process with the same seed. Only the first
+// process prints or writes.
 #pragma once
 
 #include "stickslip/runner.hpp"

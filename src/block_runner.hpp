@@ -1,20 +1,21 @@
-// Internal: the parallel, order-deterministic block driver behind every run.
+// Internal: the parallel block driver behind every run.
 //
 // Samples [first_index, first_index + n) are cut into blocks of block_size
 // consecutive indices (independent of the thread count). BlockSchedule hands
 // the blocks of this process to the worker threads; a block is filled by one
-// thread into its own accumulator; OrderedMerge merges finished blocks
-// strictly in block order. Any accumulator whose merge is deterministic (the
-// moment classes of estimators.hpp) therefore gives bitwise-identical results
-// for any thread count. `Extra` carries what an observable accumulates
-// besides (U, t).
+// thread into its own accumulators, in index order; as soon as it is done it
+// is added into the run's exact, order-free sums (moment_sums.hpp), whoever
+// finishes first. So a result is bitwise the same for any thread count,
+// process split and timing, and no thread holds more than the block it is
+// working on. What an observable accumulates besides (U, t) comes in two
+// forms: `Block`, filled per block in sample order, and `Total`, its exact
+// sum (total.add_block(block), total.merge(other), and words for MPI).
 #pragma once
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <exception>
-#include <map>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -22,18 +23,21 @@
 #include <type_traits>
 #include <vector>
 
+#include "stickslip/moment_sums.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/rng.hpp"
 #include "stickslip/runner.hpp"
 
 namespace stickslip::detail {
 
-template <class Extra>
-struct BlockResult {
-    BivariateMoments moments;
-    std::uint64_t capped = 0;
-    std::uint64_t work = 0;
-    Extra extra;
+/// What a run that accumulates nothing besides (U, t) carries.
+struct NoBlock {};
+struct NoTotal {
+    void add_block(const NoBlock&) {}
+    void merge(const NoTotal&) {}
+    std::size_t words() const { return 0; }
+    void to_words(std::uint64_t*) const {}
+    void assign_words(const std::uint64_t*) {}
 };
 
 /// Which blocks this process computes (all of them, or b % ranks == rank in a
@@ -49,7 +53,6 @@ public:
         threads_ = static_cast<unsigned>(std::clamp<std::uint64_t>(local_, 1, std::max(threads_, 1u)));
     }
 
-    std::uint64_t blocks() const { return blocks_; }
     unsigned threads() const { return threads_; }
     /// The next block to compute, from any thread; nullopt when none is left.
     std::optional<std::uint64_t> next() {
@@ -67,96 +70,78 @@ private:
     std::atomic<std::uint64_t> next_{0};
 };
 
-/// Merges finished blocks strictly in block order (so the result cannot
-/// depend on timing), reports progress, and in a distributed run collects
-/// this process's block records for the gather instead. Callers hold `mutex`.
-template <class Extra, class Merge>
-class OrderedMerge {
+/// The run's exact sums, added to as blocks finish (callers hold `mutex`), the
+/// progress reports, and the reduction across processes at the end.
+template <class Block, class Total>
+class BlockSums {
 public:
-    OrderedMerge(std::uint64_t n, const RunControl& ctl, Merge merge, RunTotals& totals, Extra& extra_total)
-        : n_(n), ctl_(ctl), merge_(merge), totals_(totals), extra_(extra_total), start_(clock::now()),
-          last_report_(start_) {}
+    BlockSums(std::uint64_t n, const RunControl& ctl, RunTotals& totals, Total& total)
+        : n_(n), ctl_(ctl), totals_(totals), total_(total), start_(clock::now()), last_report_(start_) {}
 
     std::mutex mutex;
 
-    /// Takes block b; returns false when the progress callback asked to stop.
-    bool add(std::uint64_t b, BlockResult<Extra>&& r, std::uint64_t samples) {
-        if (ctl_.ranks > 1) {
-            records_.push_back(BlockRecord{b, r.moments, r.capped, r.work});
-            merged_ += samples;
-            return true;
-        }
-        pending_.emplace(b, std::move(r));
-        for (auto it = pending_.find(next_); it != pending_.end(); it = pending_.find(next_)) {
-            take(it->second.moments, it->second.capped, it->second.work);
-            merge_(extra_, it->second.extra);
-            merged_ = std::min(n_, (next_ + 1) * block_size);
-            pending_.erase(it);
-            ++next_;
-        }
+    /// Takes a finished block; returns false when the progress callback asked to stop.
+    bool add(const BivariateMoments& moments, const Block& block, std::uint64_t capped, std::uint64_t work,
+             std::uint64_t samples) {
+        totals_.sums.add_block(moments);
+        total_.add_block(block);
+        totals_.capped += capped;
+        totals_.work += work;
+        done_ += samples;
         if (!ctl_.progress) return true;
         const auto now = clock::now();
         if (std::chrono::duration<double>(now - last_report_).count() < ctl_.progress_interval) return true;
         last_report_ = now;
-        return ctl_.progress(Progress{merged_, n_, seconds(), &totals_.moments});
+        const BivariateMoments so_far = totals_.sums.moments();
+        return ctl_.progress(Progress{done_, n_, seconds(), &so_far});
     }
 
-    /// After the workers: a distributed run gathers every process's records
-    /// and merges them in block order; then the final progress report.
-    void finish(std::uint64_t blocks) {
+    /// After the workers: a distributed run adds up every process's sums;
+    /// then the moments and the final progress report.
+    void finish() {
         if (ctl_.ranks > 1) {
-            std::vector<BlockRecord> all = ctl_.combine(std::move(records_));
-            std::sort(all.begin(), all.end(), [](const BlockRecord& a, const BlockRecord& c) { return a.block < c.block; });
-            if (all.size() != blocks) throw std::runtime_error("distributed run: blocks missing after the gather");
-            for (const auto& rec : all) take(rec.moments, rec.capped, rec.work);
-            merged_ = n_;
+            std::vector<std::uint64_t> words(ExactBivariateSums::words + total_.words());
+            totals_.sums.to_words(words.data());
+            total_.to_words(words.data() + ExactBivariateSums::words);
+            std::vector<std::uint64_t> counts{totals_.capped, totals_.work, done_};
+            ctl_.reduce(words, counts);
+            totals_.sums = ExactBivariateSums::from_words(words.data());
+            total_.assign_words(words.data() + ExactBivariateSums::words);
+            totals_.capped = counts[0];
+            totals_.work = counts[1];
+            done_ = counts[2];
         }
+        totals_.moments = totals_.sums.moments();
         totals_.seconds = seconds();
-        if (ctl_.progress) ctl_.progress(Progress{merged_, n_, totals_.seconds, &totals_.moments});
+        if (ctl_.progress) ctl_.progress(Progress{done_, n_, totals_.seconds, &totals_.moments});
     }
 
 private:
     using clock = std::chrono::steady_clock;
-
-    void take(const BivariateMoments& m, std::uint64_t capped, std::uint64_t work) {
-        totals_.moments.merge(m);
-        totals_.capped += capped;
-        totals_.work += work;
-    }
     double seconds() const { return std::chrono::duration<double>(clock::now() - start_).count(); }
 
     std::uint64_t n_;
     const RunControl& ctl_;
-    Merge merge_;
     RunTotals& totals_;
-    Extra& extra_;
+    Total& total_;
     clock::time_point start_, last_report_;
-    std::map<std::uint64_t, BlockResult<Extra>> pending_; // finished blocks waiting for their turn
-    std::uint64_t next_ = 0, merged_ = 0;
-    std::vector<BlockRecord> records_; // distributed only
+    std::uint64_t done_ = 0;
 };
 
-/// make_extra() -> Extra (an empty accumulator); sample(index, Extra&) ->
-/// ExcursionOutcome, adding to Extra only when the outcome is not capped, or
-/// the block form sample(first, count, ExcursionOutcome* out, Extra&) -> bool
-/// (false: cancelled, out incomplete), which fills a block of outcomes at once;
-/// merge(Extra& into, const Extra& from). Returns the totals; `extra_total`
-/// receives the merged Extra.
-template <class Extra, class MakeExtra, class Sample, class Merge>
-RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extra, Sample sample, Merge merge,
-                     Extra& extra_total) {
-    if (ctl.ranks > 1) {
-        if constexpr (!std::is_empty_v<Extra>)
-            throw InvalidParameter("ranks", "this computation cannot be split across processes (MPI): run it "
-                                            "with one process");
-        if (!ctl.combine || ctl.rank >= ctl.ranks) throw std::logic_error("RunControl: bad distributed settings");
-    }
+/// make_block() -> Block (an empty accumulator); sample(index, Block&) ->
+/// ExcursionOutcome, adding to the block only when the outcome is not
+/// capped, or the block form sample(first, count, ExcursionOutcome* out,
+/// Block&) -> bool (false: cancelled, out incomplete), which fills a block of
+/// outcomes at once. `total` receives the exact sum of every block.
+template <class Block, class Total, class MakeBlock, class Sample>
+RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeBlock make_block, Sample sample, Total& total) {
+    if (ctl.ranks > 1 && (!ctl.reduce || ctl.rank >= ctl.ranks))
+        throw std::logic_error("RunControl: bad distributed settings");
     BlockSchedule schedule(n, ctl);
     RunTotals totals;
     totals.requested = n;
     totals.threads = schedule.threads();
-    extra_total = make_extra();
-    OrderedMerge<Extra, Merge> merged(n, ctl, merge, totals, extra_total);
+    BlockSums<Block, Total> sums(n, ctl, totals, total);
     std::atomic<bool> stop{false};
     std::exception_ptr error;
     bool cancelled = false;
@@ -164,7 +149,7 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
     // elsewhere) stops every worker at its next sample.
     auto stopping = [&] {
         if (ctl.cancel && ctl.cancel->load(std::memory_order_relaxed)) {
-            std::lock_guard<std::mutex> lock(merged.mutex);
+            std::lock_guard<std::mutex> lock(sums.mutex);
             cancelled = true;
             stop = true;
         }
@@ -176,30 +161,32 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
             while (!stop.load(std::memory_order_relaxed)) {
                 const auto b = schedule.next();
                 if (!b) return;
-                BlockResult<Extra> r{BivariateMoments{}, 0, 0, make_extra()};
+                BivariateMoments moments;
+                Block block = make_block();
+                std::uint64_t capped = 0, work = 0;
                 const std::uint64_t lo = schedule.lo(*b), hi = schedule.hi(*b);
-                auto add = [&r](const ExcursionOutcome& o) {
-                    r.work += o.work;
-                    if (o.capped) ++r.capped;
-                    else r.moments.add(o.displacement, o.duration);
+                auto add = [&](const ExcursionOutcome& o) {
+                    work += o.work;
+                    if (o.capped) ++capped;
+                    else moments.add(o.displacement, o.duration);
                 };
-                if constexpr (std::is_invocable_v<Sample&, std::uint64_t, std::uint64_t, ExcursionOutcome*, Extra&>) {
+                if constexpr (std::is_invocable_v<Sample&, std::uint64_t, std::uint64_t, ExcursionOutcome*, Block&>) {
                     // A whole block at once (the SIMD lanes); it returns false when it saw ctl.cancel.
                     ExcursionOutcome outs[block_size];
                     if (stopping()) return;
-                    if (!sample(ctl.first_index + lo, hi - lo, outs, r.extra)) return (void)stopping();
+                    if (!sample(ctl.first_index + lo, hi - lo, outs, block)) return (void)stopping();
                     for (std::uint64_t k = lo; k < hi; ++k) add(outs[k - lo]); // in index order
                 } else {
                     for (std::uint64_t k = lo; k < hi; ++k) {
                         if (stopping()) return;
-                        add(sample(ctl.first_index + k, r.extra));
+                        add(sample(ctl.first_index + k, block));
                     }
                 }
-                std::lock_guard<std::mutex> lock(merged.mutex);
-                if (!cancelled && !merged.add(*b, std::move(r), hi - lo)) cancelled = stop = true;
+                std::lock_guard<std::mutex> lock(sums.mutex);
+                if (!cancelled && !sums.add(moments, block, capped, work, hi - lo)) cancelled = stop = true;
             }
         } catch (...) {
-            std::lock_guard<std::mutex> lock(merged.mutex);
+            std::lock_guard<std::mutex> lock(sums.mutex);
             if (!error) error = std::current_exception();
             stop = true;
         }
@@ -221,7 +208,7 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeExtra make_extr
     }
     if (error) std::rethrow_exception(error);
     if (cancelled) throw RunCancelled();
-    merged.finish(schedule.blocks());
+    sums.finish();
     return totals;
 }
 

@@ -39,14 +39,15 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
         ctl.first_index = req.control.first_index + total.requested;
         if (req.control.progress) {
             ctl.progress = [&](const Progress& p) {
-                BivariateMoments merged = total.moments;
+                BivariateMoments merged = total.moments; // for the progress line only: rounding does not matter
                 if (p.moments) merged.merge(*p.moments);
                 Progress q{total.requested + p.done, projected, total.seconds + p.seconds, &merged};
                 return req.control.progress(q);
             };
         }
         const RunTotals t = run_long_excursions(engine, batch, ctl);
-        total.moments.merge(t.moments);
+        total.sums.merge(t.sums); // exact: the batches' order and sizes leave no trace
+        total.moments = total.sums.moments();
         total.requested += t.requested;
         total.capped += t.capped;
         total.work += t.work;

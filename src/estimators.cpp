@@ -114,9 +114,70 @@ Estimate make_interval(double value, double std_error, double level) {
     return e;
 }
 
-RatioMoments::RatioMoments(std::size_t dim, bool full_covariance)
-    : dim_(dim), full_(full_covariance), mean_y_(dim, 0.0), m_yt_(dim, 0.0),
-      m_yy_(full_covariance ? dim * dim : dim, 0.0) {}
+namespace {
+std::vector<std::size_t> all_of(std::size_t dim, bool full) {
+    std::vector<std::size_t> c;
+    if (full)
+        for (std::size_t k = 0; k < dim; ++k) c.push_back(k);
+    return c;
+}
+} // namespace
+
+Estimate make_relative_interval(double value, double std_error, double level) {
+    if (!(value > 0.0)) { // 0 or NaN (a D_hat is never negative)
+        Estimate e = make_interval(value, std_error, level);
+        if (e.lo < 0.0) e.lo = 0.0;
+        return e;
+    }
+    const double q = normal_quantile_two_sided(level);
+    Estimate e;
+    e.value = value;
+    e.std_error = std_error;
+    e.level = level;
+    const double h = q * std_error / value; // relative half-width q r
+    if (std::isnan(h)) {
+        e.lo = e.hi = h;
+    } else {
+        e.lo = value / (1.0 + h);
+        e.hi = h < 1.0 ? value / (1.0 - h) : std::numeric_limits<double>::infinity();
+    }
+    return e;
+}
+
+RatioMoments::RatioMoments(std::size_t dim, bool full_covariance) : RatioMoments(dim, all_of(dim, full_covariance)) {}
+
+RatioMoments::RatioMoments(std::size_t dim, std::vector<std::size_t> columns)
+    : dim_(dim), columns_(std::move(columns)), column_of_(dim, 0), mean_y_(dim, 0.0), m_yt_(dim, 0.0),
+      m_yy_(dim * (1 + columns_.size()), 0.0) {
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+        if (columns_[c] >= dim) throw std::logic_error("RatioMoments: column out of range");
+        column_of_[columns_[c]] = c + 1;
+    }
+}
+
+double& RatioMoments::cyy(std::size_t j, std::size_t k) {
+    if (j == k) return m_yy_[j];
+    if (column_of_[k]) return m_yy_[dim_ * column_of_[k] + j];
+    if (column_of_[j]) return m_yy_[dim_ * column_of_[j] + k];
+    throw std::logic_error("RatioMoments: the covariance of these two ratios is not kept");
+}
+
+double RatioMoments::cyy(std::size_t j, std::size_t k) const { return const_cast<RatioMoments*>(this)->cyy(j, k); }
+
+RatioMoments RatioMoments::from_central(std::size_t dim, std::vector<std::size_t> columns, std::uint64_t n,
+                                        double mean_t, double m_tt, std::vector<double> mean_y,
+                                        std::vector<double> m_yt, std::vector<double> yy) {
+    RatioMoments r(dim, std::move(columns));
+    if (mean_y.size() != dim || m_yt.size() != dim || yy.size() != r.m_yy_.size())
+        throw std::logic_error("RatioMoments::from_central: sizes differ");
+    r.n_ = n;
+    r.mean_t_ = mean_t;
+    r.m_tt_ = m_tt;
+    r.mean_y_ = std::move(mean_y);
+    r.m_yt_ = std::move(m_yt);
+    r.m_yy_ = std::move(yy);
+    return r;
+}
 
 void RatioMoments::add(const double* y, double t) {
     // Chan's update with a one-point sample: M += d_j d_k (n-1)/n with d = x - old mean.
@@ -133,14 +194,11 @@ void RatioMoments::add(const double* y, double t) {
         mean_y_[j] += d[j] / n;
         m_yt_[j] += d[j] * dt * f;
     }
-    if (full_) {
-        for (std::size_t j = 0; j < dim_; ++j) {
-            const double dj = d[j] * f;
-            double* row = &m_yy_[j * dim_];
-            for (std::size_t k = 0; k < dim_; ++k) row[k] += dj * d[k];
-        }
-    } else {
-        for (std::size_t j = 0; j < dim_; ++j) m_yy_[j] += d[j] * d[j] * f;
+    for (std::size_t j = 0; j < dim_; ++j) m_yy_[j] += d[j] * d[j] * f;
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+        const double dk = d[columns_[c]] * f;
+        double* col = &m_yy_[dim_ * (c + 1)];
+        for (std::size_t j = 0; j < dim_; ++j) col[j] += d[j] * dk;
     }
 }
 
@@ -150,18 +208,16 @@ void RatioMoments::merge(const RatioMoments& o) {
         *this = o;
         return;
     }
-    if (o.dim_ != dim_ || o.full_ != full_) throw std::logic_error("RatioMoments::merge: shapes differ");
+    if (o.dim_ != dim_ || o.columns_ != columns_) throw std::logic_error("RatioMoments::merge: shapes differ");
     const double na = static_cast<double>(n_), nb = static_cast<double>(o.n_), n = na + nb;
     const double f = na * nb / n;
     const double dt = o.mean_t_ - mean_t_;
     std::vector<double> d(dim_);
     for (std::size_t j = 0; j < dim_; ++j) d[j] = o.mean_y_[j] - mean_y_[j];
     for (std::size_t j = 0; j < dim_; ++j) {
-        if (full_) {
-            for (std::size_t k = 0; k < dim_; ++k) cyy(j, k) += o.cyy(j, k) + d[j] * d[k] * f;
-        } else {
-            m_yy_[j] += o.m_yy_[j] + d[j] * d[j] * f;
-        }
+        m_yy_[j] += o.m_yy_[j] + d[j] * d[j] * f;
+        for (std::size_t c = 0; c < columns_.size(); ++c)
+            m_yy_[dim_ * (c + 1) + j] += o.m_yy_[dim_ * (c + 1) + j] + d[j] * d[columns_[c]] * f;
         m_yt_[j] += o.m_yt_[j] + d[j] * dt * f;
         mean_y_[j] += d[j] * nb / n;
     }
@@ -171,7 +227,6 @@ void RatioMoments::merge(const RatioMoments& o) {
 }
 
 double RatioMoments::ratio_covariance(std::size_t j, std::size_t k) const {
-    if (j != k && !full_) throw std::logic_error("RatioMoments: covariance of two ratios needs full_covariance");
     if (n_ < 2) return std::numeric_limits<double>::quiet_NaN();
     const double rj = ratio(j), rk = ratio(k), n = static_cast<double>(n_);
     const double c = cyy(j, k) - rj * m_yt_[k] - rk * m_yt_[j] + rj * rk * m_tt_;
@@ -190,20 +245,21 @@ double RatioMoments::delta_variance(std::initializer_list<GradientTerm> gradient
 }
 
 namespace {
-Estimate make_estimate(double value, double var_influence, double n, double q, double level) {
-    Estimate e;
-    e.value = value;
-    e.std_error = std::sqrt(std::fmax(var_influence, 0.0) / (n - 1.0));
-    e.lo = value - q * e.std_error;
-    e.hi = value + q * e.std_error;
-    e.level = level;
-    return e;
+/// The standard error sqrt(var_influence / (n - 1)) of an average of n influence values.
+double influence_se(double var_influence, double n) { return std::sqrt(std::fmax(var_influence, 0.0) / (n - 1.0)); }
+/// Symmetric interval (M0, E[t1]: their coverage is nominal, docs/validation.md).
+Estimate make_estimate(double value, double var_influence, double n, double level) {
+    return make_interval(value, influence_se(var_influence, n), level);
+}
+/// Relative-error interval, never negative (D, D_t: right-skewed).
+Estimate make_scale_estimate(double value, double var_influence, double n, double level) {
+    return make_relative_interval(value, influence_se(var_influence, n), level);
 }
 } // namespace
 
 LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, double level, Estimator estimator) {
     if (ut.count() < 2) throw InvalidParameter("excursions", "at least 2 completed excursions are needed");
-    const double q = normal_quantile_two_sided(level);
+    normal_quantile_two_sided(level); // validates the level
     const double n = static_cast<double>(ut.count());
     const double tbar = ut.mean_y();
     const double m0 = ut.mean_x() / tbar;
@@ -221,26 +277,26 @@ LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, doubl
     r.excursions = ut.count();
     r.estimator = estimator;
     const double s2 = ew(2, 0);
-    r.mobility = make_estimate(m0, s2 / (tbar * tbar), n, q, level);
-    r.mean_duration = make_estimate(tbar, mu(0, 2), n, q, level);
+    r.mobility = make_estimate(m0, s2 / (tbar * tbar), n, level);
+    r.mean_duration = make_estimate(tbar, mu(0, 2), n, level);
     if (estimator == Estimator::RenewalReward) {
         // Influence function (theory.md, section 7): ((w^2 - D t) - 2 c w) / E[t].
         const double d = s2 / tbar;
         const double c = ew(1, 1) / tbar;
         const double var_g = (ew(4, 0) - s2 * s2) + d * d * mu(0, 2) + 4 * c * c * s2 - 2 * d * ew(2, 1) -
                              4 * c * ew(3, 0) + 4 * c * d * ew(1, 1);
-        r.diffusivity = make_estimate(d, var_g / (tbar * tbar), n, q, level);
+        r.diffusivity = make_scale_estimate(d, var_g / (tbar * tbar), n, level);
     } else {
         const double d = mu(2, 0) / tbar;
         const double var_g = (mu(4, 0) - mu(2, 0) * mu(2, 0)) + d * d * mu(0, 2) - 2 * d * mu(2, 1);
-        r.diffusivity = make_estimate(d, var_g / (tbar * tbar), n, q, level);
+        r.diffusivity = make_scale_estimate(d, var_g / (tbar * tbar), n, level);
     }
     return r;
 }
 
 BruteForceEstimates estimate_bruteforce(const BivariateMoments& u, double horizon, double level) {
     if (u.count() < 2) throw InvalidParameter("trajectories", "at least 2 trajectories are needed");
-    const double q = normal_quantile_two_sided(level);
+    normal_quantile_two_sided(level); // validates the level
     const double n = static_cast<double>(u.count());
     const double m2 = u.central_moment(2, 0), m4 = u.central_moment(4, 0);
     BruteForceEstimates r;
@@ -248,8 +304,8 @@ BruteForceEstimates estimate_bruteforce(const BivariateMoments& u, double horizo
     r.horizon = horizon;
     // Unbiased sample variance; its standard error from the fourth moment.
     const double var = m2 * n / (n - 1.0);
-    r.diffusivity = make_estimate(var / horizon, (m4 - m2 * m2) / (horizon * horizon), n, q, level);
-    r.mobility = make_estimate(u.mean_x() / horizon, m2 / (horizon * horizon), n, q, level);
+    r.diffusivity = make_scale_estimate(var / horizon, (m4 - m2 * m2) / (horizon * horizon), n, level);
+    r.mobility = make_estimate(u.mean_x() / horizon, m2 / (horizon * horizon), n, level);
     return r;
 }
 

@@ -260,28 +260,35 @@ namespace {
 /// same streams): automatic histogram ranges that fit colored noise, whose
 /// velocities are far smaller than the white-noise spread.
 bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engine, double dt, double& lo, double& hi) {
+    // Minimum and maximum are order-free as they are. The pilot runs whole on
+    // every process of a distributed run, so all of them get the same range.
     struct Range {
         double lo = 0, hi = 0;
+        void add_block(const Range& b) {
+            lo = std::min(lo, b.lo);
+            hi = std::max(hi, b.hi);
+        }
+        void merge(const Range& b) { add_block(b); }
+        std::size_t words() const { return 0; }
+        void to_words(std::uint64_t*) const {}
+        void assign_words(const std::uint64_t*) {}
     };
     RunControl ctl = req.control;
     ctl.progress = nullptr;
+    ctl.rank = 0;
+    ctl.ranks = 1;
     Range total;
-    auto make = [] { return Range{}; };
-    auto merge = [](Range& a, const Range& b) {
-        a.lo = std::min(a.lo, b.lo);
-        a.hi = std::max(a.hi, b.hi);
-    };
     const std::uint64_t n = std::min<std::uint64_t>(req.excursions, 256);
     const std::uint64_t seed = req.control.seed;
-    detail::run_blocks(
-        n, ctl, make,
+    detail::run_blocks<Range>(
+        n, ctl, [] { return Range{}; },
         [&](std::uint64_t k, Range& r) {
             return engine.run(seed, k, dt, false, [&](double v) {
                 r.lo = std::min(r.lo, v);
                 r.hi = std::max(r.hi, v);
             });
         },
-        merge, total);
+        total);
     if (!(total.hi > total.lo)) return false;
     const double pad = 0.1 * (total.hi - total.lo);
     lo = total.lo - pad;
@@ -307,20 +314,36 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
 
     struct Acc {
         RatioMoments hist; // [bins..., stuck, below, above] / t
-        RatioMoments mom;  // [V, V^2] / t
+        RatioMoments mom;  // [V, V^2] / t, with their covariance
     };
-    auto make = [nh] { return Acc{RatioMoments(nh, false), RatioMoments(2, true)}; };
-    auto merge = [](Acc& a, const Acc& b) {
-        a.hist.merge(b.hist);
-        a.mom.merge(b.mom);
+    struct Total {
+        ExactRatioSums hist, mom;
+        void add_block(const Acc& a) {
+            hist.add_block(a.hist);
+            mom.add_block(a.mom);
+        }
+        void merge(const Total& o) {
+            hist.merge(o.hist);
+            mom.merge(o.mom);
+        }
+        std::size_t words() const { return hist.words() + mom.words(); }
+        void to_words(std::uint64_t* w) const {
+            hist.to_words(w);
+            mom.to_words(w + hist.words());
+        }
+        void assign_words(const std::uint64_t* w) {
+            hist.assign_words(w);
+            mom.assign_words(w + hist.words());
+        }
     };
+    auto make = [nh] { return Acc{RatioMoments(nh, false), RatioMoments(2, std::vector<std::size_t>{0})}; };
     // Per-excursion sums in units of the sampling interval (it cancels in every ratio).
     auto finish = [](Acc& acc, std::vector<double>& y, double m[2], std::uint64_t samples) {
         acc.hist.add(y.data(), static_cast<double>(samples));
         acc.mom.add(m, static_cast<double>(samples));
     };
-    Acc total;
-    out.totals = detail::run_blocks(
+    Total exact{ExactRatioSums(nh, {}), ExactRatioSums(2, {0})};
+    out.totals = detail::run_blocks<Acc>(
         req.excursions, req.control, make,
         [&](std::uint64_t k, Acc& acc) {
             thread_local std::vector<double> y;
@@ -336,7 +359,8 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
             if (!o.capped && samples > 0) finish(acc, y, m, samples);
             return o;
         },
-        merge, total);
+        exact);
+    const Acc total{exact.hist.moments(), exact.mom.moments()};
     detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
     out.histogram = make_histogram(bins, total.hist, 0, req.level);
@@ -424,9 +448,10 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
         if (st.m < st.limit) st.y[nl] += v;
         ++st.m;
     };
-    auto make = [dim] { return RatioMoments(dim, true); };
-    auto merge = [](RatioMoments& a, const RatioMoments& b) { a.merge(b); };
-    RatioMoments total;
+    // The covariances the estimates need: every lag with lag 0 and with V.
+    const std::vector<std::size_t> columns{0, nl};
+    auto make = [dim, &columns] { return RatioMoments(dim, columns); };
+    ExactRatioSums exact(dim, columns);
     auto reset = [&](LagState& st) {
         st.buf.assign(ring, 0.0);
         st.y.assign(dim, 0.0);
@@ -435,7 +460,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
     };
     if (req.engine.engine == Engine::Pdmp) {
         const PdmpConstants& c = prepared.pdmp;
-        out.totals = detail::run_blocks(
+        out.totals = detail::run_blocks<RatioMoments>(
             req.excursions, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local LagState st;
@@ -457,10 +482,10 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 acc.add(st.y.data(), static_cast<double>(st.limit));
                 return res;
             },
-            merge, total);
+            exact);
     } else if (req.engine.scheme == Scheme::Event) {
         const EventConstants& c = prepared.event;
-        out.totals = detail::run_blocks(
+        out.totals = detail::run_blocks<RatioMoments>(
             req.excursions, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local LagState st;
@@ -480,10 +505,10 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 acc.add(st.y.data(), static_cast<double>(st.limit));
                 return res;
             },
-            merge, total);
+            exact);
     } else {
         const InclusionConstants& c = prepared.inclusion;
-        out.totals = detail::run_blocks(
+        out.totals = detail::run_blocks<RatioMoments>(
             req.excursions, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local LagState st;
@@ -507,8 +532,9 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
                 acc.add(st.y.data(), static_cast<double>(st.limit));
                 return res;
             },
-            merge, total);
+            exact);
     }
+    const RatioMoments total = exact.moments();
     detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
     const std::size_t iu = nl;
@@ -610,13 +636,12 @@ TransientResult compute_transient(const TransientRequest& req_in) {
         if (nh) y[3 * nt + j * nh + static_cast<std::size_t>(index(v))] = 1.0;
     };
     auto make = [dim] { return RatioMoments(dim, false); };
-    auto merge = [](RatioMoments& a, const RatioMoments& b) { a.merge(b); };
-    RatioMoments total;
+    ExactRatioSums exact(dim, {});
     if (req.engine.engine == Engine::Pdmp) {
         const PdmpConstants& c = prepared.pdmp;
         out.time = times;
         const double horizon = times.back();
-        out.totals = detail::run_blocks(
+        out.totals = detail::run_blocks<RatioMoments>(
             req.trajectories, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local std::vector<double> y;
@@ -641,14 +666,14 @@ TransientResult compute_transient(const TransientRequest& req_in) {
                 acc.add(y.data(), 1.0);
                 return o;
             },
-            merge, total);
+            exact);
     } else if (req.engine.scheme == Scheme::Event) {
         // Exact times (to a leaf): the walk advances to each time in turn.
         const EventConstants& c = prepared.event;
         std::vector<std::uint64_t> at(nt);
         for (std::size_t j = 0; j < nt; ++j) at[j] = static_cast<std::uint64_t>(std::llround(times[j] / c.leaf));
         for (std::size_t j = 0; j < nt; ++j) out.time.push_back(static_cast<double>(at[j]) * c.leaf);
-        out.totals = detail::run_blocks(
+        out.totals = detail::run_blocks<RatioMoments>(
             req.trajectories, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local std::vector<double> y;
@@ -672,7 +697,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
                 acc.add(y.data(), 1.0);
                 return o;
             },
-            merge, total);
+            exact);
     } else {
         const InclusionConstants& c = prepared.inclusion;
         std::vector<std::uint64_t> steps(nt);
@@ -686,7 +711,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
                 break;
             }
         const std::uint64_t nmax = steps.back();
-        out.totals = detail::run_blocks(
+        out.totals = detail::run_blocks<RatioMoments>(
             req.trajectories, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local std::vector<double> y;
@@ -704,8 +729,9 @@ TransientResult compute_transient(const TransientRequest& req_in) {
                 acc.add(y.data(), 1.0);
                 return o;
             },
-            merge, total);
+            exact);
     }
+    const RatioMoments total = exact.moments();
     for (std::size_t j = 0; j < nt; ++j) {
         out.first_moment.push_back(total.estimate(j, req.level));
         out.second_moment.push_back(total.estimate(nt + j, req.level));

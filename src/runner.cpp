@@ -14,10 +14,6 @@
 
 namespace stickslip {
 
-namespace {
-struct NoExtra {};
-} // namespace
-
 void check_run_control(const RunControl& ctl) {
     if (ctl.threads > 4096) throw InvalidParameter("threads", "threads must be between 0 and 4096");
 }
@@ -25,10 +21,9 @@ void check_run_control(const RunControl& ctl) {
 RunTotals run_samples(std::uint64_t n, const RunControl& ctl,
                       const std::function<ExcursionOutcome(std::uint64_t)>& sample) {
     check_run_control(ctl);
-    NoExtra none;
-    return detail::run_blocks(
-        n, ctl, [] { return NoExtra{}; }, [&](std::uint64_t k, NoExtra&) { return sample(k); },
-        [](NoExtra&, const NoExtra&) {}, none);
+    detail::NoTotal none;
+    return detail::run_blocks<detail::NoBlock>(
+        n, ctl, [] { return detail::NoBlock{}; }, [&](std::uint64_t k, detail::NoBlock&) { return sample(k); }, none);
 }
 
 RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl) {
@@ -49,13 +44,14 @@ RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions,
         });
     }
     const InclusionConstants& c = e.inclusion;
-    NoExtra none;
-    return detail::run_blocks(
-        excursions, ctl, [] { return NoExtra{}; },
-        [&c, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out, NoExtra&) {
+    detail::NoTotal none;
+    return detail::run_blocks<detail::NoBlock>(
+        excursions, ctl, [] { return detail::NoBlock{}; },
+        [&c, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                                        detail::NoBlock&) {
             return inclusion_long_excursions(c, seed, first, count, out, cancel);
         },
-        [](NoExtra&, const NoExtra&) {}, none);
+        none);
 }
 
 RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,

@@ -72,26 +72,46 @@ const char* setting_form(const Estimator&);
 struct Estimate {
     double value = 0.0;
     double std_error = 0.0; ///< standard error (delta method)
-    double lo = 0.0, hi = 0.0; ///< value -+ q_{(1+level)/2} * std_error
+    /// The interval at `level`: make_interval (symmetric) or, for D and D_t,
+    /// make_relative_interval (asymmetric, never negative).
+    double lo = 0.0, hi = 0.0;
     double level = 0.95;
 };
 
 /// Estimate with the normal interval value -+ q_{(1+level)/2} * std_error.
 Estimate make_interval(double value, double std_error, double level);
 
+/// Estimate of a positive scale quantity (D, D_t) with the interval of its
+/// relative error: with r = std_error / value and q = q_{(1+level)/2}, the set
+/// of D with |value - D| <= q r D, i.e.
+///   [value / (1 + q r), value / (1 - q r)]        (hi = +inf when q r >= 1).
+/// This is the normal interval with the standard error taken at the candidate
+/// D rather than at the estimate (the standard error of a scale estimate is
+/// proportional to the scale, r estimating the constant), as Wilson's score
+/// interval does for a proportion; equivalently the delta-method normal
+/// interval of 1/D, mapped back. It is never negative, longer above the
+/// estimate than below (a right-skewed estimate whose standard error grows
+/// with it is mostly too low when it misses), and needs only (value,
+/// std_error), so it keeps the mergeability and bitwise reproducibility of the
+/// moments. Coverage: docs/validation.md, "Interval coverage". A value that is
+/// not > 0 gets the normal interval with lo clamped at 0.
+Estimate make_relative_interval(double value, double std_error, double level);
+
 /// Mergeable centred sums for ratio estimators R_j = E[y_j] / E[t] from i.i.d.
 /// samples (y, t), y a vector of `dim` path functionals of one excursion (time
 /// spent in a velocity bin, integral of V(s)V(s+r) ds, ...) and t its duration.
 /// This is the renewal-reward form of a stationary average, exact in the limit
 /// of many excursions with no burn-in. With t = 1 for every sample, R_j is a
-/// plain mean. Chan's pairwise update: merges are exact and, done in index
-/// order, bitwise reproducible. The covariance of y_j with y_k is kept for all
-/// pairs when `full_covariance` (needed for functions of several ratios, cost
-/// dim^2 per sample), else only its diagonal.
+/// plain mean. Chan's pairwise update, in the order of the samples. The
+/// covariance of y_j with y_k is kept for j == k and for every k among
+/// `columns` (needed for functions of several ratios, cost dim per column per
+/// sample); `full_covariance` keeps every pair.
 class RatioMoments {
 public:
     RatioMoments() = default;
     RatioMoments(std::size_t dim, bool full_covariance);
+    /// Keeps the variances and the covariances with the ratios in `columns`.
+    RatioMoments(std::size_t dim, std::vector<std::size_t> columns);
 
     void add(const double* y, double t);
     void merge(const RatioMoments& other);
@@ -104,7 +124,7 @@ public:
     double ratio(std::size_t j) const { return mean_y_[j] / mean_t_; }
     /// Delta-method covariance of R_j and R_k:
     /// cov(y_j - R_j t, y_k - R_k t) / (n E[t]^2), sample covariance with n - 1.
-    /// j != k needs full_covariance.
+    /// j != k needs k (or j) among the columns.
     double ratio_covariance(std::size_t j, std::size_t k) const;
     /// R_j with its standard error and interval.
     Estimate estimate(std::size_t j, double level) const;
@@ -115,22 +135,40 @@ public:
     };
     /// Delta-method variance of a smooth function F of the ratios whose
     /// gradient at (R_0, R_1, ...) has the given nonzero terms:
-    /// sum_a sum_b g_a g_b cov(R_a, R_b), clamped at 0 (needs full_covariance
-    /// when more than one index appears).
+    /// sum_a sum_b g_a g_b cov(R_a, R_b), clamped at 0 (pairs need a column).
     double delta_variance(std::initializer_list<GradientTerm> gradient) const;
 
+    /// The centred sums themselves, for exact merging (moment_sums.hpp):
+    /// sum (t - mean t)^2, sum (y_j - mean y_j)(t - mean t), and
+    /// sum (y_j - mean y_j)(y_k - mean y_k) for k == j or k a column.
+    double central_tt() const { return m_tt_; }
+    double central_yt(std::size_t j) const { return m_yt_[j]; }
+    double central_yy(std::size_t j, std::size_t k) const { return cyy(j, k); }
+    const std::vector<std::size_t>& columns() const { return columns_; }
+    /// The moments with the given count, means and centred sums (the layout
+    /// of the accessors above; `yy` holds dim variances, then dim covariances
+    /// per column).
+    static RatioMoments from_central(std::size_t dim, std::vector<std::size_t> columns, std::uint64_t n, double mean_t,
+                                     double m_tt, std::vector<double> mean_y, std::vector<double> m_yt,
+                                     std::vector<double> yy);
+
 private:
-    double& cyy(std::size_t j, std::size_t k) { return full_ ? m_yy_[j * dim_ + k] : m_yy_[j]; }
-    double cyy(std::size_t j, std::size_t k) const { return full_ ? m_yy_[j * dim_ + k] : m_yy_[j]; }
+    double& cyy(std::size_t j, std::size_t k);
+    double cyy(std::size_t j, std::size_t k) const;
 
     std::size_t dim_ = 0;
-    bool full_ = false;
+    std::vector<std::size_t> columns_;  ///< the ratios whose covariance with every other is kept
+    std::vector<std::size_t> column_of_; ///< index into columns_ + 1, or 0 (per ratio)
     std::uint64_t n_ = 0;
     double mean_t_ = 0.0, m_tt_ = 0.0;
-    std::vector<double> mean_y_, m_yt_, m_yy_;
+    std::vector<double> mean_y_, m_yt_;
+    std::vector<double> m_yy_; ///< dim variances, then dim covariances per column
 };
 
-/// D, M0 and E[t1] from the moments of (U, t) over long excursions.
+/// D, M0 and E[t1] from the moments of (U, t) over long excursions. D has the
+/// relative-error interval (make_relative_interval): D_hat is right-skewed and
+/// its standard error grows with it, so the symmetric interval misses mostly
+/// below and can go negative. M0 and E[t1] keep the symmetric interval.
 struct LongExcursionEstimates {
     Estimate diffusivity;   ///< [m^2/s]
     Estimate mobility;      ///< mean velocity M0 [m/s]
@@ -147,8 +185,9 @@ LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, doubl
                                                Estimator estimator = Estimator::RenewalReward);
 
 /// Brute-force estimates (eq. 13) from the moments of U(t) at a fixed horizon t:
-/// D_t = var U(t) / t with the standard error of the sample variance, and
-/// M0_t = mean U(t) / t.
+/// D_t = var U(t) / t with the standard error of the sample variance and its
+/// relative-error interval (make_relative_interval), and M0_t = mean U(t) / t
+/// with the symmetric one.
 struct BruteForceEstimates {
     Estimate diffusivity; ///< D_t [m^2/s]: biased by O(1/t) against D
     Estimate mobility;    ///< [m/s]

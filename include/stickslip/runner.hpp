@@ -3,10 +3,11 @@
 // Sample k (a long excursion or a brute-force trajectory) draws only from the
 // stream (seed, purpose, k). Samples are grouped in fixed blocks of
 // `block_size` consecutive indices (independent of the thread count); each
-// block's moments are computed by one thread, and blocks are merged strictly in
-// index order. Hence every result is bitwise identical for any thread count,
-// and a split of the block range across processes reproduces it as long as the
-// partial results are merged in the same order.
+// block's moments are computed by one thread in index order, then added into
+// exact, order-free sums (moment_sums.hpp) as soon as the block is done. Hence
+// every result is bitwise identical for any thread count, any split of the
+// blocks across processes (reduced in any order) and any interruption and
+// resumption of a run.
 #pragma once
 
 #include <atomic>
@@ -18,6 +19,7 @@
 
 #include "estimators.hpp"
 #include "excursion.hpp"
+#include "moment_sums.hpp"
 #include "params.hpp"
 
 namespace stickslip {
@@ -28,14 +30,6 @@ struct Progress {
     std::uint64_t total = 0; ///< samples requested
     double seconds = 0.0;    ///< wall time so far
     const BivariateMoments* moments = nullptr; ///< merged so far (in index order)
-};
-
-/// One block's result, as exchanged between processes in a distributed run.
-struct BlockRecord {
-    std::uint64_t block = 0; ///< block number (samples block*64 ... relative to first_index)
-    BivariateMoments moments;
-    std::uint64_t capped = 0;
-    std::uint64_t work = 0;
 };
 
 struct RunControl {
@@ -52,15 +46,16 @@ struct RunControl {
     /// from any thread (a signal watcher, a GUI) to stop the run within one
     /// sample; the run then throws RunCancelled.
     const std::atomic<bool>* cancel = nullptr;
-    /// Distributed runs (MPI, see cli/distributed.hpp): this process computes only the
-    /// blocks b with b % ranks == rank, hands them to `combine`, which must
-    /// return the blocks of every process (an all-gather); they are then
-    /// merged in block order exactly as one process merges them, so the
-    /// result is bitwise that of a single process with the same seed. Only
-    /// runs whose samples reduce to (U, t) moments (diffusivity, bruteforce,
-    /// sweep) can be distributed. ranks == 1: a plain run.
+    /// Distributed runs (MPI, see cli/distributed.hpp): this process computes
+    /// only the blocks b with b % ranks == rank; at the end `reduce` must
+    /// replace `words` (this process's exact sums, a sequence of ExactSum
+    /// words: merge them chunk by chunk with ExactSum::merge_words) and
+    /// `counts` (plain integers: add them) by their totals over every process,
+    /// on every process (an all-reduce). The sums are exact, so any reduction
+    /// tree gives the result of a single process, bit for bit, in memory that
+    /// does not grow with the run. ranks == 1: a plain run.
     unsigned rank = 0, ranks = 1;
-    std::function<std::vector<BlockRecord>(std::vector<BlockRecord>)> combine;
+    std::function<void(std::vector<std::uint64_t>& words, std::vector<std::uint64_t>& counts)> reduce;
 };
 
 /// Thrown when RunControl::progress asked to stop.
@@ -71,9 +66,11 @@ struct RunCancelled : std::runtime_error {
 /// Samples per block: the unit of work and of deterministic merging.
 inline constexpr std::uint64_t block_size = 64;
 
-/// Raw outcome of a run: moments of (U, t) over completed samples, in index order.
+/// Raw outcome of a run: the exact sums of (U, t) over completed samples and
+/// the centred moments computed from them.
 struct RunTotals {
-    BivariateMoments moments;
+    ExactBivariateSums sums;
+    BivariateMoments moments; ///< sums.moments()
     std::uint64_t requested = 0;
     std::uint64_t capped = 0; ///< samples dropped by the runaway guard
     std::uint64_t work = 0;   ///< steps or events, all samples
@@ -106,7 +103,7 @@ RunTotals run_bruteforce(const ModelParams& p, const EngineSettings& s, double h
                          double v0, std::uint64_t trajectories, const RunControl& ctl);
 
 /// Generic driver used by both: calls sample(index) for every index in
-/// [first_index, first_index + n) in parallel and merges in index order.
+/// [first_index, first_index + n) in parallel; blocks are merged exactly.
 RunTotals run_samples(std::uint64_t n, const RunControl& ctl,
                       const std::function<ExcursionOutcome(std::uint64_t)>& sample);
 
