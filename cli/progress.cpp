@@ -18,7 +18,10 @@ std::function<bool(const Progress&)> progress_line(bool quiet, const std::string
             const auto e = estimate_long_excursion(*pr.moments, level);
             const double d = e.diffusivity.value;
             char buf[96];
-            std::snprintf(buf, sizeof buf, ", D = %.4g +- %.2g%%", d, d > 0 ? 100 * (e.diffusivity.hi - d) / d : 0.0);
+            // D's interval is asymmetric (never negative): both ends, relative to D.
+            std::snprintf(buf, sizeof buf, ", D = %.4g [-%.2g%%, +%.2g%%]", d,
+                          d > 0 ? 100 * (d - e.diffusivity.lo) / d : 0.0,
+                          d > 0 ? 100 * (e.diffusivity.hi - d) / d : 0.0);
             estimate = buf;
         }
         std::fprintf(stderr, "\r%llu/%llu %s%s, %.0f/s, %.1f s elapsed, ~%.0f s left   ",

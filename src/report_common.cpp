@@ -21,7 +21,7 @@ ordered_json estimate_json(const Estimate& e, bool with_ci) {
     j["value"] = e.value;
     j["stderr"] = e.std_error;
     if (with_ci) {
-        j["ci"] = {e.lo, e.hi};
+        j["ci"] = {json_number(e.lo), json_number(e.hi)}; // D's upper end is "inf" when se >= D / q
         j["level"] = e.level;
     }
     return j;

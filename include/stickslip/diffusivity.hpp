@@ -37,8 +37,9 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
                                "renewal (default, correct) or paper (eq. 12, Var U/E t: biased when M0 != 0; for "
                                "reproducing the paper's numbers only)"});
     v(r.rel_precision, SettingInfo{"rel-precision", "",
-                                   "precision on demand: run in batches (the first of --excursions) until the interval "
-                                   "half-width of D is at most this fraction of D, e.g. 0.01; 0 = off. The stopping "
+                                   "precision on demand: run in batches (the first of --excursions) until the upper "
+                                   "half-width of D's interval (hi - D) is at most this fraction of D, e.g. 0.01; 0 = "
+                                   "off. The stopping "
                                    "time depends on the data, so the interval's coverage is slightly below --level"});
     v(r.max_excursions, SettingInfo{"max-excursions", "", "cap of --rel-precision: most excursions in all"});
 }

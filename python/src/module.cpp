@@ -284,8 +284,10 @@ void bind_core(py::module_& m) {
 
     // ---- Estimate ----------------------------------------------------------------------
     py::class_<Estimate>(m, "Estimate",
-                         "A point estimate with its standard error (delta method) and the two-sided normal "
-                         "interval value -+ q*stderr at `level`. float(e) is e.value.")
+                         "A point estimate with its standard error (delta method) and its two-sided interval at "
+                         "`level`: value -+ q*stderr, or for D and D_t the relative-error interval "
+                         "value/(1 +- q*stderr/value), never negative (hi = inf when q*stderr >= value). float(e) "
+                         "is e.value.")
         .def_readonly("value", &Estimate::value)
         .def_readonly("stderr", &Estimate::std_error)
         .def_readonly("lo", &Estimate::lo)

@@ -44,8 +44,18 @@ void expect_estimate(const json& j, const std::string& key, bool with_ci) {
     const double v = e["value"], lo = e["ci"][0], hi = e["ci"][1];
     EXPECT_LT(lo, v) << key;
     EXPECT_LT(v, hi) << key;
+    const double qse = 1.959963984540054 * e["stderr"].get<double>();
+    if (key == "diffusivity") {
+        // D (and brute force D_t): the relative-error interval v / (1 -+ q se / v),
+        // positive and longer above (make_relative_interval).
+        EXPECT_GT(lo, 0.0) << key;
+        EXPECT_NEAR(lo, v / (1 + qse / v), 1e-12 * v) << key;
+        EXPECT_NEAR(hi, v / (1 - qse / v), 1e-12 * hi) << key;
+        EXPECT_GT(hi - v, v - lo) << key;
+        return;
+    }
     // A symmetric normal interval: half-width = 1.959964 * stderr.
-    EXPECT_NEAR((hi - lo) / 2, 1.959963984540054 * e["stderr"].get<double>(), 1e-9 * std::fabs(hi - lo)) << key;
+    EXPECT_NEAR((hi - lo) / 2, qse, 1e-9 * std::fabs(hi - lo)) << key;
 }
 
 /// The documented schema of `diffusivity --format json`.

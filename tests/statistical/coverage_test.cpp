@@ -1,0 +1,105 @@
+// Coverage of the 95% interval of D over many independent small runs
+// (docs/validation.md, "Interval coverage"). Each run has its own seed; the
+// reference is D of all runs pooled (their moments merged), so the check is
+// about the estimator and its interval, not the discretisation. The counts
+// are binomial: over R runs at true coverage p their sd is sqrt(R p (1 - p)).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <limits>
+#include <vector>
+
+#include "support.hpp"
+
+namespace {
+
+using namespace sstest;
+const double inf = std::numeric_limits<double>::infinity();
+
+struct Coverage {
+    int runs = 0, below = 0, above = 0; ///< misses: the interval lies below / above the reference
+    int below_sym = 0, above_sym = 0;   ///< the same for the symmetric interval D -+ q se
+    int nonpositive_lo = 0, infinite_hi = 0;
+    double reference = 0.0;
+    int covered() const { return runs - below - above; }
+    int covered_sym() const { return runs - below_sym - above_sym; }
+};
+
+/// `runs` runs of n excursions, seeds first_seed, first_seed + 1, ...
+Coverage measure(const ss::ModelParams& p, double dt, std::uint64_t n, int runs, std::uint64_t first_seed) {
+    ss::EngineSettings e;
+    e.dt = dt;
+    std::vector<ss::Estimate> d;
+    ss::BivariateMoments pooled;
+    for (int i = 0; i < runs; ++i) {
+        const auto r = run_le(p, e, n, first_seed + static_cast<std::uint64_t>(i), 2);
+        EXPECT_EQ(r.totals.capped, 0u);
+        pooled.merge(r.totals.moments);
+        d.push_back(r.estimates.diffusivity);
+    }
+    Coverage c;
+    c.runs = runs;
+    c.reference = ss::estimate_long_excursion(pooled, 0.95).diffusivity.value;
+    const double q = ss::normal_quantile_two_sided(0.95);
+    for (const ss::Estimate& x : d) {
+        EXPECT_EQ(x.level, 0.95);
+        c.below += x.hi < c.reference;
+        c.above += x.lo > c.reference;
+        c.below_sym += x.value + q * x.std_error < c.reference;
+        c.above_sym += x.value - q * x.std_error > c.reference;
+        c.nonpositive_lo += !(x.lo > 0);
+        c.infinite_hi += std::isinf(x.hi);
+    }
+    std::cout << "[measured] " << runs << " runs of " << n << " excursions, pooled D " << c.reference
+              << ": relative-error interval covers " << c.covered() << " (misses " << c.below << " below, "
+              << c.above << " above), symmetric interval " << c.covered_sym() << " (" << c.below_sym << " below, "
+              << c.above_sym << " above); lower bounds <= 0: " << c.nonpositive_lo
+              << ", infinite upper bounds: " << c.infinite_hi << std::endl;
+    return c;
+}
+
+// White noise with viscous drag (relaxation' = 1): U grows like t over an
+// excursion, so 2000 excursions are enough for the delta method. Measured with
+// the CLI on 1000 other seeds (docs/validation.md, "Interval coverage"): the
+// relative-error interval covers 93.6 +- 0.8% (misses 36 below, 28 above), the
+// old symmetric one 92.6% (55 below, 19 above); here 946 (28/26) against 938
+// (45/17). Binomial sd of the count at 94%: 7.5, so 920-980 leaves about 3 sd
+// below. Each side must hold at least a quarter of the misses: about 45% are
+// above here, so this is 3 sd from failing (the symmetric interval, at 27%,
+// would scrape through: the gain is checked in the test below). About 2e6
+// excursions, 3-5 s of CPU.
+TEST(IntervalCoverage, DiffusivityIsNominalAt2000ExcursionsWithDrag) {
+    const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 0, .relaxation = 1, .bias = 0};
+    const Coverage c = measure(p, 1e-2, 2000, 1000, 1000001);
+    EXPECT_GE(c.covered(), 920);
+    EXPECT_LE(c.covered(), 980);
+    const int misses = c.below + c.above;
+    EXPECT_GE(4 * c.below, misses) << "misses below: " << c.below << " of " << misses;
+    EXPECT_GE(4 * c.above, misses) << "misses above: " << c.above << " of " << misses;
+    EXPECT_EQ(c.nonpositive_lo, 0);
+    EXPECT_EQ(c.infinite_hi, 0);
+}
+
+// Pure dry friction, white noise (the case): U grows like t^(3/2), the
+// influence function of D has skewness about 55 and kurtosis about 8000, and
+// 2000 excursions rarely hold the long excursions that carry the variance, so
+// no interval computable from the run reaches 95% there (docs/validation.md:
+// on 1000 runs symmetric 87.4%, log 88.9%, relative-error 89.1 +- 1.0%; even
+// an order-6 skewness correction or a bootstrap-t over the 64-excursion
+// blocks stays below 93%). Here 451 of 500 (38 below, 11 above) against 438
+// (61/1). This guards the measured level and what holds anyway: misses on
+// both sides, a positive lower bound, better than the symmetric interval.
+TEST(IntervalCoverage, DiffusivityWithoutDragIsAsMeasured) {
+    const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 0, .relaxation = inf, .bias = 0};
+    const Coverage c = measure(p, 1e-2, 2000, 500, 2000001);
+    EXPECT_GE(c.covered(), 430); // 86%, about 3 sd below the measured 89.1%
+    EXPECT_LE(c.covered(), 490);
+    EXPECT_GE(c.covered(), c.covered_sym());
+    EXPECT_GT(c.above, 0);
+    EXPECT_LT(c.below, c.below_sym);
+    EXPECT_EQ(c.nonpositive_lo, 0);
+}
+
+} // namespace
