@@ -10,10 +10,12 @@
 #include <type_traits>
 
 #include "distributed.hpp"
+#include "interrupt.hpp"
 #include "output.hpp"
 #include "progress.hpp"
 #include "setting_flags.hpp"
 #include "stickslip/bruteforce.hpp"
+#include "stickslip/checkpoint.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
@@ -33,7 +35,12 @@ noise^2/friction^3, diffusivity noise^3/friction^4; both are reported.
 Defaults are the paper's Fig. 2 case. Results are bitwise reproducible for a
 given --seed, whatever --threads. A run's settings can be kept in a file:
 --print-config writes them, --config FILE reads them back. Exit codes: 0 ok,
-1 I/O or internal error, 2 bad input, 3 untrustworthy run (runaway excursions).
+1 I/O or internal error, 2 bad input, 3 untrustworthy run (runaway excursions),
+130/143 stopped by SIGINT/SIGTERM: the first signal lets the blocks in flight
+finish and writes the result so far (marked "interrupted") and the checkpoint;
+a second aborts. --checkpoint FILE saves a run every --checkpoint-every
+seconds; --resume FILE continues it, with a result identical to an
+uninterrupted run's.
 
 Examples:
   stickslip diffusivity                                  # Fig. 2 case, inclusion engine
@@ -46,7 +53,8 @@ Examples:
   stickslip density --format csv --output density.csv
   stickslip sweep --noise 1:10:5 --tau 0.125,0.5 --excursions 4000 --format csv
   stickslip diffusivity --excursions 1e5 --print-config > run.toml
-  stickslip diffusivity --config run.toml --seed 2)";
+  stickslip diffusivity --config run.toml --seed 2
+  stickslip diffusivity --excursions 1e8 --checkpoint run.ckpt --resume run.ckpt)";
 
 namespace {
 
@@ -60,20 +68,42 @@ struct ProgressLabel {
 /// A subcommand for `Request`: the flags of its settings, --format/--output/
 /// --quiet, and the run. `customise(request, quiet)`, when given, is called
 /// just before computing (the sweep sets its per-point progress there).
+/// --checkpoint, --checkpoint-every, --resume (help texts from the library).
+void add_checkpoint_flags(CLI::App* app, CheckpointOptions& o) {
+    app->add_option("--checkpoint", o.path, CheckpointOptions::path_help)->type_name("FILE");
+    app->add_option("--checkpoint-every", o.every, CheckpointOptions::every_help)
+        ->type_name("SECONDS")
+        ->capture_default_str();
+    app->add_option("--resume", o.resume, CheckpointOptions::resume_help)->type_name("FILE");
+}
+
+template <class Request>
+constexpr bool resumable() {
+    if constexpr (requires { Request::resumable; }) return Request::resumable;
+    return false;
+}
+
+/// A subcommand for `Request`: the flags of its settings, --format/--output/
+/// --quiet, for a run through the block driver --checkpoint/--resume, and the
+/// run, which stops gracefully on the first SIGINT or SIGTERM (interrupt.hpp).
+/// `customise(request, quiet)`, when given, is called just before computing
+/// (the sweep sets its per-point progress there).
 template <class Request, class Result>
-Action add_command(CLI::App& app, const char* name, const char* description, Result (*compute)(const Request&),
+Action add_command(CLI::App& app, const char* description, Result (*compute)(const Request&),
                    ProgressLabel progress, void (*customise)(Request&, bool quiet) = nullptr) {
     struct State {
         Request request;
         SettingFlags flags;
         OutputFlags output;
+        CheckpointOptions checkpoint;
     };
     auto state = std::make_shared<State>();
-    CLI::App* sub = app.add_subcommand(name, description);
+    const std::string command = Request::command;
+    CLI::App* sub = app.add_subcommand(command, description);
     state->flags.add_to(sub, state->request);
     add_output_flags(sub, state->output);
+    if constexpr (resumable<Request>()) add_checkpoint_flags(sub, state->checkpoint);
     sub->footer(kConventions);
-    const std::string command = name;
     return {sub, [state, compute, progress, customise, command] {
                 state->flags.apply();
                 if (state->flags.print_config()) {
@@ -88,8 +118,23 @@ Action add_command(CLI::App& app, const char* name, const char* description, Res
                         req.control.progress = progress_line(state->output.quiet, progress.samples,
                                                              progress.with_estimate ? req.level : 0.0);
                 }
-                if (customise) customise(req, state->output.quiet);
-                emit(out, compute(req));
+                if constexpr (resumable<Request>()) {
+                    req.control.stop = StopOnSignals::flag();
+                    const std::unique_ptr<RunJournal> journal = make_journal(req, state->checkpoint);
+                    req.control.journal = journal.get();
+                    if (customise) customise(req, state->output.quiet);
+                    try {
+                        const Result r = compute(req);
+                        if (journal) journal->write();
+                        emit(out, r);
+                    } catch (const RunInterrupted&) {
+                        if (journal) journal->write();
+                        throw;
+                    }
+                } else {
+                    if (customise) customise(req, state->output.quiet);
+                    emit(out, compute(req));
+                }
             }};
 }
 
@@ -105,45 +150,45 @@ void sweep_progress(SweepRequest& req, bool quiet) {
 
 std::vector<Action> register_all(CLI::App& app) {
     return {
-        add_command(app, "diffusivity",
+        add_command(app,
                     "D, mobility M0 and mean long-excursion duration E[t1] from N i.i.d. long excursions, with "
                     "delta-method confidence intervals. D = sum (U - M0 t)^2 / sum t (renewal-reward form; correct for "
                     "any M0).",
                     &compute_diffusivity, {"excursions", true}),
-        add_command(app, "bruteforce",
+        add_command(app,
                     "Brute-force estimate D_t = var U(t) / t (paper eq. 13) from N' trajectories on [0, t]: biased by "
                     "O(1/t), for comparison with the long-excursion estimator.",
                     &compute_bruteforce, {"trajectories", false}),
-        add_command(app, "density",
+        add_command(app,
                     "Stationary velocity density as a histogram with error bars, without burn-in bias: time spent in "
                     "each bin over a long excursion divided by its duration (renewal-reward ratio, delta-method "
                     "intervals). The atom at V = 0 (probability of being stuck, positive for colored noise) is "
                     "reported separately.",
                     &compute_stationary_density, {"excursions", false}),
-        add_command(app, "moments",
+        add_command(app,
                     "Transient statistics from V(0) = v0 with X(0) drawn from its stationary law N(0, 1/tau) (the "
                     "paper's Table I and Fig. 7 set-up): first and second moments E[V(t)|v0], E[V(t)^2|v0] and "
                     "P(V(t) = 0) at the given times, and with --density the histogram of V(t). Plain means over "
                     "independent trajectories.",
                     &compute_transient, {"trajectories", false}),
-        add_command(app, "correlation",
+        add_command(app,
                     "Stationary autocorrelation <V(0)V(r)>, covariance h(r) = <V(0)V(r)> - M0^2 and normalised "
                     "covariance h(r)/h(0) (the paper's Figs. 5 and 8), as renewal-reward ratios over long excursions: "
                     "int_0^t1 V(s)V(s+r) ds / t1, each excursion continued past its end by the largest lag (exact: the "
                     "process regenerates). Delta-method intervals.",
                     &compute_correlation, {"excursions", false}),
-        add_command(app, "trajectory",
+        add_command(app,
                     "Sample paths (X, mode, V, U against t). Default: one long excursion, number --index of --seed, "
                     "the very one `diffusivity` runs (the paper's Figs. 2 and 3). With --paths N: N independent paths "
                     "on [0, --time] from (x0, v0) (Fig. 6, right). Best with --format csv.",
                     &compute_trajectory, {}),
-        add_command(app, "analytic",
+        add_command(app,
                     "Exact white-noise references (no simulation): mobility M0, diffusivity D and stationary variance "
                     "by quadrature of Hayakawa's density for any b(v); with --times, the first moment E[V(t)|v0] and "
                     "the stationary autocorrelation <V(t)V(0)> (closed forms of Touchette et al. 2010 for pure dry "
                     "friction, a Fokker-Planck solution otherwise). Physical units; tau is not used.",
                     &compute_white_noise, {}),
-        add_command(app, "sweep",
+        add_command(app,
                     "D, M0 and E[t1] over a grid of noise and tau values (the paper's Figs. 4 and 9), with the local "
                     "log-log slope d log D / d log noise and its error, and per tau the fitted exponent of D ~ "
                     "noise^alpha. --noise and --tau take lists. Each point has its own random streams (independent "

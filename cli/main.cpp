@@ -1,75 +1,15 @@
-// The `stickslip` command: a thin layer over the library. It parses flags,
-// reports progress on a terminal, prints or writes the result, and maps errors
-// to exit codes: 2 bad input (one line on stderr, nothing on stdout), 3 a run
-// that cannot be trusted (capped excursions), 1 anything else (I/O).
-#include <CLI/CLI.hpp>
-#include <cstdio>
-#include <string>
-
-#include "commands.hpp"
+// The `stickslip` command. Its logic is run_command() (run.cpp), so that the
+// fuzz targets (tests/fuzz/) can call it in-process; main() only brackets it
+// with the process split.
 #include "distributed.hpp"
-#include "stickslip/diffusivity.hpp"
-#include "stickslip/version.hpp"
+#include "run.hpp"
 
 namespace cli = stickslip::cli;
-
-namespace {
-
-/// Prints the one error line (first process only) and returns the exit code.
-int report(int code, const std::string& line) {
-    if (cli::is_root()) std::fprintf(stderr, "stickslip: %s\n", line.c_str());
-    return code;
-}
-
-int run(int argc, char** argv) {
-    CLI::App app{"stickslip: diffusivity, mobility and velocity statistics of an object with dry friction under "
-                 "white or colored\nnoise, by the unbiased long-excursion estimators (exact PDMP or "
-                 "differential-inclusion engine),\nwith exact white-noise references."};
-    app.footer(cli::kConventions);
-    app.require_subcommand(1);
-    app.set_version_flag("--version", stickslip::version());
-    const auto actions = cli::register_all(app);
-
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return cli::is_root() ? app.exit(e) : 0;
-    } catch (const CLI::CallForAllHelp& e) {
-        return cli::is_root() ? app.exit(e) : 0;
-    } catch (const CLI::CallForVersion& e) {
-        return cli::is_root() ? app.exit(e) : 0;
-    } catch (const CLI::ParseError& e) {
-        std::string msg = e.what();
-        for (auto& ch : msg)
-            if (ch == '\n') ch = ' ';
-        return report(cli::kExitBadInput, "error: " + msg + " (see --help)");
-    }
-
-    // Bad input and capped runs are found by every process alike (validation
-    // comes before any work, the capped check after the gather), so each
-    // process exits with the same code; anything else on one process of a
-    // distributed run ends them all.
-    try {
-        for (const auto& a : actions)
-            if (a.app->parsed()) a.run();
-    } catch (const stickslip::InvalidParameter& e) {
-        return report(cli::kExitBadInput, "error: --" + e.parameter() + ": " + e.what());
-    } catch (const stickslip::CappedExcursions& e) {
-        return report(cli::kExitCapped, std::string("ERROR: ") + e.what());
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "stickslip: error: %s\n", e.what());
-        if (cli::distributed()) cli::abort_distribution(1);
-        return 1;
-    }
-    return 0;
-}
-
-} // namespace
 
 int main(int argc, char** argv) {
     // MPI starts here, before parsing, only when launched by an MPI launcher.
     cli::start_distribution(argc, argv);
-    const int code = run(argc, argv);
+    const int code = cli::run_command(argc, argv);
     cli::stop_distribution();
     return code;
 }

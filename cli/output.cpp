@@ -52,6 +52,14 @@ constexpr int kSignals[] = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGUSR1,   SIGUS
 struct sigaction g_previous[std::size(kSignals)];
 bool g_installed[std::size(kSignals)] = {};
 
+} // namespace
+
+void remove_output_temporary() noexcept {
+    if (g_temp_armed) ::unlink(g_temp_path);
+}
+
+namespace {
+
 extern "C" void remove_temp_and_reraise(int sig) {
     if (g_temp_armed) ::unlink(g_temp_path);
     // SA_RESETHAND has put back the default action, and the signal is blocked

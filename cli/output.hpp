@@ -62,6 +62,10 @@ private:
     bool quiet_ = false;
 };
 
+/// Removes the temporary output file of this process, if any; async-signal-safe
+/// (for a signal handler that is about to end the process).
+void remove_output_temporary() noexcept;
+
 /// Picks the rendering for the format of `out` and commits it.
 template <class Result>
 void emit(Output& out, const Result& r) {

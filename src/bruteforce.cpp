@@ -35,6 +35,7 @@ BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
     const double x0 = std::isnan(req.x0) ? detail::default_start_noise(engine) : req.x0;
     out.start_noise = x0;
     out.totals = run_bruteforce(engine, req.horizon, x0, req.v0, req.trajectories, req.control);
+    detail::note_interruption(out.totals, "trajectories", out.warnings);
     // The inclusion engine simulates a whole number of steps: use the time it
     // actually simulated, and say so when it differs from the request.
     const double simulated = out.totals.moments.mean_y();

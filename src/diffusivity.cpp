@@ -53,6 +53,8 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
         total.work += t.work;
         total.seconds += t.seconds;
         total.threads = t.threads;
+        total.resumed += t.resumed;
+        total.interrupted = t.interrupted;
         ++outcome.batches;
         if (total.capped > 0 && !req.allow_capped) break; // reported by the caller
         std::uint64_t needed = batch;
@@ -70,6 +72,7 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
             const double more = std::isfinite(ratio) ? n * (1.1 * ratio * ratio - 1.0) : 4.0 * n;
             needed = static_cast<std::uint64_t>(std::clamp(more, 1.0, 4.0 * static_cast<double>(total.requested)));
         }
+        if (total.interrupted) break; // reported by the caller
         if (total.requested >= req.max_excursions) break;
         batch = std::min(round_up_to_blocks(std::max<std::uint64_t>(needed, block_size)),
                          req.max_excursions - total.requested);
@@ -97,7 +100,8 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req, const Prepa
         out.warnings.push_back("precision target not reached: relative half-width " +
                                format_number(out.precision.relative_half_width, 3) + " > " +
                                format_number(req.rel_precision, 3) + " after " +
-                               std::to_string(out.totals.requested) + " excursions (--max-excursions)");
+                               std::to_string(out.totals.moments.count() + out.totals.capped) + " excursions (" +
+                               (out.totals.interrupted ? "interrupted" : "--max-excursions") + ")");
     if (req.estimator == Estimator::Paper &&
         (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
         out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");

@@ -5,6 +5,7 @@
 #include "stickslip/observables.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 
@@ -269,9 +270,16 @@ bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engin
             hi = std::max(hi, b.hi);
         }
         void merge(const Range& b) { add_block(b); }
-        std::size_t words() const { return 0; }
-        void to_words(std::uint64_t*) const {}
-        void assign_words(const std::uint64_t*) {}
+        // Only for a checkpoint (the pilot is never split across processes).
+        std::size_t words() const { return 2; }
+        void to_words(std::uint64_t* w) const {
+            w[0] = std::bit_cast<std::uint64_t>(lo);
+            w[1] = std::bit_cast<std::uint64_t>(hi);
+        }
+        void assign_words(const std::uint64_t* w) {
+            lo = std::bit_cast<double>(w[0]);
+            hi = std::bit_cast<double>(w[1]);
+        }
     };
     RunControl ctl = req.control;
     ctl.progress = nullptr;
@@ -731,6 +739,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
             },
             exact);
     }
+    detail::note_interruption(out.totals, "trajectories", out.warnings);
     const RatioMoments total = exact.moments();
     for (std::size_t j = 0; j < nt; ++j) {
         out.first_moment.push_back(total.estimate(j, req.level));

@@ -109,10 +109,13 @@ ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
     work[s.engine == Engine::Pdmp ? "events" : "steps"] = t.work;
     work["seconds"] = t.seconds;
     work["threads"] = t.threads;
+    if (t.resumed) work["resumed_samples"] = t.resumed; // restored from a checkpoint
     return work;
 }
 
-void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings) {
+void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings,
+                     bool interrupted) {
+    if (interrupted) j["interrupted"] = true;
     if (work) j["work"] = *work;
     j["warnings"] = warnings;
     j["version"] = version();

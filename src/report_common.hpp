@@ -38,10 +38,13 @@ ordered_json params_json(const RunSettings& r);
 ordered_json nondimensional_json(const RunSettings& r);
 /// engine_details: the thresholds, the PDMP lattice or the white level, the guard.
 ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r);
-/// The tail of a report: "work" (when `work` is not null), "warnings",
-/// "version" and, when the build knows it, "revision".
-void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings);
-/// {steps|events, seconds, threads} of a run.
+/// The tail of a report: "interrupted": true for a run stopped early, "work"
+/// (when `work` is not null), "warnings", "version" and, when the build knows
+/// it, "revision".
+void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings,
+                     bool interrupted = false);
+/// {steps|events, seconds, threads} of a run, and resumed_samples when some
+/// were restored from a checkpoint.
 ordered_json work_json(const EngineSettings& s, const RunTotals& t);
 /// Every member of `from` appended to `into`, in order.
 void append_members(ordered_json& into, const ordered_json& from);

@@ -41,7 +41,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     }
     j["engine_details"] = engine_details_json(r.resolved, q);
     const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
     return dump(j, indent);
 }
 
@@ -100,7 +100,7 @@ std::string to_json(const BruteForceResult& r, int indent) {
     j["mobility"] = estimate_json(r.estimates.mobility);
     j["engine_details"] = engine_details_json(r.resolved, q);
     const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
     return dump(j, indent);
 }
 

@@ -54,7 +54,7 @@ std::string to_json(const StationaryDensityResult& r, int indent) {
     j["capped"] = r.totals.capped;
     j["engine_details"] = engine_details_json(r.resolved, q);
     const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
     return dump(j, indent);
 }
 
@@ -125,7 +125,7 @@ std::string to_json(const TransientResult& r, int indent) {
     }
     j["engine_details"] = engine_details_json(r.resolved, q);
     const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
     return dump(j, indent);
 }
 
@@ -198,7 +198,7 @@ std::string to_json(const CorrelationResult& r, int indent) {
     j["capped"] = r.totals.capped;
     j["engine_details"] = engine_details_json(r.resolved, q);
     const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
     return dump(j, indent);
 }
 

@@ -54,8 +54,9 @@ std::string to_json(const SweepResult& r, int indent) {
         ex.push_back(o);
     }
     j["exponents"] = ex;
-    const ordered_json work = {{"seconds", r.seconds}};
-    add_report_tail(j, &work, r.warnings);
+    ordered_json work = {{"seconds", r.seconds}};
+    if (r.resumed) work["resumed_samples"] = r.resumed;
+    add_report_tail(j, &work, r.warnings, r.interrupted);
     return dump(j, indent);
 }
 

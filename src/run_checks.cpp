@@ -13,6 +13,7 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
     const EngineSettings& s = e.settings;
     const ResolvedEngine& resolved = e.resolved;
     const std::uint64_t done = totals.moments.count();
+    note_interruption(totals, "excursions", warnings);
     if (totals.capped > 0) {
         const std::string msg = std::to_string(totals.capped) + " of " + std::to_string(totals.requested) +
                                 " excursions hit the runaway guard of " + std::to_string(s.max_work_per_excursion) +
@@ -42,6 +43,15 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
              (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent && s.dt > 0.01 * p.tau))
         warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
                            "is not << tau; report it with that caveat, not as a check");
+}
+
+void note_interruption(const RunTotals& totals, const char* samples, std::vector<std::string>& warnings) {
+    if (!totals.interrupted) return;
+    const std::uint64_t done = totals.moments.count() + totals.capped;
+    if (totals.moments.count() < 2) throw RunInterrupted();
+    warnings.push_back("interrupted: the result is from the first " + std::to_string(done) + " of " +
+                       std::to_string(totals.requested) + " " + samples +
+                       " (whole blocks in index order, so unbiased; the intervals are wider)");
 }
 
 void check_start(double x0, double v0) {

@@ -16,9 +16,15 @@ inline constexpr std::uint64_t few_excursions = 5000;
 
 /// Throws CappedExcursions when excursions hit the runaway guard (unless
 /// allowed: then warns) or fewer than 2 completed; adds the standard warnings
-/// (truncated PDMP lattice, few excursions, meaning of mean_duration).
+/// (interrupted run, truncated PDMP lattice, few excursions, meaning of
+/// mean_duration).
 void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
                                std::vector<std::string>& warnings);
+
+/// A run stopped early (RunControl::stop): throws RunInterrupted when fewer
+/// than 2 of its `samples` ("excursions", "trajectories") completed, else adds
+/// the warning that says the result is from a prefix of the run.
+void note_interruption(const RunTotals& totals, const char* samples, std::vector<std::string>& warnings);
 
 /// Checks a trajectory start: v0 [m/s] finite ("v0"); x0 [s^-1/2] finite or
 /// NaN, which means "the default start" ("x0").

@@ -81,6 +81,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::size_t k = 0;
     for (double tau : taus) {
+        if (out.interrupted) break;
         const std::size_t first = out.points.size();
         for (double noise : noises) {
             DiffusivityRequest d = point_request(out.request, noise, tau, k);
@@ -91,7 +92,12 @@ SweepResult compute_sweep(const SweepRequest& req) {
             } catch (const CappedExcursions& e) {
                 throw CappedExcursions(std::string(e.what()) + " [at noise " + detail::format_number(noise) +
                                        ", tau " + detail::format_number(tau) + "]");
+            } catch (const RunInterrupted&) {
+                if (out.points.empty()) throw;
+                out.interrupted = true; // stopped before this point had a result
+                break;
             }
+            out.resumed += r.totals.resumed;
             SweepPoint p;
             p.noise = noise;
             p.tau = tau;
@@ -102,9 +108,13 @@ SweepResult compute_sweep(const SweepRequest& req) {
             p.warnings = r.warnings;
             out.points.push_back(p);
             ++k;
+            if (r.totals.interrupted) {
+                out.interrupted = true;
+                break;
+            }
         }
         // Local slopes from the neighbours; errors from the independent standard errors.
-        const std::size_t n = noises.size();
+        const std::size_t n = out.points.size() - first; // all the noises, unless interrupted
         auto logd = [&](std::size_t i) { return std::log(out.points[first + i].estimates.diffusivity.value); };
         auto sig = [&](std::size_t i) {
             const auto& e = out.points[first + i].estimates.diffusivity;
@@ -151,6 +161,9 @@ SweepResult compute_sweep(const SweepRequest& req) {
             out.exponents.push_back(e);
         }
     }
+    if (out.interrupted)
+        out.warnings.push_back("interrupted: " + std::to_string(out.points.size()) + " of " + std::to_string(total) +
+                               " points have a result (the last from a prefix of its excursions)");
     for (const auto& p : out.points)
         for (const auto& w : p.warnings)
             if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&

@@ -15,6 +15,8 @@
 namespace stickslip {
 
 struct BruteForceRequest : RunSettings {
+    static constexpr const char* command = "bruteforce"; ///< the CLI subcommand, and a checkpoint's name for it
+    static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     double horizon = 10.0;            ///< t [s]
     std::uint64_t trajectories = 1000;
     /// Start: noise x0 [s^-1/2] and velocity v0 [m/s]. NaN x0 means the

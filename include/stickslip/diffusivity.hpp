@@ -15,6 +15,8 @@
 namespace stickslip {
 
 struct DiffusivityRequest : RunSettings, ExcursionSettings {
+    static constexpr const char* command = "diffusivity"; ///< the CLI subcommand, and a checkpoint's name for it
+    static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     Estimator estimator = Estimator::RenewalReward;
     /// Precision on demand: when > 0, run in batches until the interval's
     /// half-width is at most rel_precision * D, or max_excursions have run.

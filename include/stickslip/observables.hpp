@@ -74,6 +74,8 @@ struct VelocityHistogram {
 // ---- stationary density --------------------------------------------------
 
 struct StationaryDensityRequest : RunSettings, ExcursionSettings {
+    static constexpr const char* command = "density"; ///< the CLI subcommand, and a checkpoint's name for it
+    static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     VelocityBins bins;
     /// PDMP sampling interval [s]; 0 uses engine.dt. Ignored by the inclusion engine.
     double sample_dt = 0.0;
@@ -109,6 +111,8 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
 // ---- stationary autocorrelation ---------------------------------------------
 
 struct CorrelationRequest : RunSettings, ExcursionSettings {
+    static constexpr const char* command = "correlation"; ///< the CLI subcommand, and a checkpoint's name for it
+    static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     double max_lag = 0.0; ///< largest lag r [s]; 0 chooses 5 time units noise/friction^2
     int lags = 50;        ///< lags 0, max_lag/lags, ..., max_lag (rounded to the sampling grid)
     double sample_dt = 0.0; ///< PDMP sampling interval [s]; 0 uses engine.dt
@@ -142,6 +146,8 @@ CorrelationResult compute_correlation(const CorrelationRequest& req);
 // ---- transient statistics ------------------------------------------------------
 
 struct TransientRequest : RunSettings {
+    static constexpr const char* command = "moments"; ///< the CLI subcommand, and a checkpoint's name for it
+    static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     /// Initial velocity v_i [m/s]; NaN: one velocity unit, noise/friction.
     double v0 = std::numeric_limits<double>::quiet_NaN();
     /// Initial noise X(0) [s^-1/2]; NaN draws it from the stationary law
@@ -199,6 +205,7 @@ struct SamplePath {
 };
 
 struct TrajectoryRequest : RunSettings {
+    static constexpr const char* command = "trajectory"; ///< the CLI subcommand, and a checkpoint's name for it
     /// Excursion mode (paths == 0): long excursion number `index` of stream
     /// `control.seed`, the very excursion `diffusivity` runs with that index.
     std::uint64_t index = 0;

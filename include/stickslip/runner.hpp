@@ -24,6 +24,8 @@
 
 namespace stickslip {
 
+class RunJournal; // checkpoint.hpp
+
 /// Progress snapshot passed to RunControl::progress.
 struct Progress {
     std::uint64_t done = 0;  ///< samples finished and merged
@@ -46,6 +48,19 @@ struct RunControl {
     /// from any thread (a signal watcher, a GUI) to stop the run within one
     /// sample; the run then throws RunCancelled.
     const std::atomic<bool>* cancel = nullptr;
+    /// Optional stop flag, for a graceful stop (Ctrl-C): set it from any
+    /// thread and the workers start no new block, finish those in flight and
+    /// the run returns the result of a prefix of whole blocks, in index order
+    /// (so no bias toward short samples), with RunTotals::interrupted set.
+    /// Runs that consist of several calls of the driver (batches, sweep
+    /// points) make no further call. A distributed run keeps the rounds that
+    /// every process completed (see `journal`).
+    const std::atomic<bool>* stop = nullptr;
+    /// Optional journal (checkpoint.hpp): the run then completes its blocks in
+    /// rounds of about a second (a distributed run always does, reducing its
+    /// sums after each), records its state after every round, and, when the
+    /// journal holds a saved state for this call, continues from it.
+    RunJournal* journal = nullptr;
     /// Distributed runs (MPI, see cli/distributed.hpp): this process computes
     /// only the blocks b with b % ranks == rank; at the end `reduce` must
     /// replace `words` (this process's exact sums, a sequence of ExactSum
@@ -76,9 +91,17 @@ struct RunTotals {
     std::uint64_t work = 0;   ///< steps or events, all samples
     double seconds = 0.0;
     unsigned threads = 1;
+    bool interrupted = false; ///< stopped early (RunControl::stop): the sums are of a prefix of whole blocks
+    std::uint64_t resumed = 0; ///< samples restored from a checkpoint rather than computed
 };
 
 struct PreparedEngine; // run.hpp
+
+/// Thrown when a run was stopped (RunControl::stop) before it had anything to
+/// report (fewer than two samples, or during a pilot run).
+struct RunInterrupted : std::runtime_error {
+    RunInterrupted() : std::runtime_error("interrupted before any result") {}
+};
 
 /// Throws InvalidParameter for a thread count above 4096.
 void check_run_control(const RunControl& ctl);

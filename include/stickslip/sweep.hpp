@@ -25,6 +25,8 @@ inline constexpr std::uint64_t sweep_index_stride = std::uint64_t{1} << 40;
 /// and threads (control.progress is not used; see point_progress).
 /// `excursions` is per point.
 struct SweepRequest : RunSettings, ExcursionSettings {
+    static constexpr const char* command = "sweep"; ///< the CLI subcommand, and a checkpoint's name for it
+    static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     /// Gamma values [m^2 s^-3], > 0 (sorted increasing in the result); the
     /// default, 1:10:5, is five log-spaced values from 1 to 10.
     std::vector<double> noises = spaced_values(1.0, 10.0, 5);
@@ -68,6 +70,8 @@ struct SweepResult {
     std::vector<SweepPoint> points; ///< tau-major: for each tau, noises increasing
     std::vector<SweepExponent> exponents; ///< one per tau (when >= 2 noises)
     double seconds = 0;
+    bool interrupted = false;  ///< stopped early (RunControl::stop): the points run so far
+    std::uint64_t resumed = 0; ///< excursions restored from a checkpoint
     std::vector<std::string> warnings;
 };
 

@@ -19,6 +19,7 @@
 namespace stickslip {
 
 struct WhiteNoiseRequest {
+    static constexpr const char* command = "analytic"; ///< the CLI subcommand, and a checkpoint's name for it
     ModelParams params;        ///< tau is ignored (white noise)
     double v0 = 0.0;           ///< initial velocity of the first moment [m/s]
     std::vector<double> times; ///< t >= 0 [s]; empty: stationary values only

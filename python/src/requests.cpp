@@ -11,10 +11,15 @@
 //
 // Running: the computation runs on a helper thread with the GIL released,
 // while the calling thread wakes every 50 ms to run Python's signal handlers.
-// When a handler raises (KeyboardInterrupt), the run's cancel flag is set, the
-// workers stop within one sample, and the exception is re-raised. The library
-// reports progress through RunControl::progress on whichever worker merged a
-// block; with progress=True the waiting thread prints it on sys.stderr.
+// When a handler raises (KeyboardInterrupt), the run's stop flag is set: the
+// workers start no new block and finish those in flight, the run returns the
+// result of the blocks completed, and the exception is re-raised carrying it
+// as its `result` attribute (None when there was nothing to report). A second
+// exception while it stops cancels it within one sample. The library reports
+// progress through RunControl::progress on whichever worker merged a block;
+// with progress=True the waiting thread prints it on sys.stderr. Runs through
+// the block driver take checkpoint=, checkpoint_every= and resume=
+// (checkpoint.hpp), exactly as the command line's --checkpoint flags.
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -22,12 +27,14 @@
 #include <functional>
 #include <future>
 #include <mutex>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
 
 #include "bindings.hpp"
 #include "stickslip/bruteforce.hpp"
+#include "stickslip/checkpoint.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/sweep.hpp"
@@ -36,6 +43,9 @@
 namespace stickslip::python {
 
 namespace {
+
+/// An optional file name (None: not given).
+using Path = std::optional<std::string>;
 
 // ---- the settings as Python values ---------------------------------------------------
 
@@ -156,7 +166,8 @@ py::object get_setting(Request& r, const std::string& keyword) {
 /// Shared between the computation (progress callbacks, any thread) and the
 /// waiting Python thread.
 struct Monitor {
-    std::atomic<bool> cancel{false};
+    std::atomic<bool> stop{false};   ///< the first Ctrl-C: finish the blocks in flight
+    std::atomic<bool> cancel{false}; ///< the second: stop within one sample
     std::mutex mutex;
     std::uint64_t done = 0, total = 0;
     double seconds = 0;
@@ -207,8 +218,9 @@ struct Monitor {
 };
 
 /// Runs work() on a helper thread with the GIL released; Ctrl-C (any Python
-/// exception raised by a signal handler) cancels it through `mon` and is
-/// re-raised. Called with the GIL held.
+/// exception raised by a signal handler) stops it through `mon` (a second one
+/// cancels it) and is re-raised, with the result so far, if any, as its
+/// `result` attribute. Called with the GIL held.
 template <class Result>
 Result run_interruptible(std::function<Result()> work, Monitor& mon, bool show_progress) {
     std::optional<py::error_already_set> interrupted;
@@ -219,9 +231,14 @@ Result run_interruptible(std::function<Result()> work, Monitor& mon, bool show_p
         auto last_print = std::chrono::steady_clock::now();
         while (fut.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
             py::gil_scoped_acquire gil;
-            if (!interrupted && PyErr_CheckSignals() != 0) {
-                interrupted.emplace(); // fetches (and clears) the pending exception
-                mon.cancel = true;
+            if (PyErr_CheckSignals() != 0) {
+                if (!interrupted) {
+                    interrupted.emplace(); // fetches (and clears) the pending exception
+                    mon.stop = true;
+                } else {
+                    PyErr_Clear(); // the first one is re-raised
+                    mon.cancel = true;
+                }
             }
             const auto now = std::chrono::steady_clock::now();
             if (show_progress && !interrupted && now - last_print >= std::chrono::milliseconds(500)) {
@@ -236,13 +253,51 @@ Result run_interruptible(std::function<Result()> work, Monitor& mon, bool show_p
         } catch (py::error_already_set&) {
         }
     }
+    auto raise_with = [&](py::object result) {
+        try {
+            py::setattr(interrupted->value(), "result", std::move(result));
+        } catch (py::error_already_set&) { // an exception type without attributes: raise it as it is
+        }
+        throw *interrupted;
+    };
     try {
         Result r = fut.get();
-        if (interrupted) throw *interrupted; // finished before it could stop: still honour Ctrl-C
+        if (interrupted) raise_with(py::cast(r)); // the prefix of the run (or all of it, if it ended first)
         if (show_progress) mon.print(true);
         return r;
     } catch (const RunCancelled&) {
-        if (interrupted) throw *interrupted;
+        if (interrupted) raise_with(py::none());
+        throw;
+    } catch (const RunInterrupted&) {
+        if (interrupted) raise_with(py::none());
+        throw;
+    }
+}
+
+/// The journal of a run from its checkpoint keywords (None: not asked for).
+template <class Request>
+std::unique_ptr<RunJournal> journal_for(Request& req, const std::optional<std::string>& checkpoint,
+                                        double checkpoint_every, const std::optional<std::string>& resume) {
+    CheckpointOptions o;
+    o.path = checkpoint.value_or("");
+    o.every = checkpoint_every;
+    o.resume = resume.value_or("");
+    return make_journal(req, o);
+}
+
+/// Runs a request that goes through the block driver: Ctrl-C keeps the result
+/// so far, and the journal (if any) is written at the end or when stopped.
+template <class Request, class Result>
+Result run_journaled(Request& req, std::function<Result()> compute, Monitor& mon, bool progress,
+                     RunJournal* journal) {
+    req.control.stop = &mon.stop;
+    req.control.journal = journal;
+    try {
+        Result r = run_interruptible<Result>(std::move(compute), mon, progress);
+        if (journal) journal->write();
+        return r;
+    } catch (const py::error_already_set&) {
+        if (journal) journal->write(); // KeyboardInterrupt: the state so far
         throw;
     }
 }
@@ -255,6 +310,15 @@ const char* samples_of(const CorrelationRequest&) { return "excursions"; }
 const char* samples_of(const TransientRequest&) { return "trajectories"; }
 const char* samples_of(const TrajectoryRequest&) { return "paths"; }
 
+/// Forgets what points into a run's monitor and journal, about to go.
+template <class Result>
+void detach(Result& r) {
+    r.request.control.progress = nullptr;
+    r.request.control.cancel = nullptr;
+    r.request.control.stop = nullptr;
+    r.request.control.journal = nullptr;
+}
+
 template <class Request, class Result>
 Result run_request(Request req, Result (*compute)(const Request&), bool progress) {
     Monitor mon;
@@ -262,12 +326,27 @@ Result run_request(Request req, Result (*compute)(const Request&), bool progress
     req.control.progress = mon.callback(samples_of(req));
     req.control.cancel = &mon.cancel; // stops the workers within one sample
     Result r = run_interruptible<Result>([&req, compute] { return compute(req); }, mon, progress);
-    r.request.control.progress = nullptr; // it points to `mon`, about to go
-    r.request.control.cancel = nullptr;
+    detach(r);
     return r;
 }
 
-SweepResult run_sweep(SweepRequest req, bool progress) {
+template <class Request, class Result>
+Result run_resumable(Request req, Result (*compute)(const Request&), bool progress,
+                     const std::optional<std::string>& checkpoint, double checkpoint_every,
+                     const std::optional<std::string>& resume) {
+    Monitor mon;
+    req.control.progress_interval = 0.0; // check the cancel flag after every merged block
+    req.control.progress = mon.callback(samples_of(req));
+    req.control.cancel = &mon.cancel;
+    const auto journal = journal_for(req, checkpoint, checkpoint_every, resume);
+    Result r = run_journaled<Request, Result>(req, [&req, compute] { return compute(req); }, mon, progress,
+                                              journal.get());
+    detach(r);
+    return r;
+}
+
+SweepResult run_sweep(SweepRequest req, bool progress, const std::optional<std::string>& checkpoint,
+                      double checkpoint_every, const std::optional<std::string>& resume) {
     Monitor mon;
     req.control.progress_interval = 0.0;
     req.point_progress = [&mon](std::size_t k, std::size_t n, double noise, double tau) {
@@ -276,9 +355,11 @@ SweepResult run_sweep(SweepRequest req, bool progress) {
         return mon.callback(what);
     };
     req.control.cancel = &mon.cancel; // every point's run stops within one sample
-    SweepResult r = run_interruptible<SweepResult>([&req] { return compute_sweep(req); }, mon, progress);
+    const auto journal = journal_for(req, checkpoint, checkpoint_every, resume);
+    SweepResult r = run_journaled<SweepRequest, SweepResult>(req, [&req] { return compute_sweep(req); }, mon,
+                                                             progress, journal.get());
     r.request.point_progress = nullptr; // it points to `mon`, about to go
-    r.request.control.cancel = nullptr;
+    detach(r);
     return r;
 }
 
@@ -286,7 +367,11 @@ SweepResult run_sweep(SweepRequest req, bool progress) {
 /// model parameters, validate(), the settings' descriptions.
 template <class Request>
 void bind_request(py::module_& m, const char* name, const char* doc) {
-    py::class_<Request>(m, name, doc)
+    py::class_<Request> cls(m, name, doc);
+    // Whether run() takes checkpoint=, checkpoint_every= and resume= for it.
+    if constexpr (requires { Request::resumable; }) cls.attr("resumable") = py::bool_(Request::resumable);
+    else cls.attr("resumable") = py::bool_(false);
+    cls
         .def(py::init<>(), "A request with every setting at its default (the CLI's).")
         .def("set", &set_setting<Request>, py::arg("keyword"), py::arg("value"),
              "Set one setting from a Python value (number, bool, str, sequence; None restores the default), read "
@@ -305,6 +390,13 @@ void bind_request(py::module_& m, const char* name, const char* doc) {
 } // namespace
 
 void bind_requests(py::module_& m) {
+    py::dict checkpoint_help;
+    checkpoint_help["checkpoint"] = CheckpointOptions::path_help;
+    checkpoint_help["checkpoint_every"] = CheckpointOptions::every_help;
+    checkpoint_help["resume"] = CheckpointOptions::resume_help;
+    m.attr("checkpoint_help") = checkpoint_help; // the keywords' help texts, as the CLI's flags have them
+    m.attr("checkpoint_every_default") = CheckpointOptions{}.every;
+
     bind_request<DiffusivityRequest>(m, "DiffusivityRequest", "The settings of a diffusivity run.");
     bind_request<BruteForceRequest>(m, "BruteForceRequest", "The settings of a brute-force run.");
     bind_request<StationaryDensityRequest>(m, "DensityRequest", "The settings of a stationary density run.");
@@ -314,30 +406,56 @@ void bind_requests(py::module_& m) {
     bind_request<SweepRequest>(m, "SweepRequest", "The settings of a sweep over noise and tau.");
     bind_request<WhiteNoiseRequest>(m, "WhiteNoiseRequest", "The settings of the exact white-noise references.");
 
-    const char* run_doc = "Run a request (the GIL is released; Ctrl-C raises KeyboardInterrupt; progress=True prints "
-                          "a progress line on sys.stderr) and return its result.";
+    const char* run_doc =
+        "Run a request and return its result. The GIL is released; progress=True prints a progress line on "
+        "sys.stderr. Ctrl-C lets the blocks in flight finish and raises KeyboardInterrupt whose `result` attribute "
+        "is the result so far (marked interrupted), or None. checkpoint=FILE saves the run's state every "
+        "checkpoint_every seconds and at the end; resume=FILE continues it (runs over excursions or trajectories).";
     m.def(
-         "run", [](const DiffusivityRequest& r, bool p) { return run_request(r, &compute_diffusivity, p); },
-         py::arg("request"), py::arg("progress") = false, run_doc)
-        .def(
-            "run", [](const BruteForceRequest& r, bool p) { return run_request(r, &compute_bruteforce, p); },
-            py::arg("request"), py::arg("progress") = false)
+         "run",
+            [](const DiffusivityRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_diffusivity, p, c, e, res);
+            },
+            py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
+            py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none(), run_doc)
         .def(
             "run",
-            [](const StationaryDensityRequest& r, bool p) { return run_request(r, &compute_stationary_density, p); },
-            py::arg("request"), py::arg("progress") = false)
+            [](const BruteForceRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_bruteforce, p, c, e, res);
+            },
+            py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
+            py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
-            "run", [](const CorrelationRequest& r, bool p) { return run_request(r, &compute_correlation, p); },
-            py::arg("request"), py::arg("progress") = false)
+            "run",
+            [](const StationaryDensityRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_stationary_density, p, c, e, res);
+            },
+            py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
+            py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
-            "run", [](const TransientRequest& r, bool p) { return run_request(r, &compute_transient, p); },
-            py::arg("request"), py::arg("progress") = false)
+            "run",
+            [](const CorrelationRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_correlation, p, c, e, res);
+            },
+            py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
+            py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
+        .def(
+            "run",
+            [](const TransientRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_transient, p, c, e, res);
+            },
+            py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
+            py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
             "run", [](const TrajectoryRequest& r, bool p) { return run_request(r, &compute_trajectory, p); },
             py::arg("request"), py::arg("progress") = false)
         .def(
-            "run", [](const SweepRequest& r, bool p) { return run_sweep(r, p); }, py::arg("request"),
-            py::arg("progress") = false)
+            "run",
+            [](const SweepRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_sweep(r, p, c, e, res);
+            },
+            py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
+            py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
             "run",
             [](const WhiteNoiseRequest& r, bool) {

@@ -47,7 +47,13 @@ void add_totals(Cls& cls) {
         .def_property_readonly(
             "seconds", [](const R& r) { return r.totals.seconds; }, "wall time of the run [s]")
         .def_property_readonly(
-            "threads", [](const R& r) { return r.totals.threads; }, "worker threads used");
+            "threads", [](const R& r) { return r.totals.threads; }, "worker threads used")
+        .def_property_readonly(
+            "interrupted", [](const R& r) { return r.totals.interrupted; },
+            "True when the run was stopped early (Ctrl-C): the result is of the blocks completed, in index order")
+        .def_property_readonly(
+            "resumed", [](const R& r) { return r.totals.resumed; },
+            "samples restored from a checkpoint (resume=) rather than computed");
 }
 
 /// D, M0, E[t1] of the long excursions behind a result.
@@ -434,6 +440,9 @@ void bind_results(py::module_& m) {
                 "stop rule used at every point (list of str)")
             .def_readonly("exponents", &R::exponents, "one SweepExponent per tau (with >= 2 noises)")
             .def_readonly("seconds", &R::seconds, "wall time [s]")
+            .def_readonly("interrupted", &R::interrupted,
+                          "True when the sweep was stopped early (Ctrl-C): only the points run so far are here")
+            .def_readonly("resumed", &R::resumed, "excursions restored from a checkpoint (resume=)")
             .def("__repr__", [](const R& r) {
                 return "SweepResult(taus=" + std::to_string(r.request.taus.size()) +
                        ", noises=" + std::to_string(r.request.noises.size()) +

@@ -22,8 +22,11 @@ the object ``stickslip <command> --format json`` prints (only its "work" part,
 the timing, differs between runs). Each keyword is the command's flag with
 '-' written '_' (``max_steps`` is ``--max-steps``).
 
-Simulations (the GIL is released while they run; Ctrl-C stops them and raises
-KeyboardInterrupt; progress=True prints a progress line on stderr):
+Simulations (the GIL is released while they run; progress=True prints a
+progress line on stderr; Ctrl-C lets the blocks in flight finish and raises
+KeyboardInterrupt whose ``result`` attribute is the result so far;
+checkpoint="run.ckpt" saves a run's state, resume="run.ckpt" continues it
+with a result identical to an uninterrupted run's):
 
     diffusivity(params, ...)   D, mobility M0, mean excursion duration E[t1]
     bruteforce(params, ...)    D_t = var U(t)/t from trajectories on [0, t]

@@ -59,6 +59,9 @@ def diffusivity(
     rel_precision: float = ...,
     max_excursions: int = ...,
     progress: bool = False,
+    checkpoint: Optional[str] = None,
+    checkpoint_every: float = ...,
+    resume: Optional[str] = None,
 ) -> DiffusivityResult: ...
 
 def bruteforce(
@@ -80,6 +83,9 @@ def bruteforce(
     x0: Optional[float] = ...,
     v0: float = ...,
     progress: bool = False,
+    checkpoint: Optional[str] = None,
+    checkpoint_every: float = ...,
+    resume: Optional[str] = None,
 ) -> BruteForceResult: ...
 
 def density(
@@ -102,6 +108,9 @@ def density(
     range: Optional[Tuple[float, float]] = ...,
     sample_dt: float = ...,
     progress: bool = False,
+    checkpoint: Optional[str] = None,
+    checkpoint_every: float = ...,
+    resume: Optional[str] = None,
 ) -> DensityResult: ...
 
 def correlation(
@@ -124,6 +133,9 @@ def correlation(
     lags: int = ...,
     sample_dt: float = ...,
     progress: bool = False,
+    checkpoint: Optional[str] = None,
+    checkpoint_every: float = ...,
+    resume: Optional[str] = None,
 ) -> CorrelationResult: ...
 
 def moments(
@@ -148,6 +160,9 @@ def moments(
     bins: int = ...,
     range: Optional[Tuple[float, float]] = ...,
     progress: bool = False,
+    checkpoint: Optional[str] = None,
+    checkpoint_every: float = ...,
+    resume: Optional[str] = None,
 ) -> MomentsResult: ...
 
 def trajectory(
@@ -193,4 +208,7 @@ def sweep(
     allow_capped: bool = ...,
     estimator: Literal['renewal', 'paper'] = ...,
     progress: bool = False,
+    checkpoint: Optional[str] = None,
+    checkpoint_every: float = ...,
+    resume: Optional[str] = None,
 ) -> SweepResult: ...

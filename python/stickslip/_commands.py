@@ -6,7 +6,7 @@ nothing is restated here.
 """
 import inspect as _inspect
 
-from ._core import Params, run
+from ._core import Params, checkpoint_every_default, checkpoint_help, run
 
 
 _PARAMS_DOC = f"""\
@@ -19,6 +19,14 @@ _PROGRESS_DOC = """\
     progress : bool
         Print a progress line on sys.stderr (default False)."""
 
+_CHECKPOINT_DOC = f"""\
+    checkpoint : str or None
+        {checkpoint_help["checkpoint"]}.
+    checkpoint_every : float
+        {checkpoint_help["checkpoint_every"]} (default {checkpoint_every_default:g}).
+    resume : str or None
+        {checkpoint_help["resume"]}."""
+
 _RAISES_DOC = """\
     Raises
     ------
@@ -27,8 +35,13 @@ _RAISES_DOC = """\
     CappedExcursionsError (RuntimeError)
         Some excursions hit `max_steps` (unless allow_capped=True).
     KeyboardInterrupt
-        Ctrl-C (or any exception raised by a signal handler) while it runs: the
-        run stops within one block of 64 samples per thread."""
+        Ctrl-C (or any exception raised by a signal handler) while it runs."""
+
+_INTERRUPT_DOC = """ The
+        blocks in flight finish (64 samples each) and the exception's `result`
+        attribute holds the result of the blocks completed, in index order
+        (`result.interrupted` is True), or None if there was none yet; a
+        second Ctrl-C stops at once, without a result."""
 
 
 def params_of(params):
@@ -55,10 +68,14 @@ def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC)
     given set through the library's parser, then run()."""
     settings = request.settings()
 
+    resumable = request.resumable
+    journal = ("checkpoint", "checkpoint_every", "resume") if resumable else ()
+
     def call(params=None, **keywords):
         req = request()
         req.params = params_of(params)
         progress = bool(keywords.pop("progress", False))
+        run_keywords = {k: keywords.pop(k) for k in journal if k in keywords}
         for key, value in keywords.items():
             try:
                 req.set(key, value)
@@ -66,18 +83,23 @@ def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC)
                 if str(e).startswith("unexpected keyword"):
                     raise TypeError(f"{name}() got an {e}") from None
                 raise
-        return run(req, progress)
+        return run(req, progress, **run_keywords)
 
     kw = _inspect.Parameter.KEYWORD_ONLY
     call.__signature__ = _inspect.Signature(
         [_inspect.Parameter("params", _inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None)]
         + [_inspect.Parameter(s["keyword"], kw, default=s["default"]) for s in settings]
-        + [_inspect.Parameter("progress", kw, default=False)])
+        + [_inspect.Parameter("progress", kw, default=False)]
+        + ([_inspect.Parameter("checkpoint", kw, default=None),
+            _inspect.Parameter("checkpoint_every", kw, default=checkpoint_every_default),
+            _inspect.Parameter("resume", kw, default=None)] if resumable else []))
     call.__name__ = call.__qualname__ = name
     call.__module__ = "stickslip"
     call.__doc__ = (summary + "\n\n    Parameters\n    ----------\n" + params_doc + "\n"
                     + "\n".join(_setting_doc(s) for s in settings) + "\n" + _PROGRESS_DOC
-                    + "\n\n    Returns\n    -------\n" + returns + "\n\n" + _RAISES_DOC + example)
+                    + ("\n" + _CHECKPOINT_DOC if resumable else "")
+                    + "\n\n    Returns\n    -------\n" + returns + "\n\n" + _RAISES_DOC
+                    + (_INTERRUPT_DOC if resumable else " The run stops within one sample.") + example)
     return call
 
 

@@ -3,6 +3,7 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 import textwrap
 import threading
 import time
@@ -11,24 +12,32 @@ import unittest
 import stickslip
 
 CHILD = textwrap.dedent("""
-    import signal, sys
+    import math, signal, sys
     # A shell may start background jobs with SIGINT ignored; Python would then keep ignoring it.
     signal.signal(signal.SIGINT, signal.default_int_handler)
     import stickslip
     print("running", flush=True)
-    stickslip.{call}
+    try:
+        stickslip.{call}
+    except KeyboardInterrupt as e:
+        r = e.result
+        if r is not None:
+            d = r.to_dict()
+            print("result", r.interrupted, d.get("interrupted"), d.get("completed", len(d.get("points", []))),
+                  flush=True)
+        raise
     print("finished", flush=True)
 """)
 
 
 class InterruptTest(unittest.TestCase):
-    def interrupt(self, call):
+    def interrupt(self, call, delay=1.0):
         env = dict(os.environ)
         child = subprocess.Popen([sys.executable, "-c", CHILD.format(call=call)], stdout=subprocess.PIPE,
                                  stderr=subprocess.PIPE, text=True, env=env)
         try:
             self.assertEqual(child.stdout.readline().strip(), "running")
-            time.sleep(1.0)
+            time.sleep(delay)
             sent = time.monotonic()
             child.send_signal(signal.SIGINT)
             out, err = child.communicate(timeout=10)
@@ -44,15 +53,40 @@ class InterruptTest(unittest.TestCase):
         # a crash would be SIGSEGV/SIGABRT.
         self.assertIn(child.returncode, (1, 130, -signal.SIGINT), err)
         self.assertLess(elapsed, 5.0)
+        return out
+
+    def assert_partial_result(self, out):
+        # The exception carries the result of the blocks completed, marked interrupted.
+        line = [l for l in out.splitlines() if l.startswith("result ")]
+        self.assertEqual(len(line), 1, out)
+        _, flag, in_json, count = line[0].split()
+        self.assertEqual((flag, in_json), ("True", "True"), out)
+        self.assertGreater(int(count), 0, out)
 
     def test_diffusivity_two_threads(self):
-        self.interrupt("diffusivity(excursions=10**8, threads=2)")
+        self.assert_partial_result(self.interrupt("diffusivity(excursions=10**8, threads=2)"))
 
     def test_one_thread_with_progress(self):
-        self.interrupt("diffusivity(excursions=10**8, threads=1, progress=True)")
+        self.assert_partial_result(self.interrupt("diffusivity(excursions=10**8, threads=1, progress=True)"))
 
     def test_sweep(self):
-        self.interrupt("sweep(noise=[3, 5], tau=[0.5], excursions=10**8, threads=2)")
+        self.assert_partial_result(self.interrupt("sweep(noise=[3, 5], tau=[0.5], excursions=10**8, threads=2)"))
+
+    def test_checkpoint_then_resume_equals_the_uninterrupted_run(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "run.ckpt")
+            settings = "excursions=150000, dt=1e-2, threads=2"
+            self.interrupt(f"diffusivity({settings}, checkpoint={path!r}, checkpoint_every=0.05)", delay=0.5)
+            self.assertTrue(os.path.exists(path))
+            kwargs = dict(excursions=150000, dt=1e-2)
+            resumed = stickslip.diffusivity(**kwargs, threads=1, resume=path)
+            full = stickslip.diffusivity(**kwargs, threads=2)
+            self.assertGreater(resumed.resumed, 0)
+            a, b = full.to_dict(), resumed.to_dict()
+            a.pop("work"), b.pop("work")
+            self.assertEqual(a, b)
+            with self.assertRaisesRegex(stickslip.InvalidParameterError, "written with excursions = 150000"):
+                stickslip.diffusivity(excursions=1000, dt=1e-2, resume=path)
 
 
 class GilTest(unittest.TestCase):

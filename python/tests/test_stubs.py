@@ -22,8 +22,9 @@ class StubsTest(unittest.TestCase):
                                   ("density", stickslip.DensityRequest), ("bruteforce", stickslip.BruteForceRequest),
                                   ("correlation", stickslip.CorrelationRequest)):
             sig = inspect.signature(getattr(stickslip, function))
+            run_keywords = ("checkpoint", "checkpoint_every", "resume") if request.resumable else ()
             names = [p for p in sig.parameters if p not in ("params", "progress")]
-            self.assertEqual(names, [s["keyword"] for s in request.settings()], function)
+            self.assertEqual(names, [s["keyword"] for s in request.settings()] + list(run_keywords), function)
             doc = getattr(stickslip, function).__doc__
             for s in request.settings():
                 self.assertIn(f"    {s['keyword']} : ", doc, function)

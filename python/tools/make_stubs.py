@@ -64,6 +64,9 @@ def stub_text():
         for s in getattr(stickslip, request).settings():
             args.append(f"{s['keyword']}: {annotation(s)} = ...")  # defaults: help() and the request
         args.append("progress: bool = False")
+        if getattr(stickslip, request).resumable:
+            args += ["checkpoint: Optional[str] = None", "checkpoint_every: float = ...",
+                     "resume: Optional[str] = None"]
         out += f"\ndef {function}(\n    " + ",\n    ".join(args) + f",\n) -> {result}: ...\n"
     return out
 

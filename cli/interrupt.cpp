@@ -1,0 +1,74 @@
+#include "interrupt.hpp"
+
+#include <csignal>
+#include <cstring>
+#include <iterator>
+#include <unistd.h>
+
+#include "distributed.hpp"
+#include "output.hpp"
+
+namespace stickslip::cli {
+
+namespace {
+
+static_assert(std::atomic<bool>::is_always_lock_free, "the handler sets an atomic<bool>");
+std::atomic<bool> g_stop{false};
+volatile std::sig_atomic_t g_signal = 0;
+volatile std::sig_atomic_t g_announce = 0; ///< this process prints the one line
+
+constexpr int kSignals[] = {SIGINT, SIGTERM};
+struct sigaction g_previous[std::size(kSignals)];
+bool g_installed[std::size(kSignals)] = {};
+
+void say(const char* text) {
+    if (g_announce && ::write(STDERR_FILENO, text, std::strlen(text)) < 0) return;
+}
+
+extern "C" void on_stop_signal(int sig) {
+    if (!g_stop.exchange(true)) { // the first: stop gracefully
+        g_signal = sig;
+        say("\nstickslip: stopping: finishing the blocks in flight, then writing the result so far (a second "
+            "signal aborts)\n");
+        return;
+    }
+    // The second: abort now, leaving no partial output.
+    remove_output_temporary();
+    struct sigaction dfl {};
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    ::sigaction(sig, &dfl, nullptr);
+    ::raise(sig); // delivered when the handler returns: the process ends by this signal
+}
+
+} // namespace
+
+StopOnSignals::StopOnSignals() {
+    g_stop = false;
+    g_signal = 0;
+    g_announce = is_root() ? 1 : 0;
+    for (std::size_t i = 0; i < std::size(kSignals); ++i) {
+        struct sigaction current {};
+        if (::sigaction(kSignals[i], nullptr, &current) != 0) continue;
+        if ((current.sa_flags & SA_SIGINFO) || current.sa_handler != SIG_DFL) continue;
+        struct sigaction sa {};
+        sa.sa_handler = on_stop_signal;
+        sigemptyset(&sa.sa_mask);
+        for (int s : kSignals) sigaddset(&sa.sa_mask, s);
+        sa.sa_flags = SA_RESTART;
+        if (::sigaction(kSignals[i], &sa, &g_previous[i]) == 0) g_installed[i] = true;
+    }
+}
+
+StopOnSignals::~StopOnSignals() {
+    for (std::size_t i = 0; i < std::size(kSignals); ++i)
+        if (g_installed[i]) {
+            ::sigaction(kSignals[i], &g_previous[i], nullptr);
+            g_installed[i] = false;
+        }
+}
+
+const std::atomic<bool>* StopOnSignals::flag() { return &g_stop; }
+int StopOnSignals::signal() { return g_signal; }
+
+} // namespace stickslip::cli

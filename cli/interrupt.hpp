@@ -1,0 +1,35 @@
+// Ctrl-C keeps what was computed. While a run is in progress, the first
+// SIGINT or SIGTERM asks it to stop gracefully (RunControl::stop): no new
+// block is started, the blocks in flight finish, and the command writes the
+// result of the prefix of blocks completed, marked "interrupted", and the
+// checkpoint if one was asked for; it then exits 128 + the signal (130 for
+// SIGINT, 143 for SIGTERM). A second signal aborts at once: the temporary
+// output file is removed and the process dies by that signal, leaving no
+// partial file.
+#pragma once
+
+#include <atomic>
+
+namespace stickslip::cli {
+
+/// Installs the handlers for its lifetime (only for signals at their default
+/// action: an ignored SIGINT, as in a background job, stays ignored). Install
+/// before the output is opened, so that the output's own cleanup handlers
+/// leave these two signals to it.
+class StopOnSignals {
+public:
+    StopOnSignals();
+    ~StopOnSignals();
+    StopOnSignals(const StopOnSignals&) = delete;
+    StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+    /// Set by the first signal; give it to RunControl::stop.
+    static const std::atomic<bool>* flag();
+    /// The first signal received (0: none).
+    static int signal();
+};
+
+/// The exit code of a run stopped by `signal`: 128 + signal.
+inline int exit_code_of_signal(int signal) { return 128 + signal; }
+
+} // namespace stickslip::cli

@@ -1,0 +1,79 @@
+// The `stickslip` command: a thin layer over the library. It parses flags,
+// reports progress on a terminal, prints or writes the result, and maps errors
+// to exit codes: 2 bad input (one line on stderr, nothing on stdout), 3 a run
+// that cannot be trusted (capped excursions), 1 anything else (I/O), 128 +
+// the signal for a run stopped by SIGINT (130) or SIGTERM (143), whose result
+// so far has been written.
+#include "run.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
+
+#include "commands.hpp"
+#include "distributed.hpp"
+#include "interrupt.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/version.hpp"
+
+namespace stickslip::cli {
+
+namespace {
+
+/// Prints the one error line (first process only) and returns the exit code.
+int report(int code, const std::string& line) {
+    if (is_root()) std::fprintf(stderr, "stickslip: %s\n", line.c_str());
+    return code;
+}
+
+} // namespace
+
+int run_command(int argc, char** argv) {
+    CLI::App app{"stickslip: diffusivity, mobility and velocity statistics of an object with dry friction under "
+                 "white or colored\nnoise, by the unbiased long-excursion estimators (exact PDMP or "
+                 "differential-inclusion engine),\nwith exact white-noise references."};
+    app.footer(kConventions);
+    app.require_subcommand(1);
+    app.set_version_flag("--version", stickslip::version());
+    const auto actions = register_all(app);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return is_root() ? app.exit(e) : 0;
+    } catch (const CLI::CallForAllHelp& e) {
+        return is_root() ? app.exit(e) : 0;
+    } catch (const CLI::CallForVersion& e) {
+        return is_root() ? app.exit(e) : 0;
+    } catch (const CLI::ParseError& e) {
+        std::string msg = e.what();
+        for (auto& ch : msg)
+            if (ch == '\n') ch = ' ';
+        return report(kExitBadInput, "error: " + msg + " (see --help)");
+    }
+
+    // Bad input and capped runs are found by every process alike (validation
+    // comes before any work, the capped check after the gather), so each
+    // process exits with the same code; anything else on one process of a
+    // distributed run ends them all.
+    const StopOnSignals stop_on_signals; // before any output is opened (interrupt.hpp)
+    try {
+        for (const auto& a : actions)
+            if (a.app->parsed()) a.run();
+    } catch (const stickslip::RunInterrupted& e) {
+        return report(exit_code_of_signal(StopOnSignals::signal()), std::string("interrupted: ") + e.what());
+    } catch (const stickslip::InvalidParameter& e) {
+        return report(kExitBadInput, "error: --" + e.parameter() + ": " + e.what());
+    } catch (const stickslip::CappedExcursions& e) {
+        return report(kExitCapped, std::string("ERROR: ") + e.what());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "stickslip: error: %s\n", e.what());
+        if (distributed()) abort_distribution(1);
+        return 1;
+    }
+    // Stopped by a signal: the result so far has been written (marked "interrupted").
+    if (StopOnSignals::signal()) return exit_code_of_signal(StopOnSignals::signal());
+    return 0;
+}
+
+} // namespace stickslip::cli

@@ -1,0 +1,136 @@
+// stickslip/checkpoint.hpp -- a run's completed work, kept so that a killed
+// run can be resumed and its result is the uninterrupted run's, bit for bit.
+//
+// Why it can be exact: every run is a fixed sequence of calls of the block
+// driver (runner.hpp) -- one for a plain run, one per batch of a
+// precision-on-demand run, one per point of a sweep, a pilot and a main run
+// for a density -- and each call's statistics are exact, order-free sums
+// (moment_sums.hpp) of blocks of 64 samples. The driver completes blocks in
+// rounds and, after each round, hands the journal the call's state: how many
+// blocks (a prefix, in index order) are done, the exact sums of exactly those
+// blocks as 64-bit words, and a few integer counts. That is all a run's
+// result depends on besides its settings, so a resumed run restores each
+// finished call, continues the unfinished one at its first undone block, and
+// makes every decision (the next batch size, the next point) from the same
+// numbers. Thread and process counts leave no trace in the sums, so they may
+// differ on either side.
+//
+// The file (JSON) names its format and version, the program version and
+// revision, the command and every setting of the run except the thread count;
+// a checksum covers the rest. --resume refuses, with one line saying what
+// differs, a file that is not a checkpoint, is truncated or corrupted, comes
+// from another format or program version, or from other settings. It is
+// written atomically (a temporary file renamed over it), by the first process
+// of a distributed run only.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "setting.hpp"
+
+namespace stickslip {
+
+/// How a front end asks for checkpoints. One definition of the help texts
+/// (the CLI's flags and the Python keywords use them).
+struct CheckpointOptions {
+    std::string path;    ///< write the run's state here ("" = no checkpoints)
+    double every = 60.0; ///< seconds between writes (and one at the end)
+    std::string resume;  ///< continue the run whose state is in this file ("" = start afresh)
+
+    static constexpr const char* path_help =
+        "write the run's state to FILE (atomically) every --checkpoint-every seconds and at the end, so that "
+        "--resume FILE can continue it after a kill; the resumed result is identical to an uninterrupted run's";
+    static constexpr const char* every_help = "seconds between checkpoint writes (> 0)";
+    static constexpr const char* resume_help =
+        "continue the run saved in FILE (from --checkpoint); the settings must be the same (threads and process "
+        "count may differ); refused if the file is from other settings, another version, truncated or corrupted. "
+        "With --checkpoint FILE naming the same file, a missing FILE starts the run afresh (one command line for "
+        "the first run and every restart)";
+};
+
+/// The settings of a run as (name, text) pairs, in the request's order,
+/// without the thread count: what a checkpoint must match.
+template <class Request>
+std::vector<std::pair<std::string, std::string>> checkpoint_identity(Request& request) {
+    std::vector<std::pair<std::string, std::string>> out;
+    visit_settings(request, [&](auto&& field, const SettingInfo& info) {
+        if (std::string(info.name) != "threads") out.emplace_back(info.name, format_setting(field));
+    });
+    return out;
+}
+
+/// The journal of one run (see the top of the file). Not thread-safe: the
+/// block driver uses it from the thread that called it, between rounds.
+class RunJournal {
+public:
+    /// The state of one call of the block driver.
+    struct Call {
+        std::uint64_t samples = 0;     ///< samples the call was asked for
+        std::uint64_t first_index = 0; ///< its first sample index
+        std::uint64_t blocks_done = 0; ///< blocks [0, blocks_done) are in `words`
+        bool complete = false;
+        std::vector<std::uint64_t> counts; ///< the driver's integer totals
+        std::vector<std::uint64_t> words;  ///< the exact sums' words
+    };
+
+    /// A journal for `command` with these settings; `options.path` empty: keep
+    /// the state in memory only (nothing is written). Validates the options
+    /// (InvalidParameter "checkpoint-every"), reads `options.resume` when given
+    /// (InvalidParameter "resume" with one line when it cannot be used), and
+    /// writes a first checkpoint at once, so that a path that cannot be written
+    /// fails before any work (std::runtime_error).
+    RunJournal(std::string command, std::vector<std::pair<std::string, std::string>> settings,
+               CheckpointOptions options, unsigned rank = 0);
+
+    /// The next call's state: the saved one when resuming (InvalidParameter
+    /// "resume" if it was for another call), else a new, empty one.
+    Call& begin_call(std::uint64_t samples, std::uint64_t first_index, std::size_t words);
+    /// After a round: the call's state changed; writes the file when due.
+    void updated();
+    /// Writes the file now (at the end of a run, or when interrupted).
+    void write();
+
+    /// Seconds between writes (the block driver's rounds are no longer).
+    double every() const { return options_.every; }
+    /// True when the journal continues a saved run.
+    bool resumed() const { return !options_.resume.empty(); }
+    bool writes() const { return !options_.path.empty() && rank_ == 0; }
+
+    /// The file's text for the current state (for tests).
+    std::string serialise() const;
+
+private:
+    void read(const std::string& file);
+
+    std::string command_;
+    std::vector<std::pair<std::string, std::string>> settings_;
+    CheckpointOptions options_;
+    unsigned rank_;
+    std::deque<Call> calls_;
+    std::size_t next_ = 0;
+    std::chrono::steady_clock::time_point last_write_;
+};
+
+/// Checks the options (InvalidParameter "checkpoint-every" for a bad period,
+/// whether or not a checkpoint is asked for).
+void validate(const CheckpointOptions& options);
+
+/// The journal a front end gives a run of `request` (a request with
+/// `resumable`, after its process split is set: only the first process
+/// writes), or nullptr when the options ask for neither a checkpoint nor a
+/// resume. Point request.control.journal at it, run, then write() it.
+template <class Request>
+std::unique_ptr<RunJournal> make_journal(Request& request, const CheckpointOptions& options) {
+    validate(options);
+    if (options.path.empty() && options.resume.empty()) return nullptr;
+    return std::make_unique<RunJournal>(Request::command, checkpoint_identity(request), options,
+                                        request.control.rank);
+}
+
+} // namespace stickslip

@@ -1,0 +1,254 @@
+#include "stickslip/checkpoint.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "stickslip/version.hpp"
+
+namespace stickslip {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+constexpr const char* kFormat = "stickslip-checkpoint";
+constexpr int kFormatVersion = 1;
+
+/// FNV-1a, 64 bits: a checksum against truncation and bit rot, not an attacker.
+std::uint64_t fnv1a(const std::string& s) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char c : s) {
+        h ^= c;
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+std::string hex64(std::uint64_t x) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
+    return buf;
+}
+
+// The exact sums are mostly zero words: a run of k zero words is written
+// "zK.", any other word as 16 hex digits.
+std::string encode_words(const std::vector<std::uint64_t>& w) {
+    std::string out;
+    for (std::size_t i = 0; i < w.size();) {
+        if (w[i] == 0) {
+            std::size_t j = i;
+            while (j < w.size() && w[j] == 0) ++j;
+            out += 'z'; // (one append at a time: GCC 12 warns falsely on "z" + ... + ".")
+            out += std::to_string(j - i);
+            out += '.';
+            i = j;
+        } else {
+            out += hex64(w[i++]);
+        }
+    }
+    return out;
+}
+
+bool decode_words(const std::string& s, std::vector<std::uint64_t>& w) {
+    w.clear();
+    for (std::size_t i = 0; i < s.size();) {
+        if (s[i] == 'z') {
+            const std::size_t dot = s.find('.', i);
+            if (dot == std::string::npos || dot == i + 1 || dot - i > 12) return false;
+            std::uint64_t k = 0;
+            for (std::size_t c = i + 1; c < dot; ++c) {
+                if (s[c] < '0' || s[c] > '9') return false;
+                k = k * 10 + static_cast<std::uint64_t>(s[c] - '0');
+            }
+            if (k > (1u << 28)) return false;
+            w.insert(w.end(), k, 0);
+            i = dot + 1;
+        } else {
+            if (i + 16 > s.size()) return false;
+            std::uint64_t x = 0;
+            for (std::size_t c = i; c < i + 16; ++c) {
+                const char ch = s[c];
+                const int d = ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10 : -1;
+                if (d < 0) return false;
+                x = x << 4 | static_cast<std::uint64_t>(d);
+            }
+            w.push_back(x);
+            i += 16;
+        }
+    }
+    return true;
+}
+
+std::string program() {
+    std::string p = std::string("stickslip ") + version();
+    if (*source_revision()) p += std::string(" (") + source_revision() + ")";
+    return p;
+}
+
+[[noreturn]] void refuse(const std::string& file, const std::string& why) {
+    throw InvalidParameter("resume", "cannot resume from '" + file + "': " + why);
+}
+
+/// Writes `text` to `path` through a temporary beside it, synced and renamed
+/// into place, so that a kill at any moment leaves the old checkpoint or the
+/// new one, never a mix.
+void write_atomically(const std::string& path, const std::string& text) {
+    const std::string temp = path + ".tmp" + std::to_string(::getpid());
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw std::runtime_error("cannot write checkpoint '" + temp + "': " + std::strerror(errno));
+    std::size_t off = 0;
+    while (off < text.size()) {
+        const ssize_t k = ::write(fd, text.data() + off, text.size() - off);
+        if (k < 0 && errno == EINTR) continue;
+        if (k <= 0) {
+            const int e = errno;
+            ::close(fd);
+            ::unlink(temp.c_str());
+            throw std::runtime_error("cannot write checkpoint '" + temp + "': " + std::strerror(e));
+        }
+        off += static_cast<std::size_t>(k);
+    }
+    const bool ok = ::fsync(fd) == 0;
+    ::close(fd);
+    if (!ok || ::rename(temp.c_str(), path.c_str()) != 0) {
+        const int e = errno;
+        ::unlink(temp.c_str());
+        throw std::runtime_error("cannot write checkpoint '" + path + "': " + std::strerror(e));
+    }
+}
+
+} // namespace
+
+void validate(const CheckpointOptions& options) {
+    if (!(options.every > 0) || !std::isfinite(options.every))
+        throw InvalidParameter("checkpoint-every", "checkpoint-every must be a finite number of seconds > 0");
+}
+
+RunJournal::RunJournal(std::string command, std::vector<std::pair<std::string, std::string>> settings,
+                       CheckpointOptions options, unsigned rank)
+    : command_(std::move(command)), settings_(std::move(settings)), options_(std::move(options)), rank_(rank) {
+    validate(options_);
+    // --checkpoint F --resume F with no F yet: the first run of a job that is
+    // restarted with the same command line.
+    if (!options_.resume.empty() && options_.resume == options_.path && ::access(options_.path.c_str(), F_OK) != 0 &&
+        errno == ENOENT)
+        options_.resume.clear();
+    if (!options_.resume.empty()) read(options_.resume);
+    last_write_ = std::chrono::steady_clock::now();
+    if (writes()) write();
+}
+
+RunJournal::Call& RunJournal::begin_call(std::uint64_t samples, std::uint64_t first_index, std::size_t words) {
+    if (next_ < calls_.size()) {
+        Call& c = calls_[next_];
+        if (c.samples != samples || c.first_index != first_index || c.words.size() != words)
+            refuse(options_.resume, "its run " + std::to_string(next_ + 1) + " was of " + std::to_string(c.samples) +
+                                        " samples from index " + std::to_string(c.first_index) + ", this one is of " +
+                                        std::to_string(samples) + " from " + std::to_string(first_index));
+        ++next_;
+        return c;
+    }
+    Call& c = calls_.emplace_back();
+    c.samples = samples;
+    c.first_index = first_index;
+    c.words.assign(words, 0);
+    ++next_;
+    return c;
+}
+
+void RunJournal::updated() {
+    if (!writes()) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_write_).count() >= options_.every) write();
+}
+
+void RunJournal::write() {
+    if (!writes()) return;
+    write_atomically(options_.path, serialise());
+    last_write_ = std::chrono::steady_clock::now();
+}
+
+std::string RunJournal::serialise() const {
+    json j;
+    j["format"] = kFormat;
+    j["format_version"] = kFormatVersion;
+    j["program"] = program();
+    j["command"] = command_;
+    json s = json::object();
+    for (const auto& [k, v] : settings_) s[k] = v;
+    j["settings"] = s;
+    json calls = json::array();
+    for (const Call& c : calls_) {
+        json e;
+        e["samples"] = c.samples;
+        e["first_index"] = c.first_index;
+        e["blocks_done"] = c.blocks_done;
+        e["complete"] = c.complete;
+        e["counts"] = c.counts;
+        e["words"] = encode_words(c.words);
+        calls.push_back(std::move(e));
+    }
+    j["calls"] = std::move(calls);
+    j["checksum"] = hex64(fnv1a(j.dump()));
+    return j.dump(1) + "\n";
+}
+
+void RunJournal::read(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) refuse(file, std::strerror(errno));
+    std::stringstream buf;
+    buf << in.rdbuf();
+    const std::string text = buf.str();
+    if (text.find(std::string("\"format\": \"") + kFormat + "\"") == std::string::npos)
+        refuse(file, text.empty() ? "the file is empty" : "not a stickslip checkpoint");
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::exception&) {
+        refuse(file, "the file is truncated or corrupted (not valid JSON)");
+    }
+    try {
+        const std::string sum = j.at("checksum").get<std::string>();
+        j.erase("checksum");
+        if (sum != hex64(fnv1a(j.dump()))) refuse(file, "the file is corrupted (checksum mismatch)");
+        if (j.at("format_version").get<int>() != kFormatVersion)
+            refuse(file, "checkpoint format version " + std::to_string(j.at("format_version").get<int>()) +
+                             ", this program reads version " + std::to_string(kFormatVersion));
+        const std::string prog = j.at("program").get<std::string>();
+        if (prog != program()) refuse(file, "written by " + prog + ", this is " + program());
+        const std::string cmd = j.at("command").get<std::string>();
+        if (cmd != command_) refuse(file, "it is a checkpoint of `stickslip " + cmd + "`, not of `" + command_ + "`");
+        const json& s = j.at("settings");
+        for (const auto& [k, v] : settings_) {
+            if (!s.contains(k)) refuse(file, "it has no setting " + k);
+            const std::string there = s.at(k).get<std::string>();
+            if (there != v)
+                refuse(file, "written with " + k + " = " + (there.empty() ? "(unset)" : there) + ", this run has " +
+                                 k + " = " + (v.empty() ? "(unset)" : v));
+        }
+        if (s.size() != settings_.size()) refuse(file, "it has settings this program does not know");
+        for (const json& e : j.at("calls")) {
+            Call c;
+            c.samples = e.at("samples").get<std::uint64_t>();
+            c.first_index = e.at("first_index").get<std::uint64_t>();
+            c.blocks_done = e.at("blocks_done").get<std::uint64_t>();
+            c.complete = e.at("complete").get<bool>();
+            c.counts = e.at("counts").get<std::vector<std::uint64_t>>();
+            if (!decode_words(e.at("words").get<std::string>(), c.words))
+                refuse(file, "the file is corrupted (bad sums)");
+            calls_.push_back(std::move(c));
+        }
+    } catch (const json::exception&) {
+        refuse(file, "the file is corrupted (a field is missing or of the wrong type)");
+    }
+}
+
+} // namespace stickslip

@@ -1,0 +1,408 @@
+// End-to-end tests of runs that survive: thread counts leave no trace in any
+// merged result; a run killed (SIGKILL) at random points and resumed from its
+// checkpoint, with another thread count, prints the uninterrupted run's JSON
+// (all but "work"); a checkpoint that is truncated, corrupted, foreign, from
+// another version or from other settings is refused with exit 2 and one line
+// saying what does not match; SIGINT and SIGTERM stop a run gracefully (the
+// result so far, marked "interrupted", exit 130 / 143) and a second signal
+// aborts, leaving no file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <dirent.h>
+#include <random>
+#include <sys/resource.h>
+#include <thread>
+
+#include "cli_support.hpp"
+
+namespace {
+
+using namespace clitest;
+using nlohmann::json;
+using clock_type = std::chrono::steady_clock;
+
+std::string make_dir(const char* tag) {
+    std::string base = ::testing::TempDir();
+    if (base.empty()) base = "/tmp/";
+    if (base.back() != '/') base += '/';
+    std::string path = base + "stickslip_ckpt_" + tag + "_XXXXXX";
+    std::vector<char> buf(path.begin(), path.end());
+    buf.push_back('\0');
+    if (!::mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed for " + path);
+    return buf.data();
+}
+
+std::vector<std::string> list_dir(const std::string& dir) {
+    std::vector<std::string> names;
+    if (DIR* d = ::opendir(dir.c_str())) {
+        while (dirent* e = ::readdir(d))
+            if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.push_back(e->d_name);
+        ::closedir(d);
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+/// A directory of the test's own, removed with its files however the test ends.
+struct Scratch {
+    const std::string path;
+    explicit Scratch(const char* tag) : path(make_dir(tag)) {}
+    ~Scratch() {
+        for (const auto& name : list_dir(path)) ::unlink((path + "/" + name).c_str());
+        ::rmdir(path.c_str());
+    }
+    std::string operator/(const std::string& name) const { return path + "/" + name; }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+};
+
+void write_file(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << text;
+}
+
+/// Starts `stickslip args...` with SIGINT and SIGTERM at their defaults (a
+/// test run from a background shell inherits SIGINT ignored), stdout to
+/// `out_path`, stderr to `err_path`, no core files.
+pid_t start(const Args& args, const std::string& out_path, const std::string& err_path) {
+    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
+    argv_s.insert(argv_s.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) { // only async-signal-safe calls until exec
+        struct rlimit no_core {};
+        ::setrlimit(RLIMIT_CORE, &no_core);
+        ::signal(SIGINT, SIG_DFL);
+        ::signal(SIGTERM, SIG_DFL);
+        sigset_t none;
+        sigemptyset(&none);
+        ::sigprocmask(SIG_SETMASK, &none, nullptr);
+        const int in = ::open("/dev/null", O_RDONLY);
+        const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        ::dup2(in, STDIN_FILENO);
+        ::dup2(out, STDOUT_FILENO);
+        ::dup2(err, STDERR_FILENO);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
+/// The wait status, or nothing if it still runs after `seconds` (then it is
+/// killed: a test fails rather than hangs).
+std::optional<int> wait_for_exit(pid_t pid, double seconds) {
+    const auto end = clock_type::now() + std::chrono::duration<double>(seconds);
+    do {
+        int status = 0;
+        if (::waitpid(pid, &status, WNOHANG) == pid) return status;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    } while (clock_type::now() < end);
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    return std::nullopt;
+}
+
+/// Runs to the end with `args`; returns the JSON and the wall time.
+std::optional<json> timed_json(const Args& args, double& seconds) {
+    const auto t0 = clock_type::now();
+    auto j = run_json(args);
+    seconds = std::chrono::duration<double>(clock_type::now() - t0).count();
+    return j;
+}
+
+Args with(Args a, std::initializer_list<std::string> more) {
+    a.insert(a.end(), more);
+    return a;
+}
+
+// One case of every quantity that merges blocks, sized to run for about a
+// second on one core (half a second on two), on both engines where the engine
+// matters.
+struct Case {
+    const char* name;
+    Args args;
+};
+
+const Case kCases[] = {
+    {"diffusivity", {"diffusivity", "--dt", "1e-2", "--excursions", "60000"}},
+    {"diffusivity_pdmp", {"diffusivity", "--engine", "pdmp", "--excursions", "6000"}},
+    {"diffusivity_event", {"diffusivity", "--scheme", "event", "--dt", "0.05", "--excursions", "20000"}},
+    {"precision", {"diffusivity", "--dt", "1e-2", "--excursions", "2000", "--rel-precision", "0.02"}},
+    {"bruteforce", {"bruteforce", "--dt", "1e-2", "--time", "5", "--trajectories", "60000"}},
+    {"bruteforce_pdmp", {"bruteforce", "--engine", "pdmp", "--time", "5", "--trajectories", "12000"}},
+    {"density", {"density", "--dt", "1e-2", "--excursions", "30000"}},
+    {"correlation", {"correlation", "--dt", "1e-2", "--excursions", "8000", "--lags", "20"}},
+    {"moments", {"moments", "--dt", "1e-2", "--trajectories", "40000", "--times", "0.5,2"}},
+    {"sweep", {"sweep", "--dt", "1e-2", "--noise", "3,5,8", "--tau", "0.5", "--excursions", "15000"}},
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+std::string case_name(const ::testing::TestParamInfo<Case>& p) { return p.param.name; }
+
+json comparable(json j) {
+    j = without_work(j);
+    if (j.contains("points"))
+        for (auto& p : j["points"]) p.erase("work");
+    return j;
+}
+
+class CliMerging : public ::testing::TestWithParam<Case> {};
+
+// Guards exact, order-free merging: 1, 2 and 7 threads finish blocks in
+// different orders, and every merged number is the same bits.
+TEST_P(CliMerging, ThreadCountsGiveIdenticalJson) {
+    const Args base = with(GetParam().args, {"--format", "json", "--quiet", "--seed", "11"});
+    const auto one = run_json(with(base, {"--threads", "1"}));
+    ASSERT_TRUE(one);
+    for (const char* t : {"2", "7"}) {
+        const auto other = run_json(with(base, {"--threads", t}));
+        ASSERT_TRUE(other);
+        EXPECT_EQ(comparable(*one), comparable(*other)) << GetParam().name << ": --threads 1 vs " << t;
+    }
+}
+
+// Guards checkpoint and resume: killed (SIGKILL, which no handler sees) at
+// random moments and resumed, with 1 and 2 threads in turn, the run prints
+// the uninterrupted run's JSON. The kill times are drawn from a fixed seed,
+// as fractions of the uninterrupted run's wall time.
+TEST_P(CliMerging, KilledAndResumedRunEqualsTheUninterruptedOne) {
+    const Scratch dir("kill");
+    const Args base = with(GetParam().args, {"--format", "json", "--quiet", "--seed", "5"});
+    double seconds = 0;
+    const auto full = timed_json(with(base, {"--threads", "2"}), seconds);
+    ASSERT_TRUE(full);
+    const std::string ckpt = dir / "run.ckpt";
+    const Args resumable = with(base, {"--checkpoint", ckpt, "--resume", ckpt, "--checkpoint-every", "0.02"});
+    std::mt19937 gen(std::hash<std::string>{}(GetParam().name) % 1000);
+    std::uniform_real_distribution<double> when(0.15, 0.6);
+    int kills = 0;
+    std::optional<int> status;
+    for (int attempt = 0; attempt < 8; ++attempt) {
+        const Args args = with(resumable, {"--threads", attempt % 2 ? "1" : "2"});
+        const pid_t pid = start(args, dir / "out.json", dir / "err.txt");
+        ASSERT_GT(pid, 0);
+        if (kills < 2) {
+            std::this_thread::sleep_for(std::chrono::duration<double>(when(gen) * seconds));
+            int st = 0;
+            if (::waitpid(pid, &st, WNOHANG) == 0) {
+                ::kill(pid, SIGKILL);
+                ::waitpid(pid, nullptr, 0);
+                ++kills;
+                continue;
+            }
+            status = st;
+        } else {
+            status = wait_for_exit(pid, 120);
+        }
+        break;
+    }
+    ASSERT_TRUE(status.has_value());
+    ASSERT_TRUE(WIFEXITED(*status) && WEXITSTATUS(*status) == 0)
+        << "status " << *status << "; stderr: " << slurp(dir / "err.txt");
+    const json resumed = json::parse(slurp(dir / "out.json"));
+    EXPECT_EQ(comparable(*full), comparable(resumed)) << GetParam().name << " after " << kills << " kills";
+    EXPECT_GE(kills, 1) << "the run ended before the first kill: nothing was tested";
+    const json& work = resumed.at("work");
+    EXPECT_TRUE(work.contains("resumed_samples")) << "work does not say the run was resumed: " << work.dump();
+    // Resuming a finished run's checkpoint does no more work and prints the same.
+    const auto again = run_json(with(with(base, {"--resume", ckpt}), {"--threads", "2"}));
+    ASSERT_TRUE(again);
+    EXPECT_EQ(comparable(*full), comparable(*again));
+}
+
+INSTANTIATE_TEST_SUITE_P(All, CliMerging, ::testing::ValuesIn(kCases), case_name);
+
+// ---- refused checkpoints ------------------------------------------------------------------------
+
+const Args kSmall{"diffusivity", "--dt", "1e-2", "--excursions", "2000", "--quiet", "--format", "json"};
+
+/// FNV-1a 64 as the checkpoint's checksum (of the compact dump without it,
+/// members in the file's order).
+using ordered = nlohmann::ordered_json;
+std::string checksum_of(ordered j) {
+    j.erase("checksum");
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char c : j.dump()) {
+        h ^= c;
+        h *= 0x100000001b3ull;
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+std::string resealed(ordered j) {
+    j["checksum"] = checksum_of(j);
+    return j.dump(1);
+}
+
+struct Refusal {
+    std::string what;
+    Result r;
+};
+
+void expect_refused(const Result& r, const std::string& needle, const std::string& what) {
+    EXPECT_EQ(r.code, 2) << what << ": " << r.err;
+    EXPECT_EQ(r.out, "") << what;
+    EXPECT_EQ(count_lines(r.err), 1) << what << ": " << r.err;
+    EXPECT_NE(r.err.find("--resume"), std::string::npos) << what << ": " << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << what << ": expected '" << needle << "' in: " << r.err;
+}
+
+// Guards the refusal of every checkpoint that cannot continue this run.
+TEST(CliCheckpoint, RefusesCheckpointsThatDoNotMatch) {
+    const Scratch dir("refuse");
+    const std::string good = dir / "good.ckpt";
+    ASSERT_TRUE(run_json(with(kSmall, {"--checkpoint", good})));
+    const std::string text = slurp(good);
+    const ordered j = ordered::parse(text);
+    ASSERT_EQ(j.at("checksum").get<std::string>(), checksum_of(j)) << "the test's checksum is not the program's";
+    auto resume_from = [&](const std::string& name, const std::string& content, Args args = kSmall) {
+        const std::string path = dir / name;
+        write_file(path, content);
+        return run(with(args, {"--resume", path}));
+    };
+    expect_refused(resume_from("truncated", text.substr(0, text.size() / 2)), "truncated or corrupted", "truncated");
+    expect_refused(resume_from("empty", ""), "empty", "empty");
+    std::string flipped = text;
+    const auto at = flipped.find("\"words\": \"") + 12;
+    flipped[at] = flipped[at] == '1' ? '2' : '1';
+    expect_refused(resume_from("flipped", flipped), "checksum mismatch", "one digit changed");
+    expect_refused(resume_from("foreign", run(kSmall).out), "not a stickslip checkpoint", "a result, not a checkpoint");
+    ordered other = j;
+    other["format_version"] = 99;
+    expect_refused(resume_from("format", resealed(other)), "format version 99", "another format");
+    other = j;
+    other["program"] = "stickslip 0.0.1";
+    expect_refused(resume_from("version", resealed(other)), "written by stickslip 0.0.1", "another version");
+    other = j;
+    other.erase("calls");
+    expect_refused(resume_from("missing", resealed(other)), "corrupted", "a field missing");
+    expect_refused(run(with(kSmall, {"--resume", dir / "nonexistent"})), "No such file", "a missing file");
+    // Other settings: the first that differs is named, with both values.
+    Args other_dt = kSmall;
+    other_dt[2] = "2e-2";
+    expect_refused(resume_from("dt", text, other_dt), "written with dt = 0.01, this run has dt = 0.02", "another dt");
+    expect_refused(resume_from("seed", text, with(kSmall, {"--seed", "2"})), "seed = 1, this run has seed = 2",
+                   "another seed");
+    const Args brute{"bruteforce", "--dt", "1e-2", "--time", "1", "--trajectories", "100", "--quiet"};
+    expect_refused(resume_from("command", text, brute), "checkpoint of `stickslip diffusivity`", "another command");
+    // The thread count is not part of a run's identity.
+    const auto threads = run(with(kSmall, {"--resume", good, "--threads", "3"}));
+    EXPECT_EQ(threads.code, 0) << threads.err;
+}
+
+TEST(CliCheckpoint, RefusesABadPeriodAndAnUnwritablePath) {
+    const auto zero = run(with(kSmall, {"--checkpoint-every", "0"}));
+    EXPECT_EQ(zero.code, 2);
+    EXPECT_NE(zero.err.find("--checkpoint-every"), std::string::npos) << zero.err;
+    const auto nowhere = run(with(kSmall, {"--checkpoint", "/nonexistent-dir/run.ckpt"}));
+    EXPECT_EQ(nowhere.code, 1);
+    EXPECT_EQ(nowhere.out, "");
+    EXPECT_NE(nowhere.err.find("cannot write checkpoint"), std::string::npos) << nowhere.err;
+}
+
+// ---- SIGINT and SIGTERM --------------------------------------------------------------------------
+
+const Args kLong{"diffusivity", "--dt", "1e-2", "--excursions", "100000000", "--threads", "2",
+                 "--quiet", "--format", "json"};
+
+/// Waits until the run has written its first checkpoint (it has started computing).
+bool wait_for_file(const std::string& path, pid_t pid) {
+    const auto end = clock_type::now() + std::chrono::seconds(30);
+    while (clock_type::now() < end) {
+        if (::access(path.c_str(), F_OK) == 0) return true;
+        int st = 0;
+        if (::waitpid(pid, &st, WNOHANG) == pid) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+}
+
+struct Stop {
+    int number;
+    int code;
+    const char* name;
+};
+
+void PrintTo(const Stop& s, std::ostream* os) { *os << "SIG" << s.name; }
+
+class CliStop : public ::testing::TestWithParam<Stop> {};
+
+// Guards Ctrl-C keeping what was computed: the first signal ends the run
+// with the result of the blocks completed (valid JSON, "interrupted": true,
+// finite estimates, a warning), the checkpoint, and exit 128 + signal; the
+// checkpoint then resumes the run.
+TEST_P(CliStop, WritesTheResultSoFarAndExits128PlusTheSignal) {
+    const Scratch dir("stop");
+    const std::string ckpt = dir / "run.ckpt";
+    const pid_t pid = start(with(kLong, {"--checkpoint", ckpt, "--output", dir / "out.json"}), dir / "stdout",
+                            dir / "err.txt");
+    ASSERT_GT(pid, 0);
+    ASSERT_TRUE(wait_for_file(ckpt, pid)) << slurp(dir / "err.txt");
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    const auto sent = clock_type::now();
+    ASSERT_EQ(::kill(pid, GetParam().number), 0);
+    const auto status = wait_for_exit(pid, 30);
+    const double took = std::chrono::duration<double>(clock_type::now() - sent).count();
+    ASSERT_TRUE(status.has_value()) << "the run did not stop";
+    ASSERT_TRUE(WIFEXITED(*status)) << "died by signal " << WTERMSIG(*status);
+    EXPECT_EQ(WEXITSTATUS(*status), GetParam().code) << slurp(dir / "err.txt");
+    EXPECT_LT(took, 10.0) << "the blocks in flight took too long to finish";
+    const json j = json::parse(slurp(dir / "out.json"));
+    EXPECT_EQ(j.value("interrupted", false), true);
+    const auto done = j.at("completed").get<std::uint64_t>();
+    EXPECT_GT(done, 1000u);
+    EXPECT_LT(done, 100000000u);
+    EXPECT_EQ(done % 64, 0u) << "a prefix of whole blocks of 64";
+    for (const char* q : {"diffusivity", "mobility"}) {
+        EXPECT_TRUE(std::isfinite(j.at(q).at("value").get<double>())) << q;
+        EXPECT_TRUE(std::isfinite(j.at(q).at("ci")[0].get<double>())) << q;
+    }
+    bool warned = false;
+    for (const auto& w : j.at("warnings")) warned |= w.get<std::string>().rfind("interrupted:", 0) == 0;
+    EXPECT_TRUE(warned) << j.at("warnings").dump();
+    EXPECT_NE(slurp(dir / "err.txt").find("stopping"), std::string::npos);
+    // The checkpoint holds at least the blocks reported.
+    const json c = json::parse(slurp(ckpt));
+    EXPECT_GE(c.at("calls")[0].at("counts")[2].get<std::uint64_t>(), done);
+}
+
+INSTANTIATE_TEST_SUITE_P(Both, CliStop, ::testing::Values(Stop{SIGINT, 130, "INT"}, Stop{SIGTERM, 143, "TERM"}),
+                         [](const ::testing::TestParamInfo<Stop>& p) { return std::string(p.param.name); });
+
+// Guards the way out when the graceful stop is not wanted: a second signal
+// ends the process at once, by that signal, and leaves no output file.
+TEST(CliStop, ASecondSignalAbortsAndLeavesNoFile) {
+    const Scratch dir("abort");
+    // Slow blocks (dt 1e-5: a block of 64 excursions takes about a second),
+    // so that the second signal comes while the first is being honoured.
+    const Args slow{"diffusivity", "--dt", "1e-5", "--excursions", "100000000", "--threads", "2", "--quiet",
+                    "--format", "json", "--output", dir / "out.json"};
+    const pid_t pid = start(slow, "/dev/null", "/dev/null");
+    ASSERT_GT(pid, 0);
+    const std::string temp = "out.json.tmp." + std::to_string(pid);
+    const auto end = clock_type::now() + std::chrono::seconds(30);
+    while (clock_type::now() < end) {
+        const auto names = list_dir(dir.path);
+        if (std::find(names.begin(), names.end(), temp) != names.end()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ASSERT_EQ(::kill(pid, SIGINT), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_EQ(::kill(pid, SIGINT), 0);
+    const auto status = wait_for_exit(pid, 10);
+    ASSERT_TRUE(status.has_value()) << "the second SIGINT did not end the run";
+    EXPECT_TRUE(WIFSIGNALED(*status) && WTERMSIG(*status) == SIGINT) << "status " << *status;
+    EXPECT_EQ(list_dir(dir.path), std::vector<std::string>{});
+}
+
+} // namespace
