@@ -35,7 +35,8 @@ noise^2/friction^3, diffusivity noise^3/friction^4; both are reported.
 Defaults are the paper's Fig. 2 case. Results are bitwise reproducible for a
 given --seed, whatever --threads. A run's settings can be kept in a file:
 --print-config writes them, --config FILE reads them back. Exit codes: 0 ok,
-1 I/O or internal error, 2 bad input, 3 untrustworthy run (runaway excursions),
+1 I/O or internal error, 2 bad input, 3 untrustworthy run (runaway excursions, or every
+excursion shorter than one step),
 130/143 stopped by SIGINT/SIGTERM: the first signal lets the blocks in flight
 finish and writes the result so far (marked "interrupted") and the checkpoint;
 a second aborts. --checkpoint FILE saves a run every --checkpoint-every
@@ -117,6 +118,7 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                     if (progress.samples)
                         req.control.progress = progress_line(state->output.quiet, progress.samples,
                                                              progress.with_estimate ? req.level : 0.0);
+                    req.control.notice = notice_line(state->output.quiet);
                 }
                 if constexpr (resumable<Request>()) {
                     req.control.stop = StopOnSignals::flag();

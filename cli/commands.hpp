@@ -10,9 +10,9 @@
 namespace stickslip::cli {
 
 /// Exit codes: 0 ok, 1 unexpected failure (I/O, internal), 2 bad input,
-/// 3 untrustworthy run (runaway excursions).
+/// 3 untrustworthy run (runaway excursions, estimates 0/0).
 inline constexpr int kExitBadInput = 2;
-inline constexpr int kExitCapped = 3;
+inline constexpr int kExitUntrustworthy = 3;
 
 /// A registered subcommand and what to do when it is the one parsed.
 struct Action {

@@ -33,4 +33,9 @@ std::function<bool(const Progress&)> progress_line(bool quiet, const std::string
     };
 }
 
+std::function<void(const std::string&)> notice_line(bool quiet) {
+    if (quiet || !isatty(STDERR_FILENO) || distributed()) return {};
+    return [](const std::string& note) { std::fprintf(stderr, "note: %s\n", note.c_str()); };
+}
+
 } // namespace stickslip::cli

@@ -10,7 +10,12 @@ namespace stickslip::cli {
 
 /// Progress line on stderr, only when it is a terminal and not --quiet:
 /// samples done of total, rate, time left; with level > 0 (long excursions)
-/// also the current D and the relative half-width of its interval.
+/// also the current D and its interval, relative to D.
 std::function<bool(const Progress&)> progress_line(bool quiet, const std::string& what, double level = 0.0);
+
+/// The notes a run has before it starts (RunControl::notice: a coarse step, a
+/// long run), as "note:" lines on stderr at once, under the same conditions
+/// as the progress line; they are in the result's warnings either way.
+std::function<void(const std::string&)> notice_line(bool quiet);
 
 } // namespace stickslip::cli

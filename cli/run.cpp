@@ -64,8 +64,8 @@ int run_command(int argc, char** argv) {
         return report(exit_code_of_signal(StopOnSignals::signal()), std::string("interrupted: ") + e.what());
     } catch (const stickslip::InvalidParameter& e) {
         return report(kExitBadInput, "error: --" + e.parameter() + ": " + e.what());
-    } catch (const stickslip::CappedExcursions& e) {
-        return report(kExitCapped, std::string("ERROR: ") + e.what());
+    } catch (const stickslip::UntrustworthyResult& e) { // capped excursions, 0/0, non-finite estimates
+        return report(kExitUntrustworthy, std::string("ERROR: ") + e.what());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "stickslip: error: %s\n", e.what());
         if (distributed()) abort_distribution(1);

@@ -150,6 +150,8 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeBlock make_bloc
     const auto start = clock::now();
     auto seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
     auto last_report = start;
+    // A first report at once: a run whose first block is slow shows it has started.
+    if (ctl.progress && b0 < blocks && !ctl.progress(Progress{done.done, n, 0.0, nullptr})) throw RunCancelled();
     const bool rounds = ctl.journal || ranks > 1;
     // Rounds of about a second: the time a stopped distributed run may lose,
     // and the granularity of checkpoints (shorter when they are asked for more often).

@@ -28,6 +28,7 @@ void validate(const BruteForceRequest& req) { prepare_request(req); }
 
 BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
     const PreparedEngine engine = prepare_request(req);
+    const std::vector<std::string> notes = detail::start_notes(engine, 0, req.control);
     BruteForceResult out;
     out.request = req;
     out.resolved = engine.resolved;
@@ -44,6 +45,7 @@ BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
     out.estimates = estimate_bruteforce(out.totals.moments, simulated, req.level);
     out.warnings.push_back("brute force estimates D_t = var U(t)/t, biased against D by O(1/t) (relative bias shrinks "
                            "like E[t1]/t); use `stickslip diffusivity` for an unbiased estimate");
+    out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
 }
 

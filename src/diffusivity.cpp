@@ -6,6 +6,7 @@
 
 #include "format.hpp"
 #include "run_checks.hpp"
+#include "step_check.hpp"
 
 namespace stickslip {
 
@@ -18,6 +19,7 @@ PreparedEngine prepare(const DiffusivityRequest& req) {
     if (req.rel_precision > 0 && req.max_excursions < req.excursions)
         throw InvalidParameter("max-excursions", "max-excursions must be >= excursions (got " +
                                                      std::to_string(req.max_excursions) + ")");
+    detail::check_excursions_can_end(engine);
     return engine;
 }
 
@@ -89,6 +91,7 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) { return co
 
 DiffusivityResult compute_diffusivity(const DiffusivityRequest& req, const PreparedEngine& engine) {
     using detail::format_number;
+    const std::vector<std::string> notes = detail::start_notes(engine, req.excursions, req.control);
     DiffusivityResult out;
     out.request = req;
     out.resolved = engine.resolved;
@@ -96,6 +99,7 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req, const Prepa
     else out.totals = run_long_excursions(engine, req.excursions, req.control);
     detail::finish_long_excursion_run(engine, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
+    detail::check_finite(out.estimates);
     if (req.rel_precision > 0 && !out.precision.reached)
         out.warnings.push_back("precision target not reached: relative half-width " +
                                format_number(out.precision.relative_half_width, 3) + " > " +
@@ -105,6 +109,7 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req, const Prepa
     if (req.estimator == Estimator::Paper &&
         (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
         out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");
+    out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
 }
 

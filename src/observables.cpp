@@ -12,6 +12,7 @@
 #include "block_runner.hpp"
 #include "format.hpp"
 #include "run_checks.hpp"
+#include "step_check.hpp"
 #include "stickslip/analytic.hpp"
 #include "stickslip/inclusion.hpp"
 #include "stickslip/pdmp.hpp"
@@ -24,6 +25,7 @@ namespace {
 
 constexpr int kMaxBins = 100000;
 constexpr int kMaxLags = 2000;
+constexpr double kMaxMomentVelocity = 1e100; // |v0|: v0^4 stays within double's range
 constexpr std::uint64_t kMaxLagSamples = 4'000'000; // ring buffer (a power of two above): at most 32 MB per thread
 
 void check_bins(const VelocityBins& b) {
@@ -33,6 +35,12 @@ void check_bins(const VelocityBins& b) {
     if (!std::isfinite(b.lo) || !std::isfinite(b.hi) || (b.lo >= b.hi && !(b.lo == 0 && b.hi == 0)))
         throw InvalidParameter("range", "velocity range must be finite with lo < hi (or both 0 for automatic), got [" +
                                             detail::format_number(b.lo) + ", " + detail::format_number(b.hi) + "]");
+    const double width = (b.hi - b.lo) / b.count;
+    if (!(b.lo == 0 && b.hi == 0) && (!std::isfinite(width) || b.lo + width == b.lo || b.hi - width == b.hi))
+        throw InvalidParameter("range", "velocity range [" + detail::format_number(b.lo) + ", " +
+                                            detail::format_number(b.hi) + "] cannot be cut into " +
+                                            std::to_string(b.count) +
+                                            " bins in double precision (the width is infinite or too small)");
 }
 
 /// Sampling interval of a path observable [s].
@@ -248,6 +256,7 @@ PreparedEngine prepare_request(const StationaryDensityRequest& req) {
     validate(static_cast<const ExcursionSettings&>(req));
     check_bins(req.bins);
     sampling_interval(req.engine, req.sample_dt);
+    detail::check_excursions_can_end(engine);
     return engine;
 }
 
@@ -308,6 +317,7 @@ bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engin
 
 StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req) {
     const PreparedEngine prepared = prepare_request(req);
+    const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
     const SampledEngine engine(prepared);
     StationaryDensityResult out;
     out.request = req;
@@ -371,6 +381,7 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
     const Acc total{exact.hist.moments(), exact.mom.moments()};
     detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
+    detail::check_finite(out.estimates);
     out.histogram = make_histogram(bins, total.hist, 0, req.level);
     out.mean = total.mom.estimate(0, req.level);
     // Var = R_2 - R_1^2; gradient (-2 R_1, 1).
@@ -387,6 +398,7 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
                                " of V lies outside the histogram range; widen --range");
     if (req.engine.engine == Engine::Pdmp) out.warnings.push_back(pdmp_sampling_note(dt));
     else if (req.engine.scheme == Scheme::Event) out.warnings.push_back(event_sampling_note(dt));
+    out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
 }
 
@@ -407,6 +419,7 @@ PreparedEngine prepare_request(const CorrelationRequest& req) {
     if (max_lag / dt > static_cast<double>(kMaxLagSamples))
         throw InvalidParameter("max-lag", "max-lag / sampling interval exceeds " + std::to_string(kMaxLagSamples) +
                                               " samples; use a shorter --max-lag (pdmp: or a coarser --sample-dt)");
+    detail::check_excursions_can_end(engine);
     return engine;
 }
 
@@ -416,6 +429,7 @@ void validate(const CorrelationRequest& req) { prepare_request(req); }
 
 CorrelationResult compute_correlation(const CorrelationRequest& req) {
     const PreparedEngine prepared = prepare_request(req);
+    const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
     CorrelationResult out;
     out.request = req;
     out.resolved = prepared.resolved;
@@ -545,6 +559,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
     const RatioMoments total = exact.moments();
     detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
+    detail::check_finite(out.estimates);
     const std::size_t iu = nl;
     const double m = total.ratio(iu);
     out.mean = total.estimate(iu, req.level);
@@ -564,6 +579,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req) {
     }
     if (req.engine.engine == Engine::Pdmp) out.warnings.push_back(pdmp_sampling_note(dt));
     else if (req.engine.scheme == Scheme::Event) out.warnings.push_back(event_sampling_note(dt));
+    out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
 }
 
@@ -590,6 +606,11 @@ PreparedEngine prepare_request(const TransientRequest& req) {
         if (!std::isfinite(t) || t < 0)
             throw InvalidParameter("times", "times must be finite and >= 0 (s), got " + detail::format_number(t));
     detail::check_start(req.x0, std::isnan(req.v0) ? 0.0 : req.v0);
+    if (!std::isnan(req.v0) && (std::fabs(req.v0) > kMaxMomentVelocity ||
+                                std::fabs(req.v0) / scales_of(req.params).velocity > kMaxMomentVelocity))
+        throw InvalidParameter("v0", "v0 = " + detail::format_number(req.v0) +
+                                         " m/s: the moments would overflow double precision (E[V^2] ~ v0^2); |v0| "
+                                         "must be at most 1e100, in m/s and in units of noise/friction");
     if (req.with_density) check_bins(req.bins);
     const std::vector<double> times = transient_times(req);
     if (req.with_density && static_cast<double>(times.size()) * (req.bins.count + 3) > 2e6)
@@ -606,6 +627,7 @@ void validate(const TransientRequest& req) { prepare_request(req); }
 
 TransientResult compute_transient(const TransientRequest& req_in) {
     const PreparedEngine prepared = prepare_request(req_in);
+    const std::vector<std::string> notes = detail::start_notes(prepared, 0, req_in.control);
     // The defaults that depend on the model, resolved once: the report shows them.
     TransientRequest req = req_in;
     if (std::isnan(req.v0)) req.v0 = scales_of(req.params).velocity;
@@ -750,6 +772,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
     if (req.engine.engine == Engine::Pdmp && out.resolved.truncated_mass > 1e-9)
         out.warnings.push_back("the pdmp lattice is truncated at L = " + detail::format_number(out.resolved.lattice_bound) +
                                " s^-1/2; use a finer grid");
+    out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "stickslip/estimators.hpp"
+#include "step_check.hpp"
 
 namespace stickslip {
 
@@ -47,6 +48,7 @@ PreparedEngine prepare(const RunSettings& r) {
     PreparedEngine e = prepare_engine(r.params, r.engine);
     normal_quantile_two_sided(r.level); // validates the level
     check_run_control(r.control);
+    detail::check_step(e, e.notes);
     return e;
 }
 

@@ -1,8 +1,10 @@
 #include "run_checks.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "format.hpp"
+#include "step_check.hpp"
 #include "stickslip/diffusivity.hpp"
 
 namespace stickslip::detail {
@@ -23,6 +25,20 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
         warnings.push_back(msg);
     }
     if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
+    if (!(totals.moments.mean_y() > 0)) {
+        // Every excursion ended at its first step: t = 0 and U = 0 for all, so
+        // D and M0 would be 0/0. The step cannot see the noise cross the band.
+        const ModelParams nd0 = to_nondimensional(p);
+        std::string why = "every excursion ended within its first step (mean duration 0 s), so the estimates "
+                          "would be 0/0: ";
+        if (s.engine == Engine::Inclusion && !p.white() && nd0.tau < 0.1)
+            why += "at tau' = " + format_number(nd0.tau) + " the noise crosses the static band faster than dt = " +
+                   format_number(s.dt) + " s resolves; the noise is practically white: use --tau 0, or a much "
+                                         "smaller --dt";
+        else
+            why += "the step does not resolve this model; use a much smaller --dt or the pdmp engine";
+        throw UntrustworthyResult(why);
+    }
     if (s.engine == Engine::Pdmp && resolved.truncated_mass > 1e-9)
         warnings.push_back("the pdmp lattice is truncated at L = " + format_number(resolved.lattice_bound) +
                            " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
@@ -43,6 +59,24 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
              (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent && s.dt > 0.01 * p.tau))
         warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
                            "is not << tau; report it with that caveat, not as a check");
+}
+
+void check_finite(const LongExcursionEstimates& est) {
+    for (const auto& [name, x] : {std::pair<const char*, const Estimate*>{"D", &est.diffusivity},
+                                  {"M0", &est.mobility}, {"E[t1]", &est.mean_duration}})
+        if (!std::isfinite(x->value) || !std::isfinite(x->std_error))
+            throw UntrustworthyResult(std::string("the estimate of ") + name + " (" + format_number(x->value) +
+                                      " +- " + format_number(x->std_error) +
+                                      ") is not a finite number: the model's scales overflow double precision "
+                                      "in this run; rescale friction and noise towards 1");
+}
+
+std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl) {
+    std::vector<std::string> notes = e.notes;
+    if (excursions > 0) note_cost(e, excursions, notes);
+    if (ctl.notice)
+        for (const auto& n : notes) ctl.notice(n);
+    return notes;
 }
 
 void note_interruption(const RunTotals& totals, const char* samples, std::vector<std::string>& warnings) {

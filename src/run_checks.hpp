@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/estimators.hpp"
 #include "stickslip/run.hpp"
 
 namespace stickslip::detail {
@@ -15,11 +16,20 @@ namespace stickslip::detail {
 inline constexpr std::uint64_t few_excursions = 5000;
 
 /// Throws CappedExcursions when excursions hit the runaway guard (unless
-/// allowed: then warns) or fewer than 2 completed; adds the standard warnings
+/// allowed: then warns) or fewer than 2 completed, UntrustworthyResult when
+/// every excursion ended within its first step; adds the standard warnings
 /// (interrupted run, truncated PDMP lattice, few excursions, meaning of
 /// mean_duration).
 void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
                                std::vector<std::string>& warnings);
+
+/// Throws UntrustworthyResult when an estimate or its standard error is not
+/// a finite number (naming it), so that no NaN is ever reported as a result.
+void check_finite(const LongExcursionEstimates& est);
+
+/// The notes of a run about to start (the engine's, and for `excursions` > 0
+/// long excursions the predicted cost), each passed to RunControl::notice.
+std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl);
 
 /// A run stopped early (RunControl::stop): throws RunInterrupted when fewer
 /// than 2 of its `samples` ("excursions", "trajectories") completed, else adds

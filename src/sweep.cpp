@@ -11,6 +11,11 @@ namespace stickslip {
 
 namespace {
 
+/// " [at noise N, tau T]": where in a sweep a point failed.
+std::string at_point(double noise, double tau) {
+    return " [at noise " + detail::format_number(noise) + ", tau " + detail::format_number(tau) + "]";
+}
+
 constexpr std::size_t kMaxPoints = 1u << 16; // sweep_index_stride * kMaxPoints = 2^56 sample indices
 
 DiffusivityRequest point_request(const SweepRequest& req, double noise, double tau, std::size_t k) {
@@ -90,8 +95,9 @@ SweepResult compute_sweep(const SweepRequest& req) {
             try {
                 r = compute_diffusivity(d, prepared.engines[k]);
             } catch (const CappedExcursions& e) {
-                throw CappedExcursions(std::string(e.what()) + " [at noise " + detail::format_number(noise) +
-                                       ", tau " + detail::format_number(tau) + "]");
+                throw CappedExcursions(std::string(e.what()) + at_point(noise, tau));
+            } catch (const UntrustworthyResult& e) {
+                throw UntrustworthyResult(std::string(e.what()) + at_point(noise, tau));
             } catch (const RunInterrupted&) {
                 if (out.points.empty()) throw;
                 out.interrupted = true; // stopped before this point had a result

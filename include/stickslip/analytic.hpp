@@ -14,10 +14,22 @@
 // Gamma = p.noise, i.e. the Fokker-Planck diffusion coefficient is Gamma/2.
 #pragma once
 
+/// \file
+/// Exact white-noise references: Hayakawa's stationary density, M0, D and
+/// Var(V) by quadrature, and Touchette's transient closed forms for pure dry
+/// friction. The comment at the top of this header explains the design.
+
 #include "params.hpp"
 
 namespace stickslip {
 
+/// The exact white-noise stationary quantities of one parameter set: what
+/// every white-noise-limit check compares against (white_noise_reference).
+struct WhiteNoiseReference {
+    double mobility;    ///< M0 [m/s]
+    double diffusivity; ///< D [m^2/s]
+    double variance;    ///< stationary Var(V) [m^2/s^2]
+};
 /// Exact white-noise stationary quantities for the drift and friction of p
 /// (p.tau is ignored), to a few units of double rounding for every valid p:
 /// closed forms without drag, the viscous values (D = relaxation^2 noise,
@@ -27,11 +39,6 @@ namespace stickslip {
 /// ("bias"), or when a result is outside what a double holds to 12 digits
 /// (beyond 1.8e308, or deep among the denormals): "relaxation" with drag,
 /// "bias" without (as |bias| -> friction) and for M0 or a mode out of range.
-struct WhiteNoiseReference {
-    double mobility;    ///< M0 [m/s]
-    double diffusivity; ///< D [m^2/s]
-    double variance;    ///< stationary Var(V) [m^2/s^2]
-};
 WhiteNoiseReference white_noise_reference(const ModelParams& p);
 
 /// Hayakawa's stationary velocity density for white noise, normalised once.
@@ -50,6 +57,8 @@ WhiteNoiseReference white_noise_reference(const ModelParams& p);
 /// white_noise_reference when the variance is).
 class HayakawaDensity {
 public:
+    /// Normalises the density of p (SI units; p.tau ignored): the
+    /// quadratures, once. Throws InvalidParameter as described above.
     explicit HayakawaDensity(const ModelParams& p);
 
     /// Normalised density p(v) [s/m] at velocity v [m/s]; 0 for |v| = inf.
@@ -95,7 +104,10 @@ double hayakawa_density(const ModelParams& p, double v);
 /// |bias| < friction; g = bias/friction. SI units; evaluated with
 /// 1 - g^2 = (friction - bias)(friction + bias)/friction^2, so they keep their
 /// digits as |bias| -> friction. Not validated (see white_noise_reference).
+/// White-noise mobility M0 [m/s] without drag: closed form in g.
 double dry_friction_mobility(const ModelParams& p);    ///< (Gamma/Delta) g/(1-g^2)
+/// White-noise diffusivity D [m^2/s] without drag: closed form in g
+/// (5/4 Gamma^3/Delta^4 at g = 0).
 double dry_friction_diffusivity(const ModelParams& p); ///< Gamma^3/Delta^4 (5g^4+22g^2+5)/(4(1-g^2)^4)
 
 // ---- Pure dry friction, transient (Touchette, Van der Straeten, Just 2010) ----

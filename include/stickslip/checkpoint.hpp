@@ -24,6 +24,11 @@
 // of a distributed run only.
 #pragma once
 
+/// \file
+/// Checkpoints: a run's completed work, saved so that a killed run resumes to
+/// the uninterrupted result, bit for bit. The comment at the top of this header
+/// explains the design.
+
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -43,10 +48,13 @@ struct CheckpointOptions {
     double every = 60.0; ///< seconds between writes (and one at the end)
     std::string resume;  ///< continue the run whose state is in this file ("" = start afresh)
 
+    /// Help text of the `path` option (--checkpoint FILE, checkpoint=).
     static constexpr const char* path_help =
         "write the run's state to FILE (atomically) every --checkpoint-every seconds and at the end, so that "
         "--resume FILE can continue it after a kill; the resumed result is identical to an uninterrupted run's";
+    /// Help text of the `every` option (--checkpoint-every).
     static constexpr const char* every_help = "seconds between checkpoint writes (> 0)";
+    /// Help text of the `resume` option (--resume FILE, resume=).
     static constexpr const char* resume_help =
         "continue the run saved in FILE (from --checkpoint); the settings must be the same (threads and process "
         "count may differ); refused if the file is from other settings, another version, truncated or corrupted. "
@@ -74,6 +82,7 @@ public:
         std::uint64_t samples = 0;     ///< samples the call was asked for
         std::uint64_t first_index = 0; ///< its first sample index
         std::uint64_t blocks_done = 0; ///< blocks [0, blocks_done) are in `words`
+        /// Every block of the call is done (its sums are final).
         bool complete = false;
         std::vector<std::uint64_t> counts; ///< the driver's integer totals
         std::vector<std::uint64_t> words;  ///< the exact sums' words
@@ -100,6 +109,8 @@ public:
     double every() const { return options_.every; }
     /// True when the journal continues a saved run.
     bool resumed() const { return !options_.resume.empty(); }
+    /// True when this journal writes a file: a path was given and this is the
+    /// first process (rank 0) of the run.
     bool writes() const { return !options_.path.empty() && rank_ == 0; }
 
     /// The file's text for the current state (for tests).

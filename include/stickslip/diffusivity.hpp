@@ -4,6 +4,10 @@
 // over compute_diffusivity and report.hpp.
 #pragma once
 
+/// \file
+/// The long-excursion diffusivity run: D, M0 and E[t1] with their intervals.
+/// The comment at the top of this header explains the design.
+
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -14,12 +18,19 @@
 
 namespace stickslip {
 
+/// A diffusivity run (`stickslip diffusivity`): N long excursions of the
+/// engine, then D, M0 and E[t1] with their intervals (estimators.hpp). The
+/// fields are the shared settings (RunSettings, ExcursionSettings) plus the
+/// estimator and the precision-on-demand mode below.
 struct DiffusivityRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "diffusivity"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
+    /// How D is estimated from the excursions: the renewal-reward estimator
+    /// (correct for any mobility) unless the paper's numbers are wanted.
     Estimator estimator = Estimator::RenewalReward;
-    /// Precision on demand: when > 0, run in batches until the interval's
-    /// half-width is at most rel_precision * D, or max_excursions have run.
+    /// Precision on demand: when > 0, run in batches until the upper
+    /// half-width of D's interval, hi - D, is at most rel_precision * D, or
+    /// max_excursions have run.
     /// The first batch has `excursions` (rounded up to whole blocks of 64);
     /// each later one is sized from the current half-width (half-width ~
     /// 1/sqrt(N)), at most 4x what has run.
@@ -31,6 +42,8 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     std::uint64_t max_excursions = 100'000'000; ///< cap of the precision-on-demand mode
 };
 
+/// The request's settings: RunSettings', ExcursionSettings', then
+/// --estimator, --rel-precision and --max-excursions.
 template <class Visitor>
 void visit_settings(DiffusivityRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), v);
@@ -50,23 +63,48 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
 struct PrecisionOutcome {
     double target = 0.0;              ///< requested relative half-width (0: mode off)
     double relative_half_width = 0.0; ///< achieved (hi - D) / D
+    /// Whether the target was met (true when the mode is off); if not, the
+    /// result carries a warning saying why (max_excursions, interrupted).
     bool reached = true;
+    /// Batches run (1 when the mode is off).
     int batches = 1;
 };
 
+/// What compute_diffusivity returns; report.hpp writes it as JSON, a table
+/// or CSV.
 struct DiffusivityResult {
+    /// The request, as run.
     DiffusivityRequest request;
+    /// The engine's resolved details (stop rule, PDMP lattice, ...).
     ResolvedEngine resolved;
+    /// D [m^2/s], M0 [m/s] and E[t1] [s] with their intervals.
     LongExcursionEstimates estimates;
+    /// The raw sums and counts: completed and capped excursions, work, time.
     RunTotals totals;
+    /// How the precision-on-demand mode ended (target 0: it was off).
     PrecisionOutcome precision;
+    /// Notes for the user, one sentence each: a step too coarse, fewer than
+    /// 5000 excursions, capped excursions (with allow_capped), a truncated
+    /// PDMP lattice, caveats on E[t1], the paper's estimator with M0 != 0, a
+    /// precision target not reached, an interrupted run.
     std::vector<std::string> warnings;
 };
 
+/// Thrown when a run finished but its numbers cannot be believed: every
+/// excursion ended within its first step (the estimates would be 0/0), or an
+/// estimate is not a finite number. The message says why and what to change.
+/// The command exits with status 3 on it; Python raises
+/// UntrustworthyResultError.
+struct UntrustworthyResult : std::runtime_error {
+    /// `m`: the message for the user.
+    explicit UntrustworthyResult(const std::string& m) : std::runtime_error(m) {}
+};
+
 /// Thrown when excursions hit the runaway guard and the request does not
-/// allow it, or fewer than 2 completed.
-struct CappedExcursions : std::runtime_error {
-    explicit CappedExcursions(const std::string& m) : std::runtime_error(m) {}
+/// allow it, or fewer than 2 completed: an untrustworthy result of one kind.
+struct CappedExcursions : UntrustworthyResult {
+    /// `m`: the message for the user (how many were capped, what to do).
+    explicit CappedExcursions(const std::string& m) : UntrustworthyResult(m) {}
 };
 
 /// Every check of a request, once (InvalidParameter on the first problem);

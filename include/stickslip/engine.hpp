@@ -8,6 +8,10 @@
 // and inclusion.hpp.
 #pragma once
 
+/// \file
+/// The engines (exact PDMP, time-stepping inclusion) and their numerical
+/// settings. The comment at the top of this header explains the design.
+
 #include <cstdint>
 #include <string>
 
@@ -15,6 +19,14 @@
 
 namespace stickslip {
 
+/// Which engine samples the long excursions (theory.md, sections 4 and 5).
+///  * Inclusion: time stepping of the differential inclusion with step
+///    EngineSettings::dt and the noise's exact step law; white or coloured
+///    noise. Its error is the time step's (see Scheme).
+///  * Pdmp: exact event-driven simulation of a piecewise-deterministic Markov
+///    process whose noise is a jump process on a lattice of step
+///    EngineSettings::grid; coloured noise only (tau > 0). Its only
+///    approximation is the lattice, which converges to the OU noise as grid -> 0.
 enum class Engine { Inclusion, Pdmp };
 
 /// How a time-stepping HLE detects its end (theory.md, section 6).
@@ -40,8 +52,11 @@ enum class Scheme { Resolvent, Event };
 /// dt/tau at or below which StopRule::Auto selects the bridge rule.
 inline constexpr double auto_bridge_ratio = 0.1;
 
+/// The setting's name of an engine: "inclusion" | "pdmp".
 std::string to_string(Engine e);
+/// The setting's name of a stop rule: "auto" | "bridge" | "stuck".
 std::string to_string(StopRule r);
+/// The setting's name of a scheme: "resolvent" | "event".
 std::string to_string(Scheme s);
 Engine parse_engine(const std::string& s);     ///< "inclusion" | "pdmp"
 Scheme parse_scheme(const std::string& s);     ///< "resolvent" | "event"
@@ -49,12 +64,16 @@ StopRule parse_stop_rule(const std::string& s); ///< "auto" | "bridge" | "stuck"
 
 /// Numerical settings of the engines, SI units.
 struct EngineSettings {
+    /// Which engine runs (--engine); the inclusion engine by default.
     Engine engine = Engine::Inclusion;
     Scheme scheme = Scheme::Resolvent; ///< how the inclusion engine steps
     double dt = 1e-4;        ///< time step h of the inclusion engine [s]
     double grid = 0.125;     ///< lattice step delta of the PDMP noise [s^-1/2]
     /// Half-width L of the PDMP lattice [s^-1/2]; 0 chooses it (see pdmp.hpp).
     double lattice_bound = 0.0;
+    /// How the inclusion engine's resolvent scheme detects the end of a half
+    /// long excursion (coloured noise only; the event scheme and the PDMP
+    /// engine detect it exactly).
     StopRule stop_rule = StopRule::Auto;
     /// White noise only: the regeneration velocity levels +-c [m/s]; 0 chooses
     /// c = white_level_default(params).
@@ -89,6 +108,14 @@ void visit_settings(EngineSettings& s, Visitor&& v) {
 void validate(const EngineSettings& s);
 
 // Text forms of the enums (setting.hpp).
+
+/// @name Text forms of the engine enums as settings
+/// @{
+
+/// As for the other setting types (setting.hpp): format_setting is
+/// to_string; parse_setting accepts the same names (and "Q", "P" for the stop
+/// rules) and throws InvalidParameter("engine" / "stop-rule" / "scheme") for
+/// anything else; setting_form lists the choices ("inclusion|pdmp", ...).
 std::string format_setting(Engine e);
 std::string format_setting(StopRule r);
 void parse_setting(const SettingInfo& info, const std::string& text, Engine& out);
@@ -98,5 +125,6 @@ void parse_setting(const SettingInfo& info, const std::string& text, Scheme& out
 const char* setting_form(const Engine&);
 const char* setting_form(const StopRule&);
 const char* setting_form(const Scheme&);
+/// @}
 
 } // namespace stickslip

@@ -10,13 +10,18 @@
 // reproducing the paper's numbers only.
 //
 // Every statistic needs only the bivariate centred moments of (U, t) up to
-// order four. They are accumulated in BivariateMoments, which merges two
-// samples exactly (Pebay 2008, arbitrary-order update), so blocks computed by
-// different threads or processes combine without loss and, merged in index
-// order, give bitwise-identical results whatever the split. Centred moments do
-// not suffer the catastrophic cancellation of raw power sums, so N = 1e9 keeps
-// its digits.
+// order four. Within a block of samples they are accumulated in
+// BivariateMoments, which merges two samples with the exact formulas (Pebay
+// 2008, arbitrary-order update); a run then adds its blocks into exact,
+// order-free sums (ExactBivariateSums, moment_sums.hpp), so the result is
+// bitwise the same whatever the thread count or process split. Centred
+// moments do not suffer the catastrophic cancellation of raw power sums, so
+// N = 1e9 keeps its digits.
 #pragma once
+
+/// \file
+/// Renewal-reward estimators of D, M0 and E[t1], mergeable moments and delta-
+/// method intervals. The comment at the top of this header explains the design.
 
 #include <array>
 #include <cstdint>
@@ -32,13 +37,23 @@ namespace stickslip {
 /// order 4: n, the means, and M(p,q) = sum (x - xbar)^p (y - ybar)^q.
 class BivariateMoments {
 public:
+    /// Highest total order p + q kept: the fourth moments give the standard
+    /// errors of the second-order statistics (D, var U).
     static constexpr int max_order = 4;
 
+    /// Adds one sample (x, y): in a run, x = displacement U [m] and
+    /// y = duration t [s] of one excursion or trajectory.
     void add(double x, double y);
+    /// Adds every sample of `other`: the moments of the union, by Pebay's
+    /// update. Exact in exact arithmetic; in floating point the last bits
+    /// depend on the order of the merges (ExactBivariateSums has no order).
     void merge(const BivariateMoments& other);
 
+    /// Number of samples n.
     std::uint64_t count() const { return n_; }
+    /// Mean of x (0 for an empty sample).
     double mean_x() const { return mean_x_; }
+    /// Mean of y (0 for an empty sample).
     double mean_y() const { return mean_y_; }
     /// Sum of (x - mean_x)^p (y - mean_y)^q over the sample, p + q <= 4.
     double central_sum(int p, int q) const { return m_[p][q]; }
@@ -48,7 +63,11 @@ public:
     /// The complete state as raw_size doubles (n, the means, every central
     /// sum), for sending between processes; from_raw restores it exactly.
     static constexpr int raw_size = 3 + (max_order + 1) * (max_order + 1);
+    /// Writes the state to out[0 .. raw_size): n (as a double, exact below
+    /// 2^53), mean x, mean y, then M(p, q) for p, q = 0 .. 4, p-major (the
+    /// entries with p + q > 4 are zero).
     void to_raw(double* out) const;
+    /// The moments whose state to_raw wrote to in[0 .. raw_size).
     static BivariateMoments from_raw(const double* in);
 
 private:
@@ -57,24 +76,40 @@ private:
     std::array<std::array<double, max_order + 1>, max_order + 1> m_{};
 };
 
+/// Which estimator of D a long-excursion run reports.
 enum class Estimator {
     RenewalReward, ///< sum (U - M0 t)^2 / sum t: correct for any M0 (default)
     Paper,         ///< the paper's eq. (12), Var(U)/E[t]: biased when M0 != 0
 };
 std::string to_string(Estimator e);      ///< "renewal" | "paper"
+/// The estimator named s, "renewal" | "paper"; InvalidParameter("estimator")
+/// otherwise.
 Estimator parse_estimator(const std::string& s);
 // Its text form as a setting (setting.hpp).
+
+/// @name Text form of the estimator as a setting
+/// @{
+
+/// As for the other setting types (setting.hpp): to_string's names, read by
+/// parse_estimator; the form is "renewal|paper".
 std::string format_setting(Estimator e);
 void parse_setting(const SettingInfo& info, const std::string& text, Estimator& out);
 const char* setting_form(const Estimator&);
+/// @}
 
 /// A point estimate with its standard error and a two-sided interval.
 struct Estimate {
+    /// The point estimate, in the quantity's unit (the field that holds the
+    /// Estimate names it).
     double value = 0.0;
     double std_error = 0.0; ///< standard error (delta method)
-    /// The interval at `level`: make_interval (symmetric) or, for D and D_t,
-    /// make_relative_interval (asymmetric, never negative).
+    /// @{
+    /// The interval [lo, hi] at `level`: make_interval (symmetric) or, for D
+    /// and D_t, make_relative_interval (asymmetric, never negative; hi may be
+    /// +inf). Same unit as value.
     double lo = 0.0, hi = 0.0;
+    /// @}
+    /// Nominal coverage of [lo, hi], in (0, 1).
     double level = 0.95;
 };
 
@@ -109,16 +144,26 @@ Estimate make_relative_interval(double value, double std_error, double level);
 class RatioMoments {
 public:
     RatioMoments() = default;
+    /// Empty moments of `dim` ratios, keeping every covariance pair when
+    /// full_covariance (cost dim^2 per sample), else the variances only.
     RatioMoments(std::size_t dim, bool full_covariance);
     /// Keeps the variances and the covariances with the ratios in `columns`.
     RatioMoments(std::size_t dim, std::vector<std::size_t> columns);
 
+    /// Adds one sample: y[0 .. dim) the path functionals of one excursion
+    /// and t its duration [s] (1 for a plain mean).
     void add(const double* y, double t);
+    /// Adds every sample of `other` (same dim and columns): Chan's pairwise
+    /// update, exact in exact arithmetic, order-dependent in the last bits.
     void merge(const RatioMoments& other);
 
+    /// Number of ratios (the length of each sample's y).
     std::size_t dim() const { return dim_; }
+    /// Number of samples n.
     std::uint64_t count() const { return n_; }
+    /// Mean of the denominators t: E[t] estimated [s].
     double mean_denominator() const { return mean_t_; }
+    /// Mean of the numerator y_j over the samples.
     double mean(std::size_t j) const { return mean_y_[j]; }
     /// R_j = mean(y_j) / mean(t).
     double ratio(std::size_t j) const { return mean_y_[j] / mean_t_; }
@@ -130,7 +175,9 @@ public:
     Estimate estimate(std::size_t j, double level) const;
     /// One term g_j dF/dR_j of a gradient: the ratio index and the derivative.
     struct GradientTerm {
+        /// The ratio j of the term.
         std::size_t index;
+        /// dF/dR_j at the estimates.
         double derivative;
     };
     /// Delta-method variance of a smooth function F of the ratios whose
@@ -142,8 +189,11 @@ public:
     /// sum (t - mean t)^2, sum (y_j - mean y_j)(t - mean t), and
     /// sum (y_j - mean y_j)(y_k - mean y_k) for k == j or k a column.
     double central_tt() const { return m_tt_; }
+    /// sum (y_j - mean y_j)(t - mean t).
     double central_yt(std::size_t j) const { return m_yt_[j]; }
+    /// sum (y_j - mean y_j)(y_k - mean y_k); needs k == j or k (or j) a column.
     double central_yy(std::size_t j, std::size_t k) const { return cyy(j, k); }
+    /// The ratios whose covariance with every other ratio is kept.
     const std::vector<std::size_t>& columns() const { return columns_; }
     /// The moments with the given count, means and centred sums (the layout
     /// of the accessors above; `yy` holds dim variances, then dim covariances
@@ -173,7 +223,9 @@ struct LongExcursionEstimates {
     Estimate diffusivity;   ///< [m^2/s]
     Estimate mobility;      ///< mean velocity M0 [m/s]
     Estimate mean_duration; ///< E[t1] [s]
+    /// Completed excursions N the estimates are from (capped ones excluded).
     std::uint64_t excursions = 0;
+    /// The estimator D was computed with.
     Estimator estimator = Estimator::RenewalReward;
 };
 
@@ -191,9 +243,15 @@ LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, doubl
 struct BruteForceEstimates {
     Estimate diffusivity; ///< D_t [m^2/s]: biased by O(1/t) against D
     Estimate mobility;    ///< [m/s]
+    /// Trajectories N' the estimates are from.
     std::uint64_t trajectories = 0;
     double horizon = 0.0; ///< t [s]
 };
+/// Brute-force estimates from the moments of (U(t), .) over the
+/// trajectories (x = U(horizon) [m]; y unused) at horizon t [s]: D_t from the
+/// unbiased sample variance, its standard error from the fourth moment.
+/// InvalidParameter ("trajectories") for fewer than 2, ("level") for a level
+/// outside (0, 1).
 BruteForceEstimates estimate_bruteforce(const BivariateMoments& u_only, double horizon, double level);
 
 } // namespace stickslip

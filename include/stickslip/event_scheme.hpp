@@ -52,6 +52,11 @@
 // allocation or exceptions.
 #pragma once
 
+/// \file
+/// The inclusion engine's event scheme: exact Gaussian steps within a phase,
+/// events placed at their times. The comment at the top of this header explains
+/// the design.
+
 #include <cmath>
 #include <cstdint>
 
@@ -83,7 +88,12 @@ struct EventLevel {
     ColoredSlideLaw slide;     ///< sliding step
     ColoredSlideBridge mid;    ///< its midpoint bridge
     double v_mid_sd;           ///< conditional sd of V at the midpoint [m/s]
+    /// @{
+    /// Stuck step of length len: X' = x_keep X + x_sd n with n ~ N(0, 1),
+    /// x_keep = e^{-len/tau} [1] and x_sd the exact OU standard deviation
+    /// [s^-1/2].
     double x_keep, x_sd;       ///< stuck step: X' = x_keep X + x_sd n
+    /// @}
     double x_grow;             ///< e^{len/tau}: X e^{t/tau} is a Brownian motion (see first_passage)
     double x_u_len;            ///< tau (e^{2 len/tau} - 1) / 2 [s]: the step in that motion's clock
     double x_var_rate;         ///< its variance rate 2 / tau^2 [s^-2]
@@ -94,12 +104,21 @@ struct EventLevel {
 struct EventConstants {
     double h;             ///< step [s]
     double leaf;          ///< h / 2^event_depth [s]: the unit of time
+    /// Amplitude a of the random force a X [m s^-3/2].
     double amp;           ///< a = sqrt(noise/2) (coloured)
+    /// @{
+    /// bias gbar and friction Delta [m s^-2], as in ModelParams.
     double bias, friction;
+    /// @}
     double inv_relaxation; ///< 1/tauL [s^-1], 0 without drag
     double noise;          ///< Gamma [m^2 s^-3]
+    /// @{
+    /// The noise thresholds x* (upper) and x-* (lower) [s^-1/2] of the static
+    /// band (coloured).
     double x_up, x_down;   ///< x*, x-* [s^-1/2] (coloured)
+    /// @}
     std::uint64_t max_work; ///< runaway guard: steps and midpoints per long excursion
+    /// The laws of every refinement depth d = 0 .. event_depth (steps h / 2^d).
     EventLevel lv[event_depth + 1];
 };
 
@@ -124,16 +143,28 @@ struct EventWalk {
 /// One piece of a path between two events or step ends: the phase is the same
 /// throughout, the state at both ends is exact. Times in leaves.
 struct EventPiece {
+    /// @{
+    /// Start and end time of the piece since the start of the walk [leaves].
     std::uint64_t t0, t1;
+    /// @}
+    /// The phase throughout the piece: 0 stuck, +1 / -1 sliding up / down.
     int phase;
+    /// @{
+    /// The state at the start (x0, v0, u0) and at the end (x1, v1, u1): noise
+    /// X [s^-1/2], velocity V [m/s], displacement U since the start [m].
     double x0, v0, u0, x1, v1, u1;
+    /// @}
 };
 
 /// Observer that ignores the path (the default of the long-excursion kernel).
 struct NoPieceObserver {
+    /// Does nothing with the piece.
     STICKSLIP_HD void operator()(const EventPiece&) const {}
 };
 
+/// What a step of the event scheme ended with: Running (go on), HalfDone (a
+/// regeneration state was reached: the half long excursion is over) or Capped
+/// (the runaway guard max_work was reached).
 enum class EventStatus { Running, HalfDone, Capped };
 
 namespace detail {
@@ -444,8 +475,8 @@ STICKSLIP_HD inline EventStatus event_advance_to(const EventConstants& c, EventW
 
 /// A walk that starts at noise x0 [s^-1/2] and velocity v0 [m/s] (a path, not
 /// a long excursion): sliding in v0's direction, or at V = 0 stuck inside the
-/// band and launched beyond it. `dir` 0: no half is tracked (reaching a
-/// threshold never ends it).
+/// band and launched beyond it. The walk's `dir` is 0: no half is tracked
+/// (reaching a threshold never ends it).
 STICKSLIP_HD inline EventWalk event_walk_from(const EventConstants& c, double x0, double v0) {
     EventWalk w;
     w.x = x0;

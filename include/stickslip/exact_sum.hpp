@@ -62,6 +62,11 @@
 // normalisation (small MaxLoad); use ExactSum. Words do not depend on MaxLoad.
 #pragma once
 
+/// \file
+/// ExactSum: an exact, order-free sum of doubles, the basis of bitwise-
+/// reproducible runs. The comment at the top of this header explains the
+/// design.
+
 #include <bit>
 #include <cmath>
 #include <cstddef>
@@ -78,10 +83,17 @@ namespace stickslip {
 /// sig = 0, exponent = 0, negative = false. For the non-finite kinds the other
 /// members are zero.
 struct RoundedSum {
+    /// What the sum is: finite, or, from the flags, +inf, -inf or NaN.
     enum class Kind : std::uint8_t { Finite, PlusInf, MinusInf, NaN };
+    /// Finite, or the non-finite result the flags give.
     Kind kind = Kind::Finite;
+    /// Sign of a nonzero finite sum.
     bool negative = false;
+    /// @{
+    /// The significand, sig_hi 2^64 + sig_lo, an integer below 2^127.
     std::uint64_t sig_hi = 0, sig_lo = 0;
+    /// @}
+    /// Binary exponent of the significand's last bit.
     int exponent = 0;
 };
 
@@ -94,6 +106,8 @@ class BasicExactSum {
                   "a limb holds at most 2^31 pieces below 2^32");
 
 public:
+    /// Bits per chunk of N: each 64-bit limb holds one 32-bit chunk, the
+    /// spare 32 bits absorbing carries between normalisations.
     static constexpr int chunk_bits = 32;
     static constexpr int chunks = 67;         ///< 66 for 2^-1074 .. 2^1023, one of headroom
     static constexpr int unit_exponent = -1074; ///< N counts units of 2^unit_exponent
@@ -101,10 +115,14 @@ public:
     /// Additions of doubles between two normalisations (automatic).
     static constexpr std::uint32_t carry_interval = MaxLoad - 1;
 
-    /// Flag bits of the last word: which non-finite values were added.
+    /// @{
+    /// Flag bits of the last word: which non-finite values were added
+    /// (flag_plus_inf: +inf, flag_minus_inf: -inf, flag_nan: a NaN).
     static constexpr std::uint32_t flag_plus_inf = 1, flag_minus_inf = 2, flag_nan = 4;
+    /// @}
 
     STICKSLIP_HD constexpr BasicExactSum() = default;
+    /// The sum of the one term x (BasicExactSum() is the empty sum, 0).
     STICKSLIP_HD constexpr explicit BasicExactSum(double x) { add(x); }
 
     /// Adds x exactly (inf/NaN: sets a flag, see the top of the header).
@@ -134,10 +152,12 @@ public:
     }
     /// Adds -x exactly (negation of a double is exact).
     STICKSLIP_HD constexpr void subtract(double x) { add(-x); }
+    /// add(x).
     STICKSLIP_HD constexpr BasicExactSum& operator+=(double x) {
         add(x);
         return *this;
     }
+    /// subtract(x).
     STICKSLIP_HD constexpr BasicExactSum& operator-=(double x) {
         add(-x);
         return *this;
@@ -147,10 +167,12 @@ public:
     STICKSLIP_HD constexpr void merge(const BasicExactSum& o) { combine(o, false); }
     /// Subtracts another sum exactly; its +inf counts as -inf and vice versa.
     STICKSLIP_HD constexpr void merge_negated(const BasicExactSum& o) { combine(o, true); }
+    /// merge(o).
     STICKSLIP_HD constexpr BasicExactSum& operator+=(const BasicExactSum& o) {
         combine(o, false);
         return *this;
     }
+    /// merge_negated(o).
     STICKSLIP_HD constexpr BasicExactSum& operator-=(const BasicExactSum& o) {
         combine(o, true);
         return *this;

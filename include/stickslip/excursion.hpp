@@ -6,6 +6,10 @@
 // what both engines' samplers (inclusion.hpp, pdmp.hpp) return.
 #pragma once
 
+/// \file
+/// ExcursionOutcome: what one long excursion (or trajectory) yields. The
+/// comment at the top of this header explains the design.
+
 #include <cstdint>
 
 #include "engine.hpp"

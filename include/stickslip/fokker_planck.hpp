@@ -52,6 +52,11 @@
 // divides it by about 4.
 #pragma once
 
+/// \file
+/// A Fokker-Planck solver for the white-noise velocity with any drift:
+/// E[V(t)|v0], <V(t)V(0)>, p(v,t|v0). The comment at the top of this header
+/// explains the design.
+
 #include <memory>
 #include <vector>
 
@@ -99,6 +104,9 @@ struct FokkerPlanckSettings {
 /// 100 times settings.cells cells ("v0").
 class WhiteNoiseFokkerPlanck {
 public:
+    /// Builds the cells, rates and masses for p (SI units; p.tau ignored) at
+    /// the given resolution, and for Richardson extrapolation the coarse
+    /// grid too. Throws InvalidParameter as described above.
     explicit WhiteNoiseFokkerPlanck(const ModelParams& p, const FokkerPlanckSettings& settings = {});
 
     /// E[V(t) | V(0) = v0] [m/s] at each time t >= 0 [s] (t = 0 gives v0);
@@ -128,7 +136,11 @@ public:
 
     /// Cell width h [m/s] and the automatic (or chosen) interval [m/s].
     double cell_width() const;
+    /// Lower end of the velocity interval [m/s], before any widening for a
+    /// query's v0 (FokkerPlanckSettings::half_width).
     double lower_velocity() const;
+    /// Upper end of the velocity interval [m/s], before any widening for a
+    /// query's v0.
     double upper_velocity() const;
 
 private:

@@ -15,6 +15,10 @@
 // validates its input; the kernels trust them.
 #pragma once
 
+/// \file
+/// The time-stepping (differential-inclusion) engine: per-run constants and
+/// per-step kernels. The comment at the top of this header explains the design.
+
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -99,6 +103,7 @@ STICKSLIP_HD inline double inclusion_white_step(const InclusionConstants& c, dou
 /// Observer that ignores the path: the default of the long-excursion kernels,
 /// compiled away entirely.
 struct NoPathObserver {
+    /// Does nothing with the state (x [s^-1/2], v [m/s]).
     STICKSLIP_HD void operator()(double /*x*/, double /*v*/) const {}
 };
 
@@ -117,6 +122,9 @@ struct InclusionWalk {
     double spare = 0.0;      ///< that normal
 };
 
+/// What a step of a walk ended with: Running (go on), HalfDone (the half's
+/// stop test fired; the detecting step was not applied) or Capped (the walk
+/// has made max_steps steps).
 enum class WalkStatus { Running, HalfDone, Capped };
 
 /// The three step laws: white noise, colored noise with stop rule Q (Bridge)
@@ -154,8 +162,9 @@ STICKSLIP_HD inline void inclusion_walk_start_half(const InclusionConstants& c, 
 /// step is not applied (returns HalfDone). `observe(x, v)` sees the state at
 /// the start of every applied step (each stands for a time h). Returns Capped,
 /// without stepping, once the excursion has made c.max_steps steps.
-/// (K = step_kind(c), fixed at compile time so that the kernels test the noise
-/// and the stop rule once per excursion, not once per step.)
+/// (K is c's step kind, as with_step_kind chooses it, fixed at compile time
+/// so that the kernels test the noise and the stop rule once per excursion,
+/// not once per step.)
 template <StepKind K, class Rng, class Observer>
 STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& c, InclusionWalk& w, Rng& rng,
                                                       Observer& observe) {
@@ -219,7 +228,7 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_walk_outcome(const InclusionConst
     return o;
 }
 
-/// inclusion_long_excursion for step kind K = step_kind(c).
+/// inclusion_long_excursion for step kind K, c's (as with_step_kind chooses it).
 template <StepKind K, class Rng, class Observer>
 STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion_as(const InclusionConstants& c, Rng& rng,
                                                                  Observer& observe) {

@@ -24,6 +24,10 @@
 // GCC 12; AVX2 and older x86-64 get the one-excursion kernel). Host only.
 #pragma once
 
+/// \file
+/// Eight long excursions of the inclusion engine in SIMD lanes, bitwise equal
+/// to one at a time. The comment at the top of this header explains the design.
+
 #include <atomic>
 #include <cstdint>
 

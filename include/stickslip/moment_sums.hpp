@@ -24,6 +24,11 @@
 // driven cases (U ~ M0 t).
 #pragma once
 
+/// \file
+/// A run's statistics as exact, order-free sums (blocks merged in any order
+/// give the same bits). The comment at the top of this header explains the
+/// design.
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -43,12 +48,18 @@ public:
 
     /// Adds the sample that `block` summarises (any sample; typically one block).
     void add_block(const BivariateMoments& block);
+    /// Adds every sample of `other`, exactly: in any order, the same sums.
     void merge(const ExactBivariateSums& other);
+    /// Number of samples added.
     std::uint64_t count() const;
     /// The centred moments of everything added, each rounded once.
     BivariateMoments moments() const;
 
+    /// Writes the canonical form to out[0 .. words): each sum's ExactSum
+    /// words, the count last. Equal sums give equal words; words of two runs
+    /// merge with ExactSum::merge_words, sum by sum.
     void to_words(std::uint64_t* out) const;
+    /// The sums whose words to_words wrote to in[0 .. words).
     static ExactBivariateSums from_words(const std::uint64_t* in);
 
 private:
@@ -61,16 +72,21 @@ private:
 class ExactRatioSums {
 public:
     ExactRatioSums() = default;
+    /// Empty sums for `dim` ratios keeping the covariances with `columns`
+    /// (the shape of the RatioMoments blocks to be added).
     ExactRatioSums(std::size_t dim, std::vector<std::size_t> columns);
 
     /// Adds the sample that `block` summarises; its shape must match.
     void add_block(const RatioMoments& block);
+    /// Adds every sample of `other` (same shape), exactly.
     void merge(const ExactRatioSums& other);
     /// The centred moments of everything added, each rounded once.
     RatioMoments moments() const;
 
     /// Serialised size in 64-bit words.
     std::size_t words() const { return sums_.size() * ExactSum::words; }
+    /// Writes the canonical form to out[0 .. words()): each sum's ExactSum
+    /// words in turn.
     void to_words(std::uint64_t* out) const;
     /// Reads words written by to_words into this (same shape).
     void assign_words(const std::uint64_t* in);

@@ -10,6 +10,10 @@
 // replaced there by its Taylor series.
 #pragma once
 
+/// \file
+/// The exact one-step law of the Ornstein-Uhlenbeck noise X. The comment at the
+/// top of this header explains the design.
+
 #include <cmath>
 
 #include "config.hpp"
@@ -22,8 +26,16 @@ namespace stickslip {
 struct OUStep {
     double mean_coef; ///< m1 = tau/h (1 - e^{-h/tau})
     double end_coef;  ///< m2 = e^{-h/tau}
+    /// @{
+    /// Covariance Sigma(h) of (mean of X over the step, X at its end) [s^-1]:
+    /// s11 = Var(mean), s12 = Cov(mean, end), s22 = Var(end).
     double s11, s12, s22; ///< covariance Sigma(h) [s^-1]
+    /// @}
+    /// @{
+    /// Cholesky factor L of Sigma(h), L L^T = Sigma, lower triangular [s^-1/2]:
+    /// the weights of the two independent standard normals z1, z2 (above).
     double l11, l21, l22; ///< its Cholesky factor [s^-1/2]
+    /// @}
 };
 
 /// Sigma11 * tau as a function of r = h/tau:

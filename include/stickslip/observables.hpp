@@ -28,6 +28,11 @@
 // exact for the PDMP and rounded to whole steps for the inclusion engine.
 #pragma once
 
+/// \file
+/// Velocity statistics with error bars: stationary density, autocorrelation,
+/// transient moments, sample paths. The comment at the top of this header
+/// explains the design.
+
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -48,7 +53,12 @@ namespace stickslip {
 /// transient densities, the white-noise (Hayakawa) mean -+ 6 standard
 /// deviations (or -+ 6 noise/friction), widened to hold v0.
 struct VelocityBins {
+    /// @{
+    /// The binned velocity range [lo, hi] [m/s], lo < hi; lo == hi == 0:
+    /// automatic (above).
     double lo = 0.0, hi = 0.0;
+    /// @}
+    /// Number of equal bins, 1 to 100000.
     int count = 80;
 };
 
@@ -68,14 +78,23 @@ struct VelocityHistogram {
     std::vector<double> edges;    ///< count + 1 bin edges [m/s]
     std::vector<Estimate> density; ///< [s/m]
     Estimate stuck;               ///< P(V = 0): the object sticks (colored noise only)
+    /// @{
+    /// Probability of the velocities outside the bins: below = P(V < lo),
+    /// above = P(V >= hi), the atom at 0 excluded.
     Estimate below, above;        ///< probability of V < lo and V >= hi (V != 0)
+    /// @}
 };
 
 // ---- stationary density --------------------------------------------------
 
+/// A stationary-density run (`stickslip density`): the histogram of V over
+/// long excursions (renewal-reward ratios, no burn-in), P(V = 0), the
+/// stationary mean and variance, and D, M0, E[t1] of the same excursions.
 struct StationaryDensityRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "density"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
+    /// The histogram's bins; automatic range by default (a pilot run of 256
+    /// excursions).
     VelocityBins bins;
     /// PDMP sampling interval [s]; 0 uses engine.dt. Ignored by the inclusion engine.
     double sample_dt = 0.0;
@@ -85,6 +104,8 @@ struct StationaryDensityRequest : RunSettings, ExcursionSettings {
 inline constexpr SettingInfo sample_dt_info{
     "sample-dt", "s", "pdmp only: sampling interval of the path; 0 = --dt (the inclusion engine samples every step)"};
 
+/// The request's settings: RunSettings', ExcursionSettings', --bins,
+/// --range and --sample-dt.
 template <class Visitor>
 void visit_settings(StationaryDensityRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), v);
@@ -94,22 +115,41 @@ void visit_settings(StationaryDensityRequest& r, Visitor&& v) {
     v(r.sample_dt, sample_dt_info);
 }
 
+/// What compute_stationary_density returns; report.hpp writes it.
 struct StationaryDensityResult {
+    /// The request, with the bins resolved (an automatic range replaced by
+    /// the one used).
     StationaryDensityRequest request;
+    /// The engine's resolved details.
     ResolvedEngine resolved;
+    /// The stationary density of V [s/m] with P(V = 0) and the tails.
     VelocityHistogram histogram;
     Estimate mean;     ///< stationary E[V] = M0 [m/s]
     Estimate variance; ///< stationary Var(V) [m^2/s^2]
     LongExcursionEstimates estimates; ///< D, M0, E[t1] of the same excursions
+    /// The raw sums and counts of the main run (the pilot run excluded).
     RunTotals totals;
+    /// Notes for the user, one sentence each: those of DiffusivityResult, and
+    /// on the sampling of the path, P(V = 0) and mass outside the range.
     std::vector<std::string> warnings;
 };
 
+/// Every check of the request (InvalidParameter on the first problem): the
+/// shared settings, excursions >= 2, the bins (1 to 100000; a finite range
+/// with lo < hi, or automatic), sample_dt finite and >= 0, and that
+/// excursions can end within the work cap.
 void validate(const StationaryDensityRequest& req);
+/// Validates the request (once) and runs it: a pilot of 256 excursions when
+/// the range is automatic, then the excursions of the histogram. Throws
+/// CappedExcursions as compute_diffusivity does.
 StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req);
 
 // ---- stationary autocorrelation ---------------------------------------------
 
+/// A stationary-autocorrelation run (`stickslip correlation`): <V(0)V(r)>,
+/// the covariance h(r) and h(r)/h(0) at equally spaced lags, as
+/// renewal-reward ratios over long excursions, each continued past its end
+/// by the largest lag with its own stream.
 struct CorrelationRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "correlation"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
@@ -118,6 +158,8 @@ struct CorrelationRequest : RunSettings, ExcursionSettings {
     double sample_dt = 0.0; ///< PDMP sampling interval [s]; 0 uses engine.dt
 };
 
+/// The request's settings: RunSettings', ExcursionSettings', --max-lag,
+/// --lags and --sample-dt.
 template <class Visitor>
 void visit_settings(CorrelationRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), v);
@@ -127,24 +169,40 @@ void visit_settings(CorrelationRequest& r, Visitor&& v) {
     v(r.sample_dt, sample_dt_info);
 }
 
+/// What compute_correlation returns; report.hpp writes it.
 struct CorrelationResult {
+    /// The request, with max_lag resolved (0 replaced by the lag used).
     CorrelationRequest request;
+    /// The engine's resolved details.
     ResolvedEngine resolved;
     std::vector<double> lag;               ///< r [s] (multiples of the sampling interval)
     std::vector<Estimate> autocorrelation; ///< <V(0) V(r)> [m^2/s^2]
     std::vector<Estimate> covariance;      ///< h(r) = <V(0)V(r)> - M0^2 [m^2/s^2]
     std::vector<Estimate> normalised;      ///< h(r)/h(0) [1]
     Estimate mean;                         ///< M0 [m/s]
+    /// D, M0 and E[t1] of the same excursions.
     LongExcursionEstimates estimates;
+    /// The raw sums and counts of the run.
     RunTotals totals;
+    /// Notes for the user, one sentence each: those of DiffusivityResult, and
+    /// on the sampling of the path.
     std::vector<std::string> warnings;
 };
 
+/// Every check of the request (InvalidParameter on the first problem): the
+/// shared settings, excursions >= 2, lags 1 to 2000, max_lag finite and >= 0
+/// and at most 4e6 sampling intervals, and that excursions can end within
+/// the work cap.
 void validate(const CorrelationRequest& req);
+/// Validates the request (once) and runs it. Throws CappedExcursions as
+/// compute_diffusivity does.
 CorrelationResult compute_correlation(const CorrelationRequest& req);
 
 // ---- transient statistics ------------------------------------------------------
 
+/// A transient run (`stickslip moments`): E[V(t)|v0], E[V(t)^2|v0],
+/// P(V(t) = 0) and optionally the density of V(t), as plain means over
+/// independent trajectories from V(0) = v0.
 struct TransientRequest : RunSettings {
     static constexpr const char* command = "moments"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
@@ -156,11 +214,16 @@ struct TransientRequest : RunSettings {
     /// t >= 0 [s], any order; empty: Table I's t' = 0.05, 0.125, 0.25, 0.5, 1,
     /// 2.5 time units (noise/friction^2).
     std::vector<double> times;
+    /// Number of independent trajectories, >= 2.
     std::uint64_t trajectories = 10000;
     bool with_density = false;       ///< also histogram V(t) at every time
+    /// The bins of the densities (with_density); automatic: around the
+    /// white-noise law, widened to hold v0 (VelocityBins).
     VelocityBins bins;
 };
 
+/// The request's settings: RunSettings', --v0, --x0, --times,
+/// --trajectories, --density, --bins and --range.
 template <class Visitor>
 void visit_settings(TransientRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), v);
@@ -178,19 +241,33 @@ void visit_settings(TransientRequest& r, Visitor&& v) {
 /// (noise/friction^2): the default times of a transient request.
 inline constexpr double table_one_times[] = {0.05, 0.125, 0.25, 0.5, 1.0, 2.5};
 
+/// What compute_transient returns; report.hpp writes it. Every series is
+/// aligned with `time`.
 struct TransientResult {
+    /// The request, with its defaults resolved: v0, the times (as given, or
+    /// Table I's in seconds; those used, rounded and sorted, are in `time`)
+    /// and the density's bins.
     TransientRequest request;
+    /// The engine's resolved details.
     ResolvedEngine resolved;
     std::vector<double> time;          ///< times actually used [s] (inclusion: whole steps), sorted
     std::vector<Estimate> first_moment;  ///< E[V(t) | v_i] [m/s]
     std::vector<Estimate> second_moment; ///< E[V(t)^2 | v_i] [m^2/s^2]
     std::vector<Estimate> stuck;         ///< P(V(t) = 0)
     std::vector<VelocityHistogram> density; ///< per time, when requested
+    /// The raw sums and counts of the run.
     RunTotals totals;
+    /// Notes for the user, one sentence each (a step too coarse, times
+    /// rounded to steps, an interrupted run, ...).
     std::vector<std::string> warnings;
 };
 
+/// Every check of the request (InvalidParameter on the first problem): the
+/// shared settings, trajectories >= 2, at most 10000 times, each finite and
+/// >= 0, a finite start, the bins with with_density (and times x bins at most
+/// 2e6), and the inclusion engine's largest time within 1e13 steps.
 void validate(const TransientRequest& req);
+/// Validates the request (once) and runs the trajectories.
 TransientResult compute_transient(const TransientRequest& req);
 
 // ---- sample paths ------------------------------------------------------------
@@ -204,6 +281,9 @@ struct SamplePath {
     std::vector<double> u; ///< displacement [m]
 };
 
+/// A sample-path run (`stickslip trajectory`): either one long excursion,
+/// exactly as the diffusivity run draws it, or independent paths of a given
+/// length. The confidence level is not used.
 struct TrajectoryRequest : RunSettings {
     static constexpr const char* command = "trajectory"; ///< the CLI subcommand, and a checkpoint's name for it
     /// Excursion mode (paths == 0): long excursion number `index` of stream
@@ -213,7 +293,10 @@ struct TrajectoryRequest : RunSettings {
     /// (x0, v0), x0 NaN = the paper's start x* (PDMP: first lattice point above).
     std::uint64_t paths = 0;
     double horizon = 2.0; ///< [s], path mode
+    /// Path mode: the initial noise X(0) [s^-1/2]; NaN: the upper threshold x*
+    /// (PDMP: the first lattice point above it). Ignored for white noise.
     double x0 = std::numeric_limits<double>::quiet_NaN();
+    /// Path mode: the initial velocity V(0) [m/s].
     double v0 = 0.0;
     /// Recording interval [s]: 0 records every step (inclusion) or event (PDMP)
     /// in excursion mode, and horizon/1000 in path mode.
@@ -221,6 +304,8 @@ struct TrajectoryRequest : RunSettings {
     std::uint64_t max_points = 5'000'000; ///< refuse to record more points than this per path
 };
 
+/// The request's settings: RunSettings' without --level, then --index,
+/// --paths, --time, --x0, --v0, --every and --max-points.
 template <class Visitor>
 void visit_settings(TrajectoryRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), skip_settings(v, {"level"}));
@@ -235,15 +320,28 @@ void visit_settings(TrajectoryRequest& r, Visitor&& v) {
     v(r.max_points, SettingInfo{"max-points", "", "refuse to record more points than this per path"});
 }
 
+/// What compute_trajectory returns; report.hpp writes it.
 struct TrajectoryResult {
+    /// The request; in path mode with `every` resolved (0 replaced by the
+    /// interval used).
     TrajectoryRequest request;
+    /// The engine's resolved details.
     ResolvedEngine resolved;
+    /// The recorded paths: one in excursion mode, `paths` in path mode.
     std::vector<SamplePath> paths;
     ExcursionOutcome excursion; ///< excursion mode: its U, t and work
+    /// Notes for the user, one sentence each.
     std::vector<std::string> warnings;
 };
 
+/// Every check of the request (InvalidParameter on the first problem): the
+/// model and engine, threads, paths at most 1000, a finite horizon > 0 in
+/// path mode, every finite and >= 0, a finite start, index < 2^56, and at
+/// most max_points points per path (as far as can be told before running).
 void validate(const TrajectoryRequest& req);
+/// Validates the request (once) and records the path(s). Throws
+/// InvalidParameter ("every") when an excursion turns out to need more than
+/// max_points points.
 TrajectoryResult compute_trajectory(const TrajectoryRequest& req);
 
 /// The bins actually used for a request (resolves automatic ranges).

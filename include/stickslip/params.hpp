@@ -11,6 +11,11 @@
 // friction = noise = 1: time unit noise/friction^2, length unit noise^2/friction^3.
 #pragma once
 
+/// \file
+/// The physical model's parameters (SI units), their validation and the
+/// nondimensional system. The comment at the top of this header explains the
+/// design.
+
 #include <string>
 
 #include "setting.hpp"
@@ -29,6 +34,8 @@ struct ModelParams {
     double force_amplitude() const;
     /// 1/relaxation [s^-1]; 0 when relaxation is infinite (no viscous drag).
     double inverse_relaxation() const;
+    /// True for white noise (tau == 0), where the force has no memory and the
+    /// velocity alone is Markov: the PDMP engine and the event scheme refuse it.
     bool white() const { return tau == 0.0; }
     /// b(v) = -v/relaxation + bias [m s^-2], v in m/s.
     double drift(double v) const { return -v * inverse_relaxation() + bias; }
@@ -59,6 +66,7 @@ struct Scales {
     double noise_level;  ///< unit of X: tau0^-1/2 [s^-1/2] (X' = X*sqrt(tau0))
 };
 
+/// The units of p's nondimensional system (friction = noise = 1), in SI.
 Scales scales_of(const ModelParams& p);
 
 /// The same system in nondimensional form: friction = noise = 1, tau/tau0,

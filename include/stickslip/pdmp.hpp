@@ -12,6 +12,10 @@
 // state s- = (x_{k- - 1}, -1, 0) is recognised exactly.
 #pragma once
 
+/// \file
+/// The exact, event-driven PDMP engine: per-run constants and per-event
+/// kernels. The comment at the top of this header explains the design.
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -27,7 +31,9 @@ struct PdmpConstants {
     double delta;     ///< lattice step [s^-1/2]
     int n_max;        ///< lattice indices run over [-n_max, n_max]; L = n_max*delta
     double rate;      ///< jump rate Lambda = 2/(tau delta)^2 [s^-1]
+    /// tau delta / 2 [s^1/2], the slope of the up-jump probability in X.
     double half_tau_delta; ///< tau*delta/2: alpha_i = (1 - half_tau_delta*delta*i)/2
+    /// Amplitude a of the random force a X [m s^-3/2].
     double amp;       ///< a = sqrt(noise/2)
     double friction;  ///< Delta [m s^-2]
     double bias;      ///< gbar [m s^-2]
@@ -98,8 +104,11 @@ STICKSLIP_HD inline int pdmp_mode_at_rest(const PdmpConstants& c, int i, int y) 
 
 /// PDMP state: lattice index, mode, velocity [m/s].
 struct PdmpState {
+    /// Lattice index of the noise: X = i delta, |i| <= n_max.
     int i;
+    /// Mode: -1 negative-dynamic, 0 static (stuck), +1 positive-dynamic.
     int y;
+    /// Velocity V [m/s]; 0 in the static mode.
     double v;
 };
 
@@ -144,15 +153,18 @@ STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& r
     return true;
 }
 
-/// One half long excursion: dir = +1 from s+ = (x_{k+ +1}, +1, 0) to the first
-/// exact arrival at s- = (x_{k- -1}, -1, 0), however it arrives; dir = -1 the
-/// mirror image. Returns false when the event cap is reached.
 /// Observer that ignores the path (the default; compiled away).
 struct NoSegmentObserver {
+    /// Does nothing with the segment (start state, start time [s], start
+    /// displacement [m], duration [s]).
     STICKSLIP_HD void operator()(const PdmpState& /*start*/, double /*t_start*/, double /*u_start*/,
                                  double /*duration*/) const {}
 };
 
+/// One half long excursion: dir = +1 from s+ = (x_{k+ +1}, +1, 0) to the first
+/// exact arrival at s- = (x_{k- -1}, -1, 0), however it arrives; dir = -1 the
+/// mirror image. Adds its time [s], displacement [m] and events to `time`,
+/// `disp` and `events`. Returns false when the event cap is reached.
 /// `observe(start, t_start, u_start, duration)` sees every flow segment: the
 /// state at its start, its start time [s], the displacement there [m] and its
 /// length [s]; inside it X and the mode are constant and V, U follow pdmp_flow

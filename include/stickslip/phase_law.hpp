@@ -29,6 +29,11 @@
 // multiply-adds (STICKSLIP_HD, no allocation, no exceptions).
 #pragma once
 
+/// \file
+/// Exact Gaussian laws of one step, and of its midpoint bridge, within one
+/// phase of the motion. The comment at the top of this header explains the
+/// design.
+
 #include "config.hpp"
 
 namespace stickslip {

@@ -6,6 +6,10 @@
 // results can be compared with it removed.
 #pragma once
 
+/// \file
+/// JSON, table and CSV reports of every result. The comment at the top of this
+/// header explains the design.
+
 #include <string>
 
 #include "bruteforce.hpp"
@@ -18,38 +22,55 @@ namespace stickslip {
 
 /// One JSON object (pretty-printed with `indent` spaces; -1 for one line).
 std::string to_json(const DiffusivityResult& r, int indent = 2);
+/// The brute-force result as one JSON object (as for DiffusivityResult).
 std::string to_json(const BruteForceResult& r, int indent = 2);
 
 /// Small aligned table with units, physical and nondimensional.
 std::string to_table(const DiffusivityResult& r);
+/// The brute-force result as a table with units, physical and nondimensional.
 std::string to_table(const BruteForceResult& r);
 
 /// CSV: a header line and one row per value (no comment lines, so any CSV
 /// reader takes it); warnings are not part of it (the CLI prints them on stderr).
 std::string to_csv(const DiffusivityResult& r);
+/// The brute-force result as CSV (as for DiffusivityResult).
 std::string to_csv(const BruteForceResult& r);
 
+/// The stationary density as one JSON object (`indent` as above).
 std::string to_json(const StationaryDensityResult& r, int indent = 2);
+/// The stationary density as a table: one row per bin, then P(V = 0), the
+/// mass outside the range, the mean, the variance and D.
 std::string to_table(const StationaryDensityResult& r);
 std::string to_csv(const StationaryDensityResult& r); ///< one row per bin, then stuck/below/above rows
 
+/// The transient statistics as one JSON object (`indent` as above).
 std::string to_json(const TransientResult& r, int indent = 2);
+/// The transient statistics as a table, one row per time.
 std::string to_table(const TransientResult& r);
 std::string to_csv(const TransientResult& r); ///< one row per time (with density: per time and bin)
 
+/// The autocorrelation as one JSON object (`indent` as above).
 std::string to_json(const CorrelationResult& r, int indent = 2);
+/// The autocorrelation as a table, one row per lag.
 std::string to_table(const CorrelationResult& r);
 std::string to_csv(const CorrelationResult& r); ///< one row per lag
 
+/// The sample paths as one JSON object (`indent` as above).
 std::string to_json(const TrajectoryResult& r, int indent = 2);
+/// The sample paths as a table, one row per recorded point.
 std::string to_table(const TrajectoryResult& r);
 std::string to_csv(const TrajectoryResult& r); ///< path,t,x,mode,v,u
 
+/// The white-noise references as one JSON object (`indent` as above).
 std::string to_json(const WhiteNoiseResult& r, int indent = 2);
+/// The white-noise references as a table: stationary values, then one row
+/// per time.
 std::string to_table(const WhiteNoiseResult& r);
 std::string to_csv(const WhiteNoiseResult& r); ///< one row per time (or one row of stationary values)
 
+/// The sweep as one JSON object (`indent` as above).
 std::string to_json(const SweepResult& r, int indent = 2);
+/// The sweep as a table, one row per point, then the exponents per tau.
 std::string to_table(const SweepResult& r);
 std::string to_csv(const SweepResult& r); ///< one row per (tau, noise) point
 

@@ -27,6 +27,11 @@
 // j < 2^47 draws per stream (max_draws); the engines cap their work far below.
 #pragma once
 
+/// \file
+/// Counter-based random streams (Philox4x32-10): the numbers of sample k depend
+/// only on (seed, purpose, k). The comment at the top of this header explains
+/// the design.
+
 #include <cmath>
 #include <cstdint>
 
@@ -41,11 +46,18 @@ namespace stickslip {
 /// Which computation a stream belongs to, so that different computations with
 /// the same seed and index never share random numbers.
 enum class StreamPurpose : std::uint32_t {
+    /// Long excursions: diffusivity, density, correlation (which continues
+    /// each excursion past its end on the same stream), sweep, trajectory's
+    /// excursion mode.
     LongExcursion = 1,
+    /// Independent trajectories from a given start: bruteforce, and the paths
+    /// of trajectory's path mode.
     BruteForce = 2,
+    /// The transient statistics' trajectories (moments).
     Observable = 3,
     SamplingPhase = 4, ///< random phase of a PDMP path's sampling grid (observables)
     Refinement = 5,    ///< the event scheme's refinement midpoints, one draw per midpoint, in order
+    /// Reserved for tests, so that they never share a production stream.
     Test = 255,
 };
 
@@ -58,13 +70,26 @@ inline constexpr std::uint64_t max_draws = std::uint64_t{1} << 47;
 
 /// A pair of doubles (two normals), usable on host and device.
 struct NormalPair {
+    /// @{
+    /// The two values; independent standard normals, except for side_draw(),
+    /// whose y is a uniform in (0, 1].
     double x, y;
+    /// @}
 };
 
+/// The random stream (seed, purpose, index): Philox4x32-10 keyed by the seed,
+/// counted by the draw number (layout at the top of this header). Every
+/// number it gives is a pure function of (seed, purpose, index, draw), so
+/// sample k of a run gets the same numbers whichever thread or process runs
+/// it. A small value type (key and counter, 24 bytes), cheap to create per
+/// sample; host and device.
 class CounterRng {
 public:
+    /// Random123's Philox4x32-10: 4 x 32-bit counter, 2 x 32-bit key, 10 rounds.
     using Philox = r123::Philox4x32;
 
+    /// The fresh stream `index` (< 2^56, max_sample_index) of computation
+    /// `purpose` under the user's seed: draw 0 comes next.
     STICKSLIP_HD CounterRng(std::uint64_t seed, StreamPurpose purpose, std::uint64_t index)
         : key_(make_key(seed)), ctr_(make_counter(purpose, index, 0)) {}
 
@@ -165,6 +190,7 @@ public:
         return r123::u01<double>(join(b.v[0], b.v[1]));
     }
 
+    /// The 64-bit word hi 2^32 + lo of two 32-bit Philox words.
     STICKSLIP_HD static std::uint64_t join(std::uint32_t lo, std::uint32_t hi) {
         return (static_cast<std::uint64_t>(hi) << 32) | lo;
     }

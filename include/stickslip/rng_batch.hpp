@@ -13,6 +13,10 @@
 // Host only (the buffer is about 1 KB); GPU code uses CounterRng.
 #pragma once
 
+/// \file
+/// CounterRng's stream generated 32 draws at a time (SIMD), bit for bit the
+/// same numbers. The comment at the top of this header explains the design.
+
 #include <cstdint>
 #include <type_traits>
 
@@ -52,9 +56,12 @@ const char* rng_batch_isa();
 template <bool WithNormals>
 class BatchedStream {
 public:
+    /// The generator, CounterRng's.
     using Philox = CounterRng::Philox;
+    /// Draws generated per refill (32).
     static constexpr int batch = detail::rng_batch_size;
 
+    /// The fresh stream (seed, purpose, index), as CounterRng's constructor.
     BatchedStream(std::uint64_t seed, StreamPurpose purpose, std::uint64_t index) { reset(seed, purpose, index); }
     /// The stream (seed 0, purpose 0, index 0), a placeholder until reset() (for arrays of streams).
     BatchedStream() = default;
@@ -68,8 +75,12 @@ public:
     }
 
     /// Two independent standard normals; the same as CounterRng::normal2.
+    /// A member template, so that the explicit instantiation of
+    /// BatchedStream<false> leaves it out (Clang before 15 instantiates
+    /// members whose constraint fails).
+    template <bool W = WithNormals>
     NormalPair normal2()
-        requires WithNormals
+        requires W
     {
         if (pos_ == batch) refill();
         const NormalPair z{normals_[0][pos_], normals_[1][pos_]};

@@ -9,8 +9,13 @@
 // visit_settings() beside it (setting.hpp).
 #pragma once
 
+/// \file
+/// The settings every run shares and the engine prepared for a run. The comment
+/// at the top of this header explains the design.
+
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine.hpp"
 #include "event_scheme.hpp"
@@ -26,12 +31,18 @@ namespace stickslip {
 /// Of the run control, seed and threads are settings; the progress callback,
 /// the cancel flag and the process split are set by the caller.
 struct RunSettings {
+    /// The physical model (SI units); a sweep replaces its noise and tau.
     ModelParams params;
+    /// The engine and its numerical settings.
     EngineSettings engine;
+    /// Seed and threads (settings), and the caller's callbacks, flags and
+    /// process split (runner.hpp).
     RunControl control;
     double level = 0.95; ///< confidence level of the intervals, in (0, 1)
 };
 
+/// The shared settings, as the command line, config files and Python name
+/// them: the model's, the engine's, then seed, threads and level.
 template <class Visitor>
 void visit_settings(RunSettings& r, Visitor&& v) {
     visit_settings(r.params, v);
@@ -47,6 +58,7 @@ struct ExcursionSettings {
     bool allow_capped = false;        ///< if false, capped excursions make the result an error
 };
 
+/// The long-excursion settings as settings: --excursions and --allow-capped.
 template <class Visitor>
 void visit_settings(ExcursionSettings& e, Visitor&& v) {
     v(e.excursions, SettingInfo{"excursions", "", "number N of long excursions (>= 2; a sweep: per point)"});
@@ -56,24 +68,39 @@ void visit_settings(ExcursionSettings& e, Visitor&& v) {
 
 /// Engine details resolved for a run, reported alongside the estimates.
 struct ResolvedEngine {
+    /// How the run ends a half long excursion; "none" for runs that have no
+    /// excursions (brute force, transient moments).
     std::string stop_rule;   ///< "bridge" | "stuck" | "velocity-levels" (white) | "exact" (PDMP, event scheme)
     double lattice_bound = 0; ///< PDMP: L [s^-1/2]
     int lattice_points = 0;   ///< PDMP: 2N+1
     double truncated_mass = 0;///< PDMP: stationary Gaussian mass of X beyond +-L
     double jump_rate = 0;     ///< PDMP: Lambda [s^-1]
     double white_level = 0;   ///< white noise: regeneration level c [m/s]
+    /// @{
+    /// Coloured noise: the noise thresholds x* (upper) and x-* (lower)
+    /// [s^-1/2] between which a stuck object stays stuck
+    /// (ModelParams::upper_threshold, lower_threshold); 0 for white noise.
     double upper_threshold = 0, lower_threshold = 0; ///< x*, x-* [s^-1/2] (colored)
+    /// @}
 };
 
 /// The engine of a run, prepared once: the chosen engine's (and scheme's)
 /// constants, the others left empty, and the details a report shows.
 struct PreparedEngine {
+    /// The model it was prepared for (SI units).
     ModelParams params;
+    /// The engine settings it was prepared from, as given (the resolved
+    /// choices, e.g. the stop rule, are in `resolved` and the constants).
     EngineSettings settings;
     InclusionConstants inclusion{}; ///< inclusion engine, resolvent scheme
     EventConstants event{};         ///< inclusion engine, event scheme
+    /// PDMP engine constants (engine pdmp).
     PdmpConstants pdmp{};
+    /// What was chosen for the run, for the reports.
     ResolvedEngine resolved;
+    /// Notes on the settings found when preparing (a step too coarse for a
+    /// trustworthy D): every report of a run on this engine carries them.
+    std::vector<std::string> notes;
 };
 
 /// Validates the model and the engine settings together (InvalidParameter on
@@ -84,8 +111,10 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s);
 ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s);
 
 /// Checks the settings every run shares (the model with the engine, the level,
-/// the thread count; InvalidParameter on the first problem) and prepares the
-/// engine: the one validation of a run's shared settings.
+/// the thread count, and that the step resolves the dynamics: a step whose
+/// predicted bias of D exceeds 20% is refused, one beyond 2% noted;
+/// InvalidParameter on the first problem) and prepares the engine: the one
+/// validation of a run's shared settings.
 PreparedEngine prepare(const RunSettings& r);
 /// prepare(r), for its checks alone.
 void validate(const RunSettings& r);

@@ -10,6 +10,11 @@
 // resumption of a run.
 #pragma once
 
+/// \file
+/// Parallel, reproducible Monte Carlo runs: the run control and the block
+/// driver's entry points. The comment at the top of this header explains the
+/// design.
+
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -34,6 +39,10 @@ struct Progress {
     const BivariateMoments* moments = nullptr; ///< merged so far (in index order)
 };
 
+/// How a run is carried out, as opposed to what it computes: seed, threads,
+/// the sample indices, the caller's callbacks and flags, checkpoints and the
+/// process split. None of it but the seed and first_index changes a result's
+/// bits (runner.hpp, top).
 struct RunControl {
     unsigned threads = 0;          ///< 0: all hardware threads
     std::uint64_t seed = 1;        ///< user seed (the Philox key)
@@ -43,7 +52,13 @@ struct RunControl {
     /// necessarily the caller's thread; never concurrently), and once at the
     /// end; return false to cancel the run (throws RunCancelled).
     std::function<bool(const Progress&)> progress;
+    /// Least time between two calls of `progress` [s]; 0 calls it after every
+    /// merged block (which the Python module uses to check for Ctrl-C).
     double progress_interval = 1.0;
+    /// Called, from the calling thread, before any work with each note about
+    /// the run (a coarse step, a long run): for showing them at the start. The
+    /// notes are in the result's warnings too.
+    std::function<void(const std::string&)> notice;
     /// Optional cancel flag, read by the workers before every sample: set it
     /// from any thread (a signal watcher, a GUI) to stop the run within one
     /// sample; the run then throws RunCancelled.
@@ -61,19 +76,29 @@ struct RunControl {
     /// sums after each), records its state after every round, and, when the
     /// journal holds a saved state for this call, continues from it.
     RunJournal* journal = nullptr;
-    /// Distributed runs (MPI, see cli/distributed.hpp): this process computes
-    /// only the blocks b with b % ranks == rank; at the end `reduce` must
-    /// replace `words` (this process's exact sums, a sequence of ExactSum
-    /// words: merge them chunk by chunk with ExactSum::merge_words) and
-    /// `counts` (plain integers: add them) by their totals over every process,
-    /// on every process (an all-reduce). The sums are exact, so any reduction
-    /// tree gives the result of a single process, bit for bit, in memory that
-    /// does not grow with the run. ranks == 1: a plain run.
+    /// @name Distributed runs
+    /// MPI, see cli/distributed.hpp.
+    /// @{
+
+    /// This process's rank and the number of processes: this process
+    /// computes only the blocks b with b % ranks == rank, in rounds of about a
+    /// second. ranks == 1: a plain run (rank and reduce unused); ranks > 1
+    /// needs rank < ranks and `reduce`.
     unsigned rank = 0, ranks = 1;
+    /// The all-reduce, called once after every round, by every process alike
+    /// (so the same number of times on each): it must replace `words` (this
+    /// process's exact sums of the round, a sequence of ExactSum words: merge
+    /// them chunk by chunk with ExactSum::merge_words) and `counts` (plain
+    /// integers: add them) by their totals over every process, on every
+    /// process. The sums are exact, so any reduction tree gives the result of
+    /// a single process, bit for bit, in memory that does not grow with the run.
     std::function<void(std::vector<std::uint64_t>& words, std::vector<std::uint64_t>& counts)> reduce;
+    /// @}
 };
 
-/// Thrown when RunControl::progress asked to stop.
+/// Thrown when a run was cancelled: RunControl::progress returned false or
+/// RunControl::cancel was set. Nothing of the run is returned (compare
+/// RunControl::stop, which returns what is done).
 struct RunCancelled : std::runtime_error {
     RunCancelled() : std::runtime_error("run cancelled") {}
 };
@@ -84,12 +109,18 @@ inline constexpr std::uint64_t block_size = 64;
 /// Raw outcome of a run: the exact sums of (U, t) over completed samples and
 /// the centred moments computed from them.
 struct RunTotals {
+    /// Exact sums of (U, t) (x = displacement U [m], y = duration t [s]) over
+    /// the completed samples, capped ones excluded.
     ExactBivariateSums sums;
     BivariateMoments moments; ///< sums.moments()
+    /// Samples asked for (completed, capped and, if interrupted, not run).
     std::uint64_t requested = 0;
     std::uint64_t capped = 0; ///< samples dropped by the runaway guard
     std::uint64_t work = 0;   ///< steps or events, all samples
+    /// Wall time of the run [s]; a resumed run counts only this invocation.
     double seconds = 0.0;
+    /// Worker threads used: RunControl::threads (0: all cores), at most one
+    /// per block of this process.
     unsigned threads = 1;
     bool interrupted = false; ///< stopped early (RunControl::stop): the sums are of a prefix of whole blocks
     std::uint64_t resumed = 0; ///< samples restored from a checkpoint rather than computed

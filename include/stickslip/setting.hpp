@@ -18,6 +18,11 @@
 // small reference wrappers below for settings whose text form is special.
 #pragma once
 
+/// \file
+/// How each user setting is named, described, printed and parsed, once for the
+/// CLI, config files and Python. The comment at the top of this header explains
+/// the design.
+
 #include <cstdint>
 #include <initializer_list>
 #include <stdexcept>
@@ -33,8 +38,11 @@ namespace stickslip {
 /// parameter as spelled on the command line (e.g. "friction", "dt").
 class InvalidParameter : public std::invalid_argument {
 public:
+    /// `parameter`: the setting's name ("friction"); `message`: the whole
+    /// sentence a user reads (what()), which front ends prefix with --parameter.
     InvalidParameter(std::string parameter, const std::string& message)
         : std::invalid_argument(message), parameter_(std::move(parameter)) {}
+    /// The offending setting's name, as SettingInfo::name spells it.
     const std::string& parameter() const noexcept { return parameter_; }
 
 private:
@@ -54,25 +62,32 @@ struct SettingInfo {
 /// on other settings (e.g. a start velocity of one velocity unit). Text: empty
 /// when unset.
 struct OptionalNumber {
+    /// The member it stands for; NaN means unset.
     double& value;
 };
 
 /// A random seed: a decimal integer in [0, 2^64), never rounded through a double.
 struct SeedValue {
+    /// The member it stands for (the Philox key of the run's streams).
     std::uint64_t& value;
 };
 
 /// A list of numbers. Text: comma-separated, or lo:hi:n for n values from lo
 /// to hi, spaced evenly in log (lo, hi > 0) or, when `linear`, evenly.
 struct NumberList {
+    /// The member it stands for, in the order given (lo:hi:n: increasing from lo).
     std::vector<double>& values;
+    /// lo:hi:n spaces the values evenly (true) or evenly in log (false: the
+    /// default, for scale quantities such as noise intensities and times).
     bool linear = false;
 };
 
 /// A range lo,hi [m/s]; lo == hi == 0 means "automatic". Text: "lo,hi", or
 /// empty for automatic.
 struct NumberRange {
+    /// The member holding the lower end [m/s].
     double& lo;
+    /// The member holding the upper end [m/s].
     double& hi;
 };
 
@@ -83,6 +98,14 @@ struct NumberRange {
 // anything that is not a value of the setting's type. Range checks are the
 // struct's validate().
 
+/// @name Text form of a setting's value
+/// @{
+
+/// The text of a value, as --print-config writes it and parse_setting reads
+/// it back to the same value, bit for bit: the shortest round-trip decimal of
+/// a double ("inf", "-inf"; NaN, i.e. unset, is ""), a plain decimal integer,
+/// "true"/"false", and for the wrappers their text forms above (NumberList:
+/// comma-separated, NumberRange: "lo,hi" or "" for automatic).
 std::string format_setting(double x);
 std::string format_setting(std::uint64_t x);
 std::string format_setting(unsigned x);
@@ -92,7 +115,20 @@ std::string format_setting(const OptionalNumber& x);
 std::string format_setting(const SeedValue& x);
 std::string format_setting(const NumberList& x);
 std::string format_setting(const NumberRange& x);
+/// @}
 
+/// @name Reading a setting's value from text
+/// @{
+
+/// Reads `text` into `out`: the command line, config files and Python all
+/// come through here. Throws InvalidParameter(info.name, message) for text
+/// that is not a value of the type: not a number (or NaN) for a double; a
+/// negative, fractional or too large value for an integer (all integer
+/// settings are counts, >= 0; "1e6" is accepted); anything but decimal digits
+/// for a seed; a bool other than true/True/1/yes/on or false/False/0/no/off;
+/// a malformed list or range. "" unsets an OptionalNumber and makes a
+/// NumberRange automatic. Range checks (e.g. friction > 0) are left to the
+/// struct's validate().
 void parse_setting(const SettingInfo& info, const std::string& text, double& out);
 void parse_setting(const SettingInfo& info, const std::string& text, std::uint64_t& out);
 void parse_setting(const SettingInfo& info, const std::string& text, unsigned& out);
@@ -102,8 +138,15 @@ void parse_setting(const SettingInfo& info, const std::string& text, const Optio
 void parse_setting(const SettingInfo& info, const std::string& text, const SeedValue& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberList& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberRange& out);
+/// @}
 
-/// What --help shows as the value's form: NUM, INT, NUM|inf, LIST, LO,HI, ...
+/// @name The form of a setting's value in --help
+/// @{
+
+/// What --help shows as the value's form, by the field's type: NUM (double,
+/// OptionalNumber), INT (integers, SeedValue), LIST (NumberList), LO,HI
+/// (NumberRange), the enums' choices, and "" for a bool (a flag without a
+/// value). SettingInfo::form overrides it (e.g. NUM|inf).
 const char* setting_form(const double&);
 const char* setting_form(const std::uint64_t&);
 const char* setting_form(const unsigned&);
@@ -113,6 +156,7 @@ const char* setting_form(const OptionalNumber&);
 const char* setting_form(const SeedValue&);
 const char* setting_form(const NumberList&);
 const char* setting_form(const NumberRange&);
+/// @}
 
 /// n values from lo to hi, spaced evenly in log (lo, hi > 0) or, when linear,
 /// evenly; the endpoints are exact. What "lo:hi:n" means in a NumberList.
@@ -123,9 +167,14 @@ std::vector<double> spaced_values(double lo, double hi, std::uint64_t n, bool li
 /// numbers). Make it in the call that uses it: it refers to the list.
 template <class Visitor>
 struct SkipSettings {
+    /// The visitor that receives every setting not skipped.
     Visitor& inner;
+    /// Names (SettingInfo::name) of the settings to skip. The list's storage
+    /// is the caller's braced list: it lives only until the end of the full
+    /// expression that made it.
     std::initializer_list<std::string_view> skipped;
 
+    /// Passes (field, info) on to `inner` unless info.name is skipped.
     template <class Field>
     void operator()(Field&& field, const SettingInfo& info) const {
         for (auto s : skipped)
@@ -134,6 +183,8 @@ struct SkipSettings {
     }
 };
 
+/// SkipSettings for visitor `v` that skips the settings named in `skipped`,
+/// e.g. visit_settings(r.params, skip_settings(v, {"tau"})).
 template <class Visitor>
 SkipSettings<Visitor> skip_settings(Visitor& v, std::initializer_list<std::string_view> skipped) {
     return SkipSettings<Visitor>{v, skipped};

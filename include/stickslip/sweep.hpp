@@ -9,6 +9,11 @@
 // with RunControl::first_index = k * 2^40.
 #pragma once
 
+/// \file
+/// D, M0 and E[t1] over a grid of noise intensities and correlation times, with
+/// slopes and exponents. The comment at the top of this header explains the
+/// design.
+
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -31,12 +36,15 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     /// default, 1:10:5, is five log-spaced values from 1 to 10.
     std::vector<double> noises = spaced_values(1.0, 10.0, 5);
     std::vector<double> taus = {0.125, 0.25, 0.5, 1.0}; ///< tau values [s], >= 0
+    /// The estimator of D at every point (as DiffusivityRequest::estimator).
     Estimator estimator = Estimator::RenewalReward;
     /// Optional: the progress callback for point k of n at (noise, tau).
     std::function<std::function<bool(const Progress&)>(std::size_t k, std::size_t n, double noise, double tau)>
         point_progress;
 };
 
+/// The request's settings: RunSettings' with --noise and --tau taken as
+/// lists, then ExcursionSettings' and --estimator.
 template <class Visitor>
 void visit_settings(SweepRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), skip_settings(v, {"noise", "tau"}));
@@ -46,36 +54,62 @@ void visit_settings(SweepRequest& r, Visitor&& v) {
     v(r.estimator, SettingInfo{"estimator", "", "renewal (default) or paper (eq. 12)"});
 }
 
+/// One point (noise, tau) of a sweep: the diffusivity run there.
 struct SweepPoint {
+    /// @{
+    /// The point: noise intensity Gamma [m^2 s^-3] and correlation time tau [s].
     double noise = 0, tau = 0;
+    /// @}
+    /// D [m^2/s], M0 [m/s] and E[t1] [s] at the point.
     LongExcursionEstimates estimates;
+    /// The stop rule used there (ResolvedEngine::stop_rule): with the
+    /// automatic rule it can change along the grid, as dt/tau does.
     std::string stop_rule;
+    /// Steps or events used at the point.
     std::uint64_t work = 0;
+    /// Wall time of the point [s].
     double seconds = 0;
     /// d log D / d log Gamma at this point (central difference inside the
     /// grid, one-sided at its ends; NaN with a single noise value).
     Estimate slope;
+    /// The point's own warnings (DiffusivityResult::warnings).
     std::vector<std::string> warnings;
 };
 
+/// The power law D ~ Gamma^alpha fitted over the noises of one tau.
 struct SweepExponent {
+    /// The correlation time [s] of the fit.
     double tau = 0;
     Estimate exponent;  ///< alpha of D ~ Gamma^alpha, weighted least squares in log-log
     double chi2_per_dof = 0; ///< of the power-law fit: >> 1 means no single power law
+    /// Points fitted (fewer than the noises when the sweep was interrupted).
     int points = 0;
 };
 
+/// What compute_sweep returns; report.hpp writes it.
 struct SweepResult {
+    /// The request, with its noises and taus sorted and duplicates removed.
     SweepRequest request;
     std::vector<SweepPoint> points; ///< tau-major: for each tau, noises increasing
     std::vector<SweepExponent> exponents; ///< one per tau (when >= 2 noises)
+    /// Wall time of the whole sweep [s].
     double seconds = 0;
     bool interrupted = false;  ///< stopped early (RunControl::stop): the points run so far
     std::uint64_t resumed = 0; ///< excursions restored from a checkpoint
+    /// The points' distinct warnings, an interrupted sweep, and few
+    /// excursions per point.
     std::vector<std::string> warnings;
 };
 
+/// Every check of the sweep (InvalidParameter on the first problem): at least
+/// one noise and one tau, no NaN, at most 65536 points, at most 2^40
+/// excursions per point, first_index 0, then every point as a diffusivity
+/// request (the message names the first bad point).
 void validate(const SweepRequest& req);
+/// Validates every point before running any, then runs them tau-major, each
+/// on its own sample indices (top of the file), and fits the slopes and
+/// exponents. RunControl::stop ends it after the point in progress (a
+/// prefix of its excursions).
 SweepResult compute_sweep(const SweepRequest& req);
 
 } // namespace stickslip

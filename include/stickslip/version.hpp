@@ -3,6 +3,10 @@
 // JSON report names both, so a result can be traced to the code that made it.
 #pragma once
 
+/// \file
+/// The library's release version and source revision. The comment at the top of
+/// this header explains the design.
+
 namespace stickslip {
 
 /// The release version, "MAJOR.MINOR.PATCH" (STICKSLIP_VERSION_STRING).

@@ -10,6 +10,11 @@
 // transition density p(v, t | v0) at given velocities (Touchette's (2.10)).
 #pragma once
 
+/// \file
+/// Every exact white-noise reference for one parameter set in one call
+/// (`stickslip analytic`). The comment at the top of this header explains the
+/// design.
+
 #include <string>
 #include <vector>
 
@@ -18,6 +23,8 @@
 
 namespace stickslip {
 
+/// The exact white-noise references for one parameter set (`stickslip
+/// analytic`): no simulation, so no seed, engine or run control.
 struct WhiteNoiseRequest {
     static constexpr const char* command = "analytic"; ///< the CLI subcommand, and a checkpoint's name for it
     ModelParams params;        ///< tau is ignored (white noise)
@@ -28,6 +35,8 @@ struct WhiteNoiseRequest {
     std::vector<double> velocities;
 };
 
+/// The request's settings: the model's without --tau, then --v0, --times
+/// and --velocities.
 template <class Visitor>
 void visit_settings(WhiteNoiseRequest& r, Visitor&& v) {
     visit_settings(r.params, skip_settings(v, {"tau"}));
@@ -39,7 +48,9 @@ void visit_settings(WhiteNoiseRequest& r, Visitor&& v) {
                   "with --times, the transition density p(v, t | v0) (json)"});
 }
 
+/// What compute_white_noise returns; report.hpp writes it.
 struct WhiteNoiseResult {
+    /// The request, with params.tau set to 0.
     WhiteNoiseRequest request;
     WhiteNoiseReference reference;       ///< M0 [m/s], D [m^2/s], Var(V) [m^2/s^2]
     std::vector<double> first_moment;    ///< E[V(t) | v0] [m/s], aligned with request.times
@@ -49,13 +60,20 @@ struct WhiteNoiseResult {
     /// function), one column per velocity.
     std::vector<std::vector<double>> transient_density;
     std::string method;                  ///< "closed form" or "fokker-planck"
+    /// Notes for the user, one sentence each, reported like every result's;
+    /// compute_white_noise currently adds none (exact references).
     std::vector<std::string> warnings;
 };
 
 /// True for pure dry friction (relaxation inf, bias 0): closed forms exist.
 bool is_pure_dry_friction(const ModelParams& p);
 
+/// Every check of the request (InvalidParameter on the first problem): the
+/// model (tau aside) with a stationary state, a finite v0, at most 100000
+/// times, each finite and >= 0, at most 1e6 velocities, each finite, and at
+/// most 1e7 (time, velocity) pairs.
 void validate(const WhiteNoiseRequest& req);
+/// Validates the request and computes every reference it asks for.
 WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req);
 
 } // namespace stickslip

@@ -23,6 +23,10 @@
 // arrays; a CUDA build must mirror them in __constant__ memory.
 #pragma once
 
+/// \file
+/// Standard normals from 64-bit words: the ziggurat, exact and SIMD-friendly.
+/// The comment at the top of this header explains the design.
+
 #include <cmath>
 #include <cstdint>
 

@@ -60,6 +60,7 @@ namespace {
 
 /// Python exception types, created once (module state lives as long as the process).
 PyObject* g_invalid_parameter = nullptr;
+PyObject* g_untrustworthy = nullptr;
 PyObject* g_capped = nullptr;
 
 /// The model parameters' fields, in order: (name, unit, help, value).
@@ -164,12 +165,21 @@ void bind_core(py::module_& m) {
         "(as spelled on the command line, e.g. 'friction', 'dt', 'stop-rule') and e.message is\n"
         "the message alone.",
         PyExc_ValueError, nullptr);
+    g_untrustworthy = PyErr_NewExceptionWithDoc(
+        "stickslip.UntrustworthyResultError",
+        "The run finished but its numbers cannot be believed, and none are returned (a\n"
+        "RuntimeError; the command's exit status 3): excursions hit the runaway guard\n"
+        "(CappedExcursionsError), every excursion ended within its first step, or an estimate is\n"
+        "not a finite number. str(e) says why and what to change.",
+        PyExc_RuntimeError, nullptr);
     g_capped = PyErr_NewExceptionWithDoc(
         "stickslip.CappedExcursionsError",
         "Some excursions hit the runaway guard (max_steps): the result would be biased and is\n"
-        "not returned (a RuntimeError). Pass allow_capped=True to get it anyway, with a warning.",
-        PyExc_RuntimeError, nullptr);
+        "not returned (an UntrustworthyResultError). Pass allow_capped=True to get it anyway,\n"
+        "with a warning.",
+        g_untrustworthy, nullptr);
     m.add_object("InvalidParameterError", py::handle(g_invalid_parameter));
+    m.add_object("UntrustworthyResultError", py::handle(g_untrustworthy));
     m.add_object("CappedExcursionsError", py::handle(g_capped));
     py::register_exception_translator([](std::exception_ptr p) {
         try {
@@ -182,6 +192,8 @@ void bind_core(py::module_& m) {
             PyErr_SetObject(g_invalid_parameter, exc.ptr());
         } catch (const CappedExcursions& e) {
             PyErr_SetString(g_capped, e.what());
+        } catch (const UntrustworthyResult& e) {
+            PyErr_SetString(g_untrustworthy, e.what());
         } catch (const RunCancelled& e) {
             PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
         }

@@ -49,8 +49,9 @@ Results are objects with NumPy-array attributes; estimates are ``Estimate``
 (arrays ``.value``, ``.stderr``, ``.lo``, ``.hi``, ``.ci`` of shape (n, 2)).
 Invalid input raises ``InvalidParameterError`` (a ValueError) whose text is
 the CLI's: ``--<parameter>: <message>``. Runs whose excursions hit the runaway
-guard raise ``CappedExcursionsError`` (a RuntimeError) unless
-``allow_capped=True``.
+guard raise ``CappedExcursionsError`` unless ``allow_capped=True``; it is an
+``UntrustworthyResultError`` (a RuntimeError), raised also when every
+excursion ended within its first step or an estimate is not finite.
 
 Example::
 
@@ -66,6 +67,7 @@ from ._core import (  # noqa: F401  (re-exported)
     BruteForceRequest,
     BruteForceResult,
     CappedExcursionsError,
+    UntrustworthyResultError,
     CorrelationRequest,
     CorrelationResult,
     DensityRequest,
@@ -96,7 +98,7 @@ _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityR
 # Show (and pickle) the compiled classes under the names users import.
 for _cls in (BruteForceResult, CorrelationResult, DensityResult, DiffusivityResult, Estimate, EstimateSeries,
              Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult, TrajectoryResult,
-             InvalidParameterError, CappedExcursionsError) + _REQUESTS:
+             InvalidParameterError, UntrustworthyResultError, CappedExcursionsError) + _REQUESTS:
     _cls.__module__ = __name__
 run.__module__ = __name__
 del _cls
@@ -107,7 +109,7 @@ __all__ = [
     "TrajectoryResult", "SweepResult", "SweepExponent",
     "DiffusivityRequest", "BruteForceRequest", "DensityRequest", "CorrelationRequest", "MomentsRequest",
     "TrajectoryRequest", "SweepRequest", "run",
-    "InvalidParameterError", "CappedExcursionsError",
+    "InvalidParameterError", "UntrustworthyResultError", "CappedExcursionsError",
     "diffusivity", "bruteforce", "density", "correlation", "moments", "trajectory", "sweep",
     "logspace", "analytic", "__version__",
 ]

@@ -28,6 +28,7 @@ from ._core import (
     SweepResult as SweepResult,
     TrajectoryRequest as TrajectoryRequest,
     TrajectoryResult as TrajectoryResult,
+    UntrustworthyResultError as UntrustworthyResultError,
     __version__ as __version__,
     run as run,
 )

@@ -32,8 +32,10 @@ _RAISES_DOC = """\
     ------
     InvalidParameterError (ValueError)
         Invalid input; str(e) is the CLI's "--<parameter>: <message>".
-    CappedExcursionsError (RuntimeError)
+    CappedExcursionsError (UntrustworthyResultError, a RuntimeError)
         Some excursions hit `max_steps` (unless allow_capped=True).
+    UntrustworthyResultError (RuntimeError)
+        Every excursion ended within its first step, or an estimate is not finite.
     KeyboardInterrupt
         Ctrl-C (or any exception raised by a signal handler) while it runs."""
 

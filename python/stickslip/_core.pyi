@@ -15,7 +15,9 @@ class InvalidParameterError(ValueError):
     parameter: str
     message: str
 
-class CappedExcursionsError(RuntimeError): ...
+class UntrustworthyResultError(RuntimeError): ...
+
+class CappedExcursionsError(UntrustworthyResultError): ...
 
 class Scales:
     @property

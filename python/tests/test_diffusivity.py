@@ -78,6 +78,14 @@ class DiffusivityTest(unittest.TestCase):
         self.assertGreater(r.capped, 0)
         self.assertEqual(r.completed + r.capped, 64)
 
+    def test_excursions_shorter_than_a_step_raise_untrustworthy(self):
+        # tau' = 1e-8: every excursion ends within its first step; D would be 0/0.
+        fast = stickslip.Params(friction=1, noise=1, tau=1e-8, relaxation=float("inf"), bias=0)
+        with self.assertRaises(stickslip.UntrustworthyResultError) as c:
+            stickslip.diffusivity(fast, dt=1e-10, excursions=64, threads=1)
+        self.assertNotIsInstance(c.exception, stickslip.CappedExcursionsError)
+        self.assertIn("first step", str(c.exception))
+
     def test_progress_line(self):
         err = io.StringIO()
         with contextlib.redirect_stderr(err):

@@ -13,7 +13,8 @@ class ImportTest(unittest.TestCase):
             self.assertTrue(hasattr(stickslip, name), name)
         self.assertEqual(stickslip.__version__.count("."), 2)
         self.assertTrue(issubclass(stickslip.InvalidParameterError, ValueError))
-        self.assertTrue(issubclass(stickslip.CappedExcursionsError, RuntimeError))
+        self.assertTrue(issubclass(stickslip.CappedExcursionsError, stickslip.UntrustworthyResultError))
+        self.assertTrue(issubclass(stickslip.UntrustworthyResultError, RuntimeError))
 
     def test_help_teaches_units(self):
         doc = stickslip.diffusivity.__doc__

@@ -366,7 +366,10 @@ INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(kBadInputs), bad_
 // --- runaway guard: exit 3 ------------------------------------------------------
 
 TEST(CliCapped, GuardHitIsAnErrorByDefault) {
-    const Args args{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10"};
+    // 4000 steps of 1e-3 s lie above the lower bound of the mean excursion
+    // (3.4 s, so the run is not refused up front) and below E[t1] = 8.1 s:
+    // 154 of the 200 excursions hit the guard (seed 1).
+    const Args args{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--max-steps", "4000"};
     const Result r = run(args);
     EXPECT_EQ(r.code, 3) << r.err;
     EXPECT_EQ(r.out, "");
@@ -377,15 +380,64 @@ TEST(CliCapped, GuardHitIsAnErrorByDefault) {
 }
 
 TEST(CliCapped, AllowCappedStillFailsWhenFewerThanTwoComplete) {
+    // White noise: no lower bound of the excursion's length is known up
+    // front, so the run starts, and 10 steps of 1e-3 s end none of them.
+    const Args args{"diffusivity", "--friction", "1", "--noise", "1", "--tau", "0", "--relaxation", "inf",
+                    "--bias", "0", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10", "--allow-capped"};
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("fewer than 2"), std::string::npos) << r.err;
+}
+
+TEST(CliCapped, RunsWhoseExcursionsCannotEndAreRefusedUpFront) {
+    // The noise must cross the static band before an excursion ends: at least
+    // 3.4 s on average in the Fig. 2 case, far beyond 10 steps or events.
     for (const Args& args : {Args{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10",
                                   "--allow-capped"},
                              Args{"diffusivity", "--engine", "pdmp", "--excursions", "200", "--max-steps", "10",
-                                  "--allow-capped", "--format", "json"}}) {
+                                  "--allow-capped", "--format", "json"},
+                             Args{"diffusivity", "--friction", "1", "--noise", "1", "--tau", "1e12", "--relaxation",
+                                  "inf", "--bias", "0"},
+                             Args{"density", "--friction", "16"}, Args{"correlation", "--friction", "16"}}) {
+        const Result r = run(args);
+        EXPECT_EQ(r.code, 2) << describe(args) << "\n" << r.err;
+        EXPECT_EQ(r.out, "") << describe(args);
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("--max-steps"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("standard deviations"), std::string::npos) << r.err;
+    }
+}
+
+TEST(CliUntrustworthy, ExcursionsShorterThanOneStepAreExitThree) {
+    // tau' = 1e-8: the noise jumps across the static band within every step,
+    // so every excursion lasts 0 s and D would be 0/0 (it printed "nan").
+    for (const char* cmd : {"diffusivity", "density", "correlation"}) {
+        Args args{cmd, "--friction", "1", "--noise", "1", "--tau", "1e-8", "--relaxation", "inf",
+                  "--bias", "0", "--dt", "1e-10", "--excursions", "200"};
+        if (std::string(cmd) == "correlation") args.insert(args.end(), {"--max-lag", "1e-8"});
         const Result r = run(args);
         EXPECT_EQ(r.code, 3) << describe(args) << "\n" << r.err;
         EXPECT_EQ(r.out, "") << describe(args);
         EXPECT_EQ(count_lines(r.err), 1) << r.err;
-        EXPECT_NE(r.err.find("fewer than 2"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("first step"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("nan"), std::string::npos) << r.err;
+    }
+    const Result sweep = run({"sweep", "--friction", "1", "--noise", "1", "--tau", "1e-8", "--relaxation", "inf",
+                              "--bias", "0", "--dt", "1e-10", "--excursions", "200"});
+    EXPECT_EQ(sweep.code, 3) << sweep.err;
+    EXPECT_NE(sweep.err.find("[at noise 1, tau 1e-08]"), std::string::npos) << sweep.err;
+}
+
+TEST(CliUntrustworthy, OverflowingInputsAreRefusedUpFront) {
+    for (const Args& args : {Args{"moments", "--v0", "1e200"}, Args{"density", "--range=-1e308,1e308"},
+                             Args{"density", "--range=1,1.0000000000000002"}}) {
+        const Result r = run(args);
+        EXPECT_EQ(r.code, 2) << describe(args) << "\n" << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_EQ(r.err.find("nan"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("double precision"), std::string::npos) << r.err;
     }
 }
 

@@ -193,7 +193,7 @@ TEST(CliOutput, FailedRunLeavesNothingAndKeepsAnOldFile) {
     EXPECT_EQ(slurp(file), "previous contents\n");
     EXPECT_EQ(list_dir(dir), std::vector<std::string>{"old.csv"});
     // Capped run (exit 3): same.
-    const Result capped = run({"diffusivity", "--dt", "1e-3", "--excursions", "100", "--max-steps", "10", "--output",
+    const Result capped = run({"diffusivity", "--dt", "1e-3", "--excursions", "100", "--max-steps", "4000", "--output",
                                file});
     EXPECT_EQ(capped.code, 3) << capped.err;
     EXPECT_EQ(slurp(file), "previous contents\n");

@@ -364,7 +364,7 @@ TEST(CliOutputFile, FailedRunLeavesTheFileByteIdentical) {
     const std::string old(kOld, sizeof kOld - 1);
     { std::ofstream(file, std::ios::binary) << old; }
     ASSERT_EQ(::chmod(file.c_str(), 0604), 0);
-    const Result r = run({"diffusivity", "--excursions", "200", "--dt", "1e-3", "--max-steps", "10", "--output", file});
+    const Result r = run({"diffusivity", "--excursions", "200", "--dt", "1e-3", "--max-steps", "4000", "--output", file});
     EXPECT_EQ(r.code, 3) << r.err;
     EXPECT_EQ(slurp(file), old);
     EXPECT_EQ(lstat_of(file).st_mode & 07777, 0604u);

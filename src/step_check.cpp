@@ -1,0 +1,122 @@
+#include "step_check.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "format.hpp"
+
+namespace stickslip::detail {
+
+namespace {
+
+constexpr double kWarnBias = 0.02;    ///< a step whose predicted bias of D exceeds this is warned about
+constexpr double kRefuseBias = 0.20;  ///< ... and refused beyond this
+constexpr double kLongRun = 1e11;     ///< steps or events in all: "this run is long"
+constexpr double kStepsPerSecond = 1e8; ///< one core, the inclusion kernel (bench/): for the time estimate
+
+std::string rounded(double x) { return format_number(x, 2); }
+
+/// Phi(u) e^{u^2/2}, without overflow for the u used here (u <= 37).
+double integrand(double u) { return 0.5 * std::erfc(-u / std::sqrt(2.0)) * std::exp(0.5 * u * u); }
+
+std::string duration_text(double seconds) {
+    if (!std::isfinite(seconds)) return "forever";
+    if (seconds < 120) return rounded(seconds) + " s";
+    if (seconds < 7200) return rounded(seconds / 60) + " min";
+    if (seconds < 2 * 86400) return rounded(seconds / 3600) + " h";
+    if (seconds < 2 * 3.156e7) return rounded(seconds / 86400) + " days";
+    return rounded(seconds / 3.156e7) + " years";
+}
+
+} // namespace
+
+double ou_first_passage_time(double h, double tau) {
+    if (!(h > 0)) return 0.0;
+    if (h > 37.0) return std::numeric_limits<double>::infinity();
+    // Simpson's rule on a grid fine enough for the steep end: the integrand
+    // grows like e^{u^2/2}, so 64 intervals per unit of h, at least 256.
+    const int n = 2 * static_cast<int>(std::ceil(std::max(128.0, 32.0 * h * h)));
+    const double step = h / n;
+    double sum = integrand(0.0) + integrand(h);
+    for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * integrand(k * step);
+    return tau * std::sqrt(2.0 * M_PI) * sum * step / 3.0;
+}
+
+double excursion_duration_lower_bound(const ModelParams& p) {
+    if (p.white()) return 0.0;
+    const double sd = 1.0 / std::sqrt(p.tau); // of the stationary noise X [s^-1/2]
+    const double up = std::fabs(p.upper_threshold()) / sd, down = std::fabs(p.lower_threshold()) / sd;
+    return 0.5 * (ou_first_passage_time(up, p.tau) + ou_first_passage_time(down, p.tau));
+}
+
+double excursion_work_lower_bound(const PreparedEngine& e) {
+    const double t = excursion_duration_lower_bound(e.params);
+    if (e.settings.engine == Engine::Pdmp) return t * e.pdmp.rate;
+    return t / e.settings.dt;
+}
+
+double resolvent_bias(const ModelParams& p, double dt) {
+    const Scales sc = scales_of(p);
+    const double step = dt / sc.time;
+    if (p.white() || p.tau / sc.time < 0.3) return -0.39 * std::sqrt(step);
+    return 0.35 * step;
+}
+
+void check_step(const PreparedEngine& e, std::vector<std::string>& notes) {
+    const ModelParams& p = e.params;
+    const EngineSettings& s = e.settings;
+    if (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent) {
+        const Scales sc = scales_of(p);
+        const double step = s.dt / sc.time;
+        const double bias = resolvent_bias(p, s.dt);
+        // dt for a 2% bias, from the same law.
+        const double fine = p.white() || p.tau / sc.time < 0.3 ? sc.time * std::pow(kWarnBias / 0.39, 2)
+                                                               : sc.time * kWarnBias / 0.35;
+        const std::string what =
+            step > 1.0 ? "dt = " + format_number(s.dt) + " s is longer than the friction time noise/friction^2 = " +
+                             format_number(sc.time) + " s: the resolvent step cannot resolve the stick-slip dynamics"
+                       : "dt = " + format_number(s.dt) + " s is " + rounded(step) +
+                             " friction times (noise/friction^2 = " + format_number(sc.time) +
+                             " s): the resolvent step's bias of D is about " + (bias > 0 ? "+" : "") +
+                             rounded(100 * bias) + "% there";
+        const std::string cure = "use --dt " + rounded(fine) + " or smaller for 2%" +
+                                 (p.white() ? "" : ", or --scheme event or --engine pdmp");
+        if (std::fabs(bias) > kRefuseBias || step > 1.0)
+            throw InvalidParameter("dt", what + " (measured: docs/validation.md, \"Step checks\"); " + cure);
+        if (std::fabs(bias) > kWarnBias) notes.push_back(what + "; " + cure);
+    }
+}
+
+void check_excursions_can_end(const PreparedEngine& e) {
+    const ModelParams& p = e.params;
+    const EngineSettings& s = e.settings;
+    const double work = excursion_work_lower_bound(e);
+    if (work >= static_cast<double>(s.max_work_per_excursion)) {
+        const double sd = p.white() ? 0.0 : std::sqrt(p.tau);
+        const double h = std::max(std::fabs(p.upper_threshold()), std::fabs(p.lower_threshold())) * sd;
+        const char* unit = s.engine == Engine::Pdmp ? "events" : "steps";
+        const std::string takes =
+            std::isfinite(work) ? "which takes at least " + duration_text(excursion_duration_lower_bound(p)) +
+                                      " on average, about " + rounded(work) + " " + unit + " per excursion"
+                                : std::string("which practically never happens");
+        throw InvalidParameter("max-steps", "excursions would mostly hit --max-steps (" +
+                                                std::to_string(s.max_work_per_excursion) + " " + unit +
+                                                "): to end, an excursion's noise must cross the static band, reaching " +
+                                                rounded(h) + " standard deviations, " + takes +
+                                                "; raise --max-steps (at most 1.8e13), use a coarser --dt or the pdmp "
+                                                "engine, or choose a model whose thresholds are nearer the noise "
+                                                "(friction, bias, tau)");
+    }
+}
+
+void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes) {
+    const double work = excursion_work_lower_bound(e) * static_cast<double>(samples);
+    if (!(work > kLongRun)) return;
+    const char* unit = e.settings.engine == Engine::Pdmp ? "events" : "steps";
+    notes.push_back("a long run: at least about " + rounded(work) + " " + unit + " in all (" +
+                    std::to_string(samples) + " excursions of at least " +
+                    duration_text(excursion_duration_lower_bound(e.params)) + " each), about " +
+                    duration_text(work / kStepsPerSecond) + " on one core; --checkpoint FILE keeps it safe");
+}
+
+} // namespace stickslip::detail

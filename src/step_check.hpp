@@ -1,0 +1,65 @@
+// Internal: what the numerics can honour, judged before a run from the
+// model's time scales (issue "numbers you can trust by default").
+//
+// Two questions, answered from closed forms so that they cost nothing:
+//
+// * Does the step resolve the dynamics? The resolvent scheme's bias of D is
+//   set by the step in friction times, dt' = dt / (noise / friction^2):
+//   measured, white and near-white noise (tau' < 0.3) converge like
+//   -0.39 sqrt(dt') (-3.9% at dt' = 1e-2, -28% at 0.5), coloured noise
+//   (tau' >= 0.3, the paper's Fig. 2 case, drag included) like +0.35 dt'
+//   (+1.1% at dt' = 0.03, +3% at 0.09). A step whose predicted bias exceeds
+//   2% is warned about; one whose predicted bias exceeds 20%, or longer than
+//   the friction time, is refused. The event scheme and the PDMP are exact
+//   within phases and are not judged by this rule.
+//
+// * Can an excursion finish? An excursion of coloured noise ends only when,
+//   stuck, the noise has crossed the static band from one threshold to the
+//   other, so it lasts at least about the mean first-passage time of the
+//   Ornstein-Uhlenbeck noise from 0 to the thresholds, T(h) = tau sqrt(2 pi)
+//   int_0^h exp(u^2/2) Phi(u) du with h the threshold in standard deviations
+//   of the noise (exact for the OU process; Fig. 2 case: 3.1 s against the
+//   measured E[t1] = 8.1 s). When even this lower bound needs more steps (or
+//   PDMP events) than --max-steps allows, most excursions would run into the
+//   guard: the run is refused at once, with the estimate, rather than after
+//   an hour; when the run as a whole is predicted to be long, it says so.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stickslip/run.hpp"
+
+namespace stickslip::detail {
+
+/// Mean first-passage time [s] of the stationary OU noise (correlation time
+/// tau [s]) from 0 to h standard deviations, h >= 0; +inf beyond h = 37.
+double ou_first_passage_time(double h, double tau);
+
+/// A lower bound of the mean duration E[t1] [s] of a long excursion of
+/// coloured noise: the mean of T(h) over the two thresholds. 0 for white noise.
+double excursion_duration_lower_bound(const ModelParams& p);
+
+/// Steps (inclusion) or events (PDMP) a long excursion needs at least.
+double excursion_work_lower_bound(const PreparedEngine& e);
+
+/// The predicted relative bias of D of the resolvent scheme (see above): > 0
+/// when D comes out too high.
+double resolvent_bias(const ModelParams& p, double dt);
+
+/// Refuses (InvalidParameter "dt") a resolvent step whose predicted bias of D
+/// exceeds 20% or that is longer than the friction time; adds a note for one
+/// whose predicted bias exceeds 2%.
+void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
+
+/// Refuses (InvalidParameter "max-steps") a run of long excursions that
+/// cannot end under the runaway guard (see the top of the file).
+void check_excursions_can_end(const PreparedEngine& e);
+
+/// A note when `samples` long excursions are predicted to cost more than
+/// 1e11 steps or events (about twenty minutes on one core and more), with the
+/// estimate; nothing otherwise.
+void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes);
+
+} // namespace stickslip::detail
