@@ -35,7 +35,8 @@ noise^2/friction^3, diffusivity noise^3/friction^4; both are reported.
 Defaults are the paper's Fig. 2 case. Results are bitwise reproducible for a
 given --seed, whatever --threads. A run's settings can be kept in a file:
 --print-config writes them, --config FILE reads them back. Exit codes: 0 ok,
-1 I/O or internal error, 2 bad input, 3 untrustworthy run (runaway excursions, or every
+1 I/O error while running or internal error, 2 bad input (an --output that
+cannot be created included), 3 untrustworthy run (runaway excursions, or every
 excursion shorter than one step),
 130/143 stopped by SIGINT/SIGTERM: the first signal lets the blocks in flight
 finish and writes the result so far (marked "interrupted") and the checkpoint;

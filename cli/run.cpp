@@ -37,6 +37,18 @@ int run_command(int argc, char** argv) {
     app.set_version_flag("--version", stickslip::version());
     const auto actions = register_all(app);
 
+    // CLI11 would answer a misspelt subcommand with "A subcommand is required".
+    if (argc > 1 && argv[1][0] != '-') {
+        std::string names;
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+            known = known || sub->check_name(argv[1]);
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (!known)
+            return report(kExitBadInput, "error: unknown subcommand '" + std::string(argv[1]) + "'; one of: " + names +
+                                             " (see --help)");
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <sys/stat.h>
 
 #include "stickslip/version.hpp"
 
@@ -43,6 +44,11 @@ void SettingFlags::apply() {
         const std::string& path = config_path_;
         std::ifstream in(path);
         if (!in) throw InvalidParameter("config", "cannot read '" + path + "': " + std::strerror(errno));
+        // A folder opens, and reads as an empty file: refuse it rather than
+        // run the defaults (found by tests/fuzz/).
+        struct stat st {};
+        if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+            throw InvalidParameter("config", "cannot read '" + path + "': " + std::strerror(EISDIR));
         std::vector<CLI::ConfigItem> items;
         try {
             items = CLI::ConfigTOML().from_config(in);

@@ -8,6 +8,11 @@
 namespace stickslip {
 
 namespace {
+/// Below this many trajectories the fourth-moment standard error of D_t is noise.
+constexpr std::uint64_t kFewTrajectories = 100;
+} // namespace
+
+namespace {
 
 /// Every check of a request, once; returns its prepared engine.
 PreparedEngine prepare_request(const BruteForceRequest& req) {
@@ -43,6 +48,12 @@ BruteForceResult compute_bruteforce(const BruteForceRequest& req) {
     if (std::fabs(simulated - req.horizon) > 1e-9 * req.horizon)
         out.warnings.push_back("time rounded to a whole number of steps: " + detail::format_number(simulated) + " s simulated");
     out.estimates = estimate_bruteforce(out.totals.moments, simulated, req.level);
+    const std::uint64_t n = out.totals.moments.count();
+    if (n < kFewTrajectories)
+        out.warnings.push_back("only " + std::to_string(n) + " trajectories: the standard error of D_t comes from "
+                               "their fourth moment and is unreliable below " + std::to_string(kFewTrajectories) +
+                               (n == 2 ? std::string(" (with 2 it is 0 by construction)") : std::string()) +
+                               "; use 1000 or more");
     out.warnings.push_back("brute force estimates D_t = var U(t)/t, biased against D by O(1/t) (relative bias shrinks "
                            "like E[t1]/t); use `stickslip diffusivity` for an unbiased estimate");
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "format.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {
@@ -98,8 +99,11 @@ void parse_setting(const SettingInfo&, const std::string& text, Estimator& out) 
 const char* setting_form(const Estimator&) { return "renewal|paper"; }
 
 double normal_quantile_two_sided(double level) {
-    if (!(level > 0.0 && level < 1.0))
-        throw InvalidParameter("level", "level must be strictly between 0 and 1");
+    // 0.5 (1 + level) rounds to 1 for level above 1 - 1.1e-16, where the
+    // quantile is infinite: such a level is refused, not an overflow.
+    if (!(level > 0.0 && level < 1.0) || !(0.5 * (1.0 + level) < 1.0))
+        throw InvalidParameter("level", "level must be strictly between 0 and 1, and at most 0.9999999999999998 "
+                                        "(double precision); got " + detail::format_number(level, 17));
     return boost::math::quantile(boost::math::normal_distribution<double>(), 0.5 * (1.0 + level));
 }
 

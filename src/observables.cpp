@@ -790,6 +790,9 @@ PreparedEngine prepare_request(const TrajectoryRequest& req) {
         throw InvalidParameter("every", "every must be a finite number >= 0 (s), got " + detail::format_number(req.every));
     detail::check_start(req.x0, req.v0);
     if (req.index > max_sample_index) throw InvalidParameter("index", "index must be < 2^56");
+    if (req.max_points < 2)
+        throw InvalidParameter("max-points", "max-points must be at least 2 (a path's start and end), got " +
+                                                 std::to_string(req.max_points));
     if (req.paths > 0) {
         const double every = req.every > 0 ? req.every : req.horizon / 1000;
         if (req.horizon / every > static_cast<double>(req.max_points))

@@ -63,9 +63,18 @@ void validate(const ModelParams& p) {
         throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + detail::format_number(p.bias));
     // Products that overflow would make every later formula meaningless.
     const Scales s = scales_of(p);
-    if (!std::isfinite(s.diffusivity) || s.diffusivity <= 0 || !std::isfinite(s.time) || s.time <= 0)
-        throw InvalidParameter("noise", "friction and noise are out of the representable range: noise^3/friction^4 = " +
-                                            detail::format_number(s.diffusivity));
+    if (!std::isfinite(s.diffusivity) || s.diffusivity <= 0 || !std::isfinite(s.time) || s.time <= 0) {
+        // Name the parameter that is further from 1 (the one to rescale), and
+        // say which unit of the nondimensional system leaves double's range.
+        const bool friction_off = std::fabs(std::log10(p.friction)) >= std::fabs(std::log10(p.noise));
+        const char* unit = !(std::isfinite(s.time) && s.time > 0) ? "the time unit noise/friction^2"
+                                                                  : "the diffusivity unit noise^3/friction^4";
+        throw InvalidParameter(friction_off ? "friction" : "noise",
+                               "friction = " + detail::format_number(p.friction) + " m s^-2 and noise = " +
+                                   detail::format_number(p.noise) + " m^2 s^-3 put " + unit +
+                                   " outside double precision's range; rescale the units (SI multiples) so that "
+                                   "both are nearer 1");
+    }
 }
 
 bool has_stationary_state(const ModelParams& p) {

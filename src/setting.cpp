@@ -110,17 +110,35 @@ std::string format_setting(const NumberRange& x) {
 void parse_setting(const SettingInfo& info, const std::string& text, double& out) {
     char* end = nullptr;
     errno = 0;
+    // Decimal only: strtod would also read hexadecimal ("0x10" = 16) and
+    // hexadecimal floats, which no user means on this command line.
+    const bool decimal = text.find_first_of("xXpP") == std::string::npos;
     const double x = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+    // ERANGE: overflow (x = +-HUGE_VAL) is refused; underflow to a subnormal
+    // or zero (5e-324, 1e-400) is the nearest double, as for any decimal.
+    const bool overflow = errno == ERANGE && std::isinf(x);
+    if (text.empty() || !decimal || end != text.c_str() + text.size() || overflow)
         fail(info, "must be a number, got " + quoted(text));
     if (std::isnan(x)) fail(info, "must be a number, got NaN");
     out = x;
 }
 
 void parse_setting(const SettingInfo& info, const std::string& text, std::uint64_t& out) {
+    // Plain digits are read exactly (seeds use all 64 bits); other forms (1e6)
+    // through double, only where every integer is exact (below 2^53).
+    if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos) {
+        char* end = nullptr;
+        errno = 0;
+        const unsigned long long n = std::strtoull(text.c_str(), &end, 10);
+        if (errno == ERANGE || end != text.c_str() + text.size())
+            fail(info, "must be a non-negative integer below 2^64, got " + quoted(text));
+        out = static_cast<std::uint64_t>(n);
+        return;
+    }
     double x = 0;
     parse_setting(info, text, x); // accepts 1e6
-    if (!(x >= 0) || x != std::floor(x) || x > 1.8e19) fail(info, "must be a non-negative integer, got " + quoted(text));
+    if (!(x >= 0) || x != std::floor(x) || x > 9007199254740992.0)
+        fail(info, "must be a non-negative integer (digits, or a form like 1e6 up to 2^53), got " + quoted(text));
     out = static_cast<std::uint64_t>(x);
 }
 

@@ -86,6 +86,11 @@ class DiffusivityTest(unittest.TestCase):
         self.assertNotIsInstance(c.exception, stickslip.CappedExcursionsError)
         self.assertIn("first step", str(c.exception))
 
+    def test_level_too_close_to_one_is_invalid_not_overflow(self):
+        with self.assertRaises(stickslip.InvalidParameterError) as c:
+            stickslip.diffusivity(P, excursions=64, level=0.9999999999999999)
+        self.assertEqual(c.exception.parameter, "level")
+
     def test_progress_line(self):
         err = io.StringIO()
         with contextlib.redirect_stderr(err):

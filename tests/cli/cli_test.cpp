@@ -350,7 +350,18 @@ const BadInput kBadInputs[] = {
     {{"bruteforce", "--engine", "pdmp", "--tau", "0"}, "tau"},
     {{"bruteforce", "--friction", "0"}, "friction"},
     {{}, "subcommand"},
-    {{"nonsense"}, "subcommand"},
+    {{"nonsense"}, "unknown subcommand 'nonsense'; one of: diffusivity,"},
+    // Found trying extreme input as a new user would (each used to end
+    // otherwise: exit 1 with a Boost overflow, a message naming --noise with
+    // "-nan", hexadecimal accepted, "--every" blamed, D = nan with exit 0 ...).
+    {{"diffusivity", "--level", "0.9999999999999999"}, "--level: level must be strictly between 0 and 1"},
+    {{"diffusivity", "--friction", "1e308"}, "--friction: friction = 1e+308 m s^-2"},
+    {{"diffusivity", "--noise", "1e-300"}, "--noise: friction = 3.84"},
+    {{"diffusivity", "--friction", "0x10"}, "--friction: friction must be a number, got '0x10'"},
+    {{"diffusivity", "--excursions", "0x10"}, "--excursions"},
+    {{"diffusivity", "--excursions", "1e300"}, "--excursions"},
+    {{"diffusivity", "--seed", "18446744073709551616"}, "--seed"},
+    {{"trajectory", "--max-points", "0"}, "--max-points: max-points must be at least 2"},
 };
 
 std::string bad_input_name(const ::testing::TestParamInfo<BadInput>& info) {
@@ -428,6 +439,30 @@ TEST(CliUntrustworthy, ExcursionsShorterThanOneStepAreExitThree) {
                               "--bias", "0", "--dt", "1e-10", "--excursions", "200"});
     EXPECT_EQ(sweep.code, 3) << sweep.err;
     EXPECT_NE(sweep.err.find("[at noise 1, tau 1e-08]"), std::string::npos) << sweep.err;
+}
+
+TEST(CliNumbers, SubnormalsAndFullSeedsAreNumbersLikeAnyOther) {
+    // 5e-324 is the smallest double (strtod flags it ERANGE, and it was
+    // refused as "not a number"); seeds are read exactly up to 2^64 - 1.
+    const Result tiny = run({"diffusivity", "--bias", "5e-324", "--dt", "1e-2", "--excursions", "64", "--format",
+                             "json", "--quiet"});
+    EXPECT_EQ(tiny.code, 0) << tiny.err;
+    EXPECT_EQ(nlohmann::json::parse(tiny.out)["params"]["bias"].get<double>(), 5e-324);
+    const Result seed = run({"diffusivity", "--seed", "18446744073709551615", "--dt", "1e-2", "--excursions", "64",
+                             "--format", "json", "--quiet"});
+    ASSERT_EQ(seed.code, 0) << seed.err;
+    EXPECT_EQ(nlohmann::json::parse(seed.out)["params"]["seed"].get<std::uint64_t>(), 18446744073709551615ull);
+    const Result near = run({"diffusivity", "--seed", "9007199254740993", "--dt", "1e-2", "--excursions", "64",
+                             "--format", "json", "--quiet"});
+    ASSERT_EQ(near.code, 0) << near.err;
+    EXPECT_EQ(nlohmann::json::parse(near.out)["params"]["seed"].get<std::uint64_t>(), 9007199254740993ull); // not rounded
+}
+
+TEST(CliWarnings, TwoTrajectoriesSayTheirIntervalIsNotAnInterval) {
+    const Result r = run({"bruteforce", "--trajectories", "2", "--time", "1", "--dt", "1e-2"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("only 2 trajectories"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("0 by construction"), std::string::npos) << r.out;
 }
 
 TEST(CliUntrustworthy, OverflowingInputsAreRefusedUpFront) {

@@ -94,6 +94,14 @@ TEST_P(CliBadConfig, ExitsTwoWithOneLineNamingTheKey) {
     if (!GetParam().missing) std::remove(path.c_str());
 }
 
+TEST(CliConfig, AFolderIsRefusedNotReadAsAnEmptyFile) { // found by tests/fuzz/ (fuzz_cli)
+    const Result r = run({"diffusivity", "--config", ::testing::TempDir(), "--excursions", "64", "--dt", "1e-3"});
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("cannot read"), std::string::npos) << r.err;
+}
+
 INSTANTIATE_TEST_SUITE_P(All, CliBadConfig,
                          ::testing::Values(BadConfig{"frictoin = 3\n", false, "frictoin"},
                                            BadConfig{"grid = fast\n", false, "--grid"},
