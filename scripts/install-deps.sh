@@ -29,6 +29,10 @@ PACKAGES=(
   python3-wheel       # idem
   libopenmpi-dev      # MPI: `mpirun -np P stickslip diffusivity ...` (STICKSLIP_MPI)
   openmpi-bin         # mpirun, for the MPI test
+  doxygen             # the C++ API reference: `cmake --build build --target docs` (label docs)
+  python3-nbconvert   # examples/quickstart.ipynb: notebook tooling (jupyter nbconvert)
+  python3-nbclient    # runs the notebook in its test (python/tests/test_notebook.py)
+  python3-ipykernel   # the Python kernel the notebook runs in
 )
 
 if [[ "${STICKSLIP_SKIP_DEPS:-0}" == 1 ]]; then
