@@ -39,11 +39,32 @@ std::string to_json(const DiffusivityResult& r, int indent) {
         pr["max_excursions"] = q.max_excursions;
         j["precision"] = pr;
     }
+    if (r.discretisation) {
+        const DiscretisationCheck& c = *r.discretisation;
+        ordered_json dc;
+        dc["dt"] = c.dt;
+        dc["check_dt"] = c.check_dt;
+        dc["excursions"] = c.excursions;
+        dc["steps"] = c.steps;
+        dc["diffusivity"] = {{"difference", json_number(c.diffusivity_difference)},
+                             {"stderr", json_number(c.diffusivity_stderr)}};
+        dc["mobility"] = {{"difference", json_number(c.mobility_difference)},
+                          {"stderr", json_number(c.mobility_stderr)}};
+        j["discretisation"] = dc;
+    }
     j["engine_details"] = engine_details_json(r.resolved, q);
     const ordered_json work = work_json(q.engine, r.totals);
     add_report_tail(j, &work, r.warnings, r.totals.interrupted);
     return dump(j, indent);
 }
+
+namespace {
+/// "a +- b unit (z = ...)" for a --check-dt difference.
+std::string difference_text(double difference, double stderr_, const char* unit) {
+    return format_number(difference, 3) + " +- " + format_number(stderr_, 2) + " " + unit + " (z = " +
+           format_number(difference / stderr_, 2) + ")";
+}
+} // namespace
 
 std::string to_table(const DiffusivityResult& r) {
     const auto& q = r.request;
@@ -57,6 +78,14 @@ std::string to_table(const DiffusivityResult& r) {
     table_row(os, "diffusivity D", d, sc.diffusivity, "m^2/s");
     table_row(os, "mobility M0", r.estimates.mobility, sc.velocity, "m/s");
     table_row(os, "mean E[t1]", r.estimates.mean_duration, sc.time, "s", false);
+    if (r.discretisation) {
+        const DiscretisationCheck& c = *r.discretisation;
+        os << "\ncheck at 2 dt = " << format_number(c.check_dt) << " s (" << c.excursions
+           << " excursions): D(2 dt) - D(dt) = "
+           << difference_text(c.diffusivity_difference, c.diffusivity_stderr, "m^2/s")
+           << "\n                                   M0(2 dt) - M0(dt) = "
+           << difference_text(c.mobility_difference, c.mobility_stderr, "m/s") << "\n";
+    }
     os << "\n"
        << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals,
                     "; relative half-width of D: " + format_number(100 * (d.hi - d.value) / d.value, 3) + "%")
@@ -69,12 +98,23 @@ std::string to_csv(const DiffusivityResult& r) {
     const auto& p = q.params;
     std::ostringstream os;
     os << "engine,friction,noise,tau,relaxation,bias,excursions,seed," << csv_estimate_header("diffusivity") << ","
-       << csv_estimate_header("mobility") << ",mean_duration,mean_duration_stderr\n";
+       << csv_estimate_header("mobility") << ",mean_duration,mean_duration_stderr"
+       << (r.discretisation ? ",check_dt,diffusivity_difference,diffusivity_difference_stderr,mobility_difference,"
+                              "mobility_difference_stderr"
+                            : "")
+       << "\n";
     os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
        << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
        << r.estimates.excursions << "," << q.control.seed << "," << csv_estimate(r.estimates.diffusivity) << ","
        << csv_estimate(r.estimates.mobility) << "," << csv_number(r.estimates.mean_duration.value) << ","
-       << csv_number(r.estimates.mean_duration.std_error) << "\n";
+       << csv_number(r.estimates.mean_duration.std_error);
+    if (r.discretisation) {
+        const DiscretisationCheck& c = *r.discretisation;
+        os << "," << csv_number(c.check_dt) << "," << csv_number(c.diffusivity_difference) << ","
+           << csv_number(c.diffusivity_stderr) << "," << csv_number(c.mobility_difference) << ","
+           << csv_number(c.mobility_stderr);
+    }
+    os << "\n";
     return os.str();
 }
 

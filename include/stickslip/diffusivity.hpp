@@ -9,6 +9,7 @@
 /// The comment at the top of this header explains the design.
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -40,7 +41,16 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     /// nominal level; with few, large batches the effect is small.
     double rel_precision = 0.0;
     std::uint64_t max_excursions = 100'000'000; ///< cap of the precision-on-demand mode
+    /// The step's bias made visible (inclusion engine): after the run, run
+    /// as many excursions again at twice the step, on independent streams
+    /// (sample indices from check_dt_first_index on), and report the
+    /// difference of D and M0 (DiffusivityResult::discretisation).
+    bool check_dt = false;
 };
+
+/// First sample index of the --check-dt run, 2^55: disjoint from the main
+/// run's indices (which the precision mode keeps below max_excursions).
+inline constexpr std::uint64_t check_dt_first_index = std::uint64_t{1} << 55;
 
 /// The request's settings: RunSettings', ExcursionSettings', then
 /// --estimator, --rel-precision and --max-excursions.
@@ -57,7 +67,29 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
                                    "off. The stopping "
                                    "time depends on the data, so the interval's coverage is slightly below --level"});
     v(r.max_excursions, SettingInfo{"max-excursions", "", "cap of --rel-precision: most excursions in all"});
+    v(r.check_dt, SettingInfo{"check-dt", "",
+                              "also run as many excursions at twice --dt on independent streams and report the "
+                              "difference of D and M0 (inclusion engine): the step's bias, with its standard error"});
 }
+
+/// The --check-dt comparison: the same estimates at twice the step.
+struct DiscretisationCheck {
+    double dt = 0.0;       ///< the run's step [s]
+    double check_dt = 0.0; ///< twice it [s]
+    /// Excursions completed at check_dt.
+    std::uint64_t excursions = 0;
+    /// Steps made at check_dt.
+    std::uint64_t steps = 0;
+    /// D at check_dt minus D at dt [m^2/s].
+    double diffusivity_difference = 0.0;
+    /// Its standard error [m^2/s] (the runs are independent: the two
+    /// standard errors add in quadrature).
+    double diffusivity_stderr = 0.0;
+    /// M0 at check_dt minus M0 at dt [m/s].
+    double mobility_difference = 0.0;
+    /// Its standard error [m/s].
+    double mobility_stderr = 0.0;
+};
 
 /// How a precision-on-demand run ended.
 struct PrecisionOutcome {
@@ -88,6 +120,8 @@ struct DiffusivityResult {
     /// PDMP lattice, caveats on E[t1], the paper's estimator with M0 != 0, a
     /// precision target not reached, an interrupted run.
     std::vector<std::string> warnings;
+    /// The --check-dt comparison (request.check_dt), when it ran.
+    std::optional<DiscretisationCheck> discretisation;
 };
 
 /// Thrown when a run finished but its numbers cannot be believed: every
@@ -106,6 +140,11 @@ struct CappedExcursions : UntrustworthyResult {
     /// `m`: the message for the user (how many were capped, what to do).
     explicit CappedExcursions(const std::string& m) : UntrustworthyResult(m) {}
 };
+
+/// The request of the --check-dt run of `req`: `excursions` at 2 dt, from
+/// sample index check_dt_first_index + req.control.first_index, without
+/// precision mode or a check of its own.
+DiffusivityRequest check_dt_request(const DiffusivityRequest& req, std::uint64_t excursions);
 
 /// Every check of a request, once (InvalidParameter on the first problem);
 /// returns the engine prepared for it.

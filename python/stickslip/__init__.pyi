@@ -59,6 +59,7 @@ def diffusivity(
     estimator: Literal['renewal', 'paper'] = ...,
     rel_precision: float = ...,
     max_excursions: int = ...,
+    check_dt: bool = ...,
     progress: bool = False,
     checkpoint: Optional[str] = None,
     checkpoint_every: float = ...,

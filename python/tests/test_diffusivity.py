@@ -91,6 +91,14 @@ class DiffusivityTest(unittest.TestCase):
             stickslip.diffusivity(P, excursions=64, level=0.9999999999999999)
         self.assertEqual(c.exception.parameter, "level")
 
+    def test_check_dt(self):
+        r = stickslip.diffusivity(P, scheme="event", dt=0.03, excursions=2048, check_dt=True, threads=1)
+        c = r.discretisation
+        self.assertEqual((c["dt"], c["check_dt"], c["excursions"]), (0.03, 0.06, 2048))
+        self.assertGreater(c["diffusivity"]["stderr"], 0)
+        self.assertEqual(r.to_dict()["discretisation"]["mobility"]["difference"], c["mobility"]["difference"])
+        self.assertIsNone(stickslip.diffusivity(P, dt=0.03, excursions=64, threads=1).discretisation)
+
     def test_progress_line(self):
         err = io.StringIO()
         with contextlib.redirect_stderr(err):

@@ -134,6 +134,7 @@ const Case kCases[] = {
     {"diffusivity_pdmp", {"diffusivity", "--engine", "pdmp", "--excursions", "6000"}},
     {"diffusivity_event", {"diffusivity", "--scheme", "event", "--dt", "0.05", "--excursions", "20000"}},
     {"precision", {"diffusivity", "--dt", "1e-2", "--excursions", "2000", "--rel-precision", "0.02"}},
+    {"check_dt", {"diffusivity", "--dt", "1e-2", "--excursions", "30000", "--check-dt"}},
     {"bruteforce", {"bruteforce", "--dt", "1e-2", "--time", "5", "--trajectories", "60000"}},
     {"bruteforce_pdmp", {"bruteforce", "--engine", "pdmp", "--time", "5", "--trajectories", "12000"}},
     {"density", {"density", "--dt", "1e-2", "--excursions", "30000"}},

@@ -465,6 +465,52 @@ TEST(CliWarnings, TwoTrajectoriesSayTheirIntervalIsNotAnInterval) {
     EXPECT_NE(r.out.find("0 by construction"), std::string::npos) << r.out;
 }
 
+// --- --check-dt ------------------------------------------------------------------
+
+TEST(CliCheckDt, DetectsTheResolventBiasOfWhiteNoiseAtACoarseStep) {
+    // White noise, dt' = 0.1: D is biased by about -12% at dt and -17% at
+    // 2 dt (docs/validation.md, "Step checks"), a difference of about 6% of D;
+    // with 2e5 excursions per run its standard error is about 1.5% (seed 1:
+    // -6.8% +- 1.7%, z = -3.9).
+    const Result r = run({"diffusivity", "--friction", "1", "--noise", "1", "--tau", "0", "--relaxation", "inf",
+                          "--bias", "0", "--dt", "0.1", "--excursions", "200000", "--check-dt", "--format", "json",
+                          "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    const json& c = j.at("discretisation");
+    EXPECT_EQ(c.at("dt").get<double>(), 0.1);
+    EXPECT_EQ(c.at("check_dt").get<double>(), 0.2);
+    EXPECT_EQ(c.at("excursions").get<std::uint64_t>(), 200000u);
+    const double diff = c.at("diffusivity").at("difference").get<double>();
+    const double se = c.at("diffusivity").at("stderr").get<double>();
+    EXPECT_LT(diff / se, -3.0) << "D(2 dt) - D(dt) = " << diff << " +- " << se << ", z = " << diff / se;
+    bool warned = false;
+    for (const auto& w : j.at("warnings")) warned = warned || w.get<std::string>().find("bias is visible") != std::string::npos;
+    EXPECT_TRUE(warned) << j.at("warnings").dump();
+}
+
+TEST(CliCheckDt, EventSchemeShowsNoBiasAndTheTableSaysSo) {
+    const Args args{"diffusivity", "--scheme", "event", "--dt", "0.03", "--excursions", "20000", "--check-dt"};
+    const Result r = run(args);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("check at 2 dt = 0.06 s (20000 excursions): D(2 dt) - D(dt) = "), std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("bias is visible"), std::string::npos) << r.out; // seed 1: z = 1.1 (D), -1.0 (M0)
+    const Result csv = run(with(args, {"--format", "csv"}));
+    ASSERT_EQ(csv.code, 0) << csv.err;
+    EXPECT_NE(csv.out.find(",check_dt,diffusivity_difference,"), std::string::npos) << csv.out;
+}
+
+TEST(CliCheckDt, RefusedWhereItCannotRun) {
+    const Result pdmp = run({"diffusivity", "--engine", "pdmp", "--check-dt"});
+    EXPECT_EQ(pdmp.code, 2) << pdmp.err;
+    EXPECT_NE(pdmp.err.find("--check-dt"), std::string::npos) << pdmp.err;
+    // 2 dt = 0.08 s would be longer than the relaxation time 0.067 s.
+    const Result coarse = run({"diffusivity", "--dt", "0.04", "--check-dt"});
+    EXPECT_EQ(coarse.code, 2) << coarse.err;
+    EXPECT_NE(coarse.err.find("--check-dt: twice the step cannot be run: --dt"), std::string::npos) << coarse.err;
+}
+
 TEST(CliUntrustworthy, OverflowingInputsAreRefusedUpFront) {
     for (const Args& args : {Args{"moments", "--v0", "1e200"}, Args{"density", "--range=-1e308,1e308"},
                              Args{"density", "--range=1,1.0000000000000002"}}) {
