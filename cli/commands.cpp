@@ -120,6 +120,8 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                         req.control.progress = progress_line(state->output.quiet, progress.samples,
                                                              progress.with_estimate ? req.level : 0.0);
                     req.control.notice = notice_line(state->output.quiet);
+                } else {
+                    (void)progress; // only runs report progress
                 }
                 if constexpr (resumable<Request>()) {
                     req.control.stop = StopOnSignals::flag();

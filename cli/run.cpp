@@ -7,8 +7,10 @@
 #include "run.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 #include "commands.hpp"
 #include "distributed.hpp"
@@ -38,7 +40,12 @@ int run_command(int argc, char** argv) {
     const auto actions = register_all(app);
 
     // CLI11 would answer a misspelt subcommand with "A subcommand is required".
-    if (argc > 1 && argv[1][0] != '-') {
+    // (--help and --version go to CLI11 as they always did.)
+    const bool asks_for_help = std::any_of(argv + 1, argv + argc, [](const char* a) {
+        const std::string_view s(a);
+        return s == "--help" || s == "-h" || s == "--help-all" || s == "--version";
+    });
+    if (argc > 1 && argv[1][0] != '-' && !asks_for_help) {
         std::string names;
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {

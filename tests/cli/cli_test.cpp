@@ -458,6 +458,12 @@ TEST(CliNumbers, SubnormalsAndFullSeedsAreNumbersLikeAnyOther) {
     EXPECT_EQ(nlohmann::json::parse(near.out)["params"]["seed"].get<std::uint64_t>(), 9007199254740993ull); // not rounded
 }
 
+TEST(CliHelp, HelpWinsOverAMisspeltSubcommand) { // found by tests/fuzz/ (fuzz_cli)
+    const Result r = run({"densitypaper", "--help"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("Subcommands:"), std::string::npos) << r.out;
+}
+
 TEST(CliWarnings, TwoTrajectoriesSayTheirIntervalIsNotAnInterval) {
     const Result r = run({"bruteforce", "--trajectories", "2", "--time", "1", "--dt", "1e-2"});
     EXPECT_EQ(r.code, 0) << r.err;
