@@ -7,10 +7,8 @@
 #include "run.hpp"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <string>
-#include <string_view>
 
 #include "commands.hpp"
 #include "distributed.hpp"
@@ -39,23 +37,6 @@ int run_command(int argc, char** argv) {
     app.set_version_flag("--version", stickslip::version());
     const auto actions = register_all(app);
 
-    // CLI11 would answer a misspelt subcommand with "A subcommand is required".
-    // (--help and --version go to CLI11 as they always did.)
-    const bool asks_for_help = std::any_of(argv + 1, argv + argc, [](const char* a) {
-        const std::string_view s(a);
-        return s == "--help" || s == "-h" || s == "--help-all" || s == "--version";
-    });
-    if (argc > 1 && argv[1][0] != '-' && !asks_for_help) {
-        std::string names;
-        bool known = false;
-        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-            known = known || sub->check_name(argv[1]);
-            names += (names.empty() ? "" : ", ") + sub->get_name();
-        }
-        if (!known)
-            return report(kExitBadInput, "error: unknown subcommand '" + std::string(argv[1]) + "'; one of: " + names +
-                                             " (see --help)");
-    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -65,6 +46,14 @@ int run_command(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return is_root() ? app.exit(e) : 0;
     } catch (const CLI::ParseError& e) {
+        // CLI11 answers a misspelt subcommand with "A subcommand is required".
+        if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+            std::string names;
+            for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+                names += (names.empty() ? "" : ", ") + sub->get_name();
+            return report(kExitBadInput, "error: unknown subcommand '" + std::string(argv[1]) + "'; one of: " +
+                                             names + " (see --help)");
+        }
         std::string msg = e.what();
         for (auto& ch : msg)
             if (ch == '\n') ch = ' ';
