@@ -65,6 +65,7 @@
 #include "excursion.hpp"
 #include "params.hpp"
 #include "phase_law.hpp"
+#include "portable_math.hpp"
 #include "rng.hpp"
 
 namespace stickslip {
@@ -206,7 +207,7 @@ STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double 
     double y = b;
     if (b > 0.0) { // both ends short of it: cross with the bridge probability
         const double e = 2.0 * a * b / (L.x_var_rate * L.x_u_len);
-        if (e > 50.0 || !(u < std::exp(-e))) return -1.0;
+        if (e > 50.0 || !kernel_below_exp(u, -e)) return -1.0;
         y = -b; // the reflected end
     }
     // s ~ IG(mean a u_len / |y|, shape a^2 / sigma^2), the hitting time of -a
@@ -225,7 +226,7 @@ STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double 
         s_hit = v * (mu + root) <= mu ? root : mu * mu / root;
     }
     const double t_u = L.x_u_len * s_hit / (L.x_u_len + s_hit); // back to the bridge's clock
-    return 0.5 * L.x_tau * std::log1p(2.0 * t_u / L.x_tau);    // and to real time
+    return 0.5 * L.x_tau * kernel_log1p(2.0 * t_u / L.x_tau); // and to real time
 }
 
 /// The lowest value of s V over a piece of depth level L between the

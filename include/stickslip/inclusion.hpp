@@ -27,6 +27,7 @@
 #include "excursion.hpp"
 #include "noise.hpp"
 #include "params.hpp"
+#include "portable_math.hpp"
 
 namespace stickslip {
 
@@ -80,6 +81,17 @@ STICKSLIP_HD inline double bridge_crossing_probability(const InclusionConstants&
                                                        double x1, double level) {
     const double e = (x0 - level) * (x1 - level) * c.bridge_rate;
     return e > bridge_exponent_cutoff ? 0.0 : std::exp(-e);
+}
+
+/// The bridge test of rule Q: whether the side uniform of the last draw is
+/// below bridge_crossing_probability(c, x0, x1, level), i.e. the bridge
+/// touched the level. The exponential is taken through kernel_below_exp
+/// (portable_math.hpp): std::exp on the host, as bridge_crossing_probability;
+/// on a CUDA device so that the decision is the correctly rounded exp's.
+template <class Rng>
+STICKSLIP_HD inline bool bridge_crossed(const InclusionConstants& c, double x0, double x1, double level, Rng& rng) {
+    const double e = (x0 - level) * (x1 - level) * c.bridge_rate;
+    return !(e > bridge_exponent_cutoff) && kernel_below_exp(rng.side_uniform(), -e);
 }
 
 /// One colored-noise step from (x, v): writes the end-of-step noise and the
@@ -196,10 +208,7 @@ STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& 
             if (w.x >= c.x_down && w.x <= c.x_up) { // stuck at the start of the step
                 const double target = w.dir > 0 ? c.x_down : c.x_up;
                 bool crossed = w.dir > 0 ? x_next <= target : x_next >= target;
-                if (!crossed) {
-                    const double p = bridge_crossing_probability(c, w.x, x_next, target);
-                    crossed = p > 0.0 && rng.side_uniform() < p;
-                }
+                if (!crossed) crossed = bridge_crossed(c, w.x, x_next, target, rng);
                 if (crossed) return WalkStatus::HalfDone;
             }
         } else if (w.prev_stuck && (w.dir > 0 ? f < -c.h_friction : f > c.h_friction)) {

@@ -17,10 +17,14 @@
 //
 // Exactness: the fast path is one correctly rounded multiply of an exact
 // integer, so the result is bitwise the same on every IEEE machine and SIMD
-// width; the rare slow path calls std::exp and std::log once or twice.
+// width; the rare slow path takes exp and log once or twice, through
+// kernel_below_exp and kernel_log (portable_math.hpp): glibc's on the host,
+// the project's own on a CUDA device.
 //
-// GPU note: the functions are STICKSLIP_HD, but the tables are host constexpr
-// arrays; a CUDA build must mirror them in __constant__ memory.
+// GPU note: the functions are STICKSLIP_HD; device code reads the tables from
+// a copy in global memory (detail/ziggurat_device_tables.hpp, read through the
+// read-only cache: the lanes of a warp index them divergently, which
+// __constant__ memory would serialise), made from these arrays at compile time.
 #pragma once
 
 /// \file
@@ -34,6 +38,18 @@
 
 #include "config.hpp"
 #include "detail/ziggurat_tables.hpp"
+#include "portable_math.hpp"
+#if defined(__CUDACC__)
+#include "detail/ziggurat_device_tables.hpp"
+#endif
+
+/// The ziggurat table `name` (zig_k, zig_w, zig_f) as the current code sees
+/// it: the host array, or its device copy in device code.
+#if defined(__CUDA_ARCH__)
+#define STICKSLIP_ZIG_TABLE(name) ::stickslip::detail::name##_device.v
+#else
+#define STICKSLIP_ZIG_TABLE(name) ::stickslip::detail::name
+#endif
 
 namespace stickslip {
 
@@ -46,9 +62,9 @@ inline constexpr std::uint64_t ziggurat_position_mask = (std::uint64_t{1} << 52)
 STICKSLIP_HD inline bool ziggurat_fast(std::uint64_t r, double& x) {
     const unsigned idx = static_cast<unsigned>(r & 0xffu);
     const std::uint64_t pos = (r >> 9) & ziggurat_position_mask;
-    const double a = static_cast<double>(static_cast<std::int64_t>(pos)) * detail::zig_w[idx];
+    const double a = static_cast<double>(static_cast<std::int64_t>(pos)) * STICKSLIP_ZIG_TABLE(zig_w)[idx];
     x = ((r >> 8) & 1u) ? -a : a;
-    return pos < detail::zig_k[idx];
+    return pos < STICKSLIP_ZIG_TABLE(zig_k)[idx];
 }
 
 /// Exact resolution of a word the fast path rejected. `more()` returns fresh
@@ -63,15 +79,16 @@ STICKSLIP_HD inline double ziggurat_resolve(std::uint64_t r, WordSource& more) {
         if (idx == 0) {
             // Tail beyond zig_r: Marsaglia's exponential rejection.
             for (;;) {
-                const double xx = -detail::zig_inv_r * std::log(r123::u01<double>(more()));
-                const double yy = -std::log(r123::u01<double>(more()));
+                const double xx = -detail::zig_inv_r * kernel_log(r123::u01<double>(more()));
+                const double yy = -kernel_log(r123::u01<double>(more()));
                 if (yy + yy > xx * xx) return negative ? -(detail::zig_r + xx) : detail::zig_r + xx;
             }
         }
         // Wedge: accept with the density's height against a uniform in the layer.
-        const double y = (detail::zig_f[idx - 1] - detail::zig_f[idx]) * r123::u01<double>(more()) +
-                         detail::zig_f[idx];
-        if (y < std::exp(-0.5 * x * x)) return x;
+        const double y = (STICKSLIP_ZIG_TABLE(zig_f)[idx - 1] - STICKSLIP_ZIG_TABLE(zig_f)[idx]) *
+                             r123::u01<double>(more()) +
+                         STICKSLIP_ZIG_TABLE(zig_f)[idx];
+        if (kernel_below_exp(y, -0.5 * x * x)) return x;
         r = more();
     }
 }
