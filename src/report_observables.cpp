@@ -146,6 +146,9 @@ std::string to_table(const TransientResult& r) {
                       estimate_cell(r.second_moment[k]).c_str(), estimate_cell(r.stuck[k]).c_str());
         os << buf;
     }
+    if (!r.density.empty())
+        os << "(the transient density, " << r.density.size() << " times x " << q.bins.count
+           << " bins, is in --format json; --format csv gives it alone)\n";
     os << "\n" << work_line(r.totals.moments.count(), "trajectories", q.control.seed, q.engine, r.totals)
        << notes(r.warnings);
     return os.str();

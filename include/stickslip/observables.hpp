@@ -102,7 +102,7 @@ struct StationaryDensityRequest : RunSettings, ExcursionSettings {
 
 /// --sample-dt of the stationary observables.
 inline constexpr SettingInfo sample_dt_info{
-    "sample-dt", "s", "pdmp only: sampling interval of the path; 0 = --dt (the inclusion engine samples every step)"};
+    "sample-dt", "s", "pdmp and --scheme event: sampling interval of the path; 0 = --dt (the resolvent scheme samples every step)"};
 
 /// The request's settings: RunSettings', ExcursionSettings', --bins,
 /// --range and --sample-dt.
