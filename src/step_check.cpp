@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "format.hpp"
 
@@ -34,12 +35,12 @@ double ou_first_passage_time(double h, double tau) {
     if (!(h > 0)) return 0.0;
     if (h > 37.0) return std::numeric_limits<double>::infinity();
     // Simpson's rule on a grid fine enough for the steep end: the integrand
-    // grows like e^{u^2/2}, so 64 intervals per unit of h, at least 256.
+    // grows like e^{u^2/2}, so 64 h^2 intervals, at least 256.
     const int n = 2 * static_cast<int>(std::ceil(std::max(128.0, 32.0 * h * h)));
     const double step = h / n;
     double sum = integrand(0.0) + integrand(h);
     for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * integrand(k * step);
-    return tau * std::sqrt(2.0 * M_PI) * sum * step / 3.0;
+    return tau * std::sqrt(2.0 * std::numbers::pi) * sum * step / 3.0;
 }
 
 double excursion_duration_lower_bound(const ModelParams& p) {

@@ -1,0 +1,56 @@
+// The closed forms behind the step checks (src/step_check.hpp): the mean
+// first-passage time of the OU noise, against its small- and large-threshold
+// expansions, and the bound on an excursion's length in the Fig. 2 case.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "../../src/step_check.hpp"
+#include "stickslip/params.hpp"
+
+namespace stickslip::detail {
+namespace {
+
+// T(h) = tau sqrt(2 pi) int_0^h e^{u^2/2} Phi(u) du.
+// Small h: e^{u^2/2} Phi(u) = 1/2 + u/sqrt(2 pi) + u^2/4 + O(u^3).
+TEST(OuFirstPassage, SmallThresholdSeries) {
+    const double tau = 0.5, h = 0.01;
+    const double s = std::sqrt(2 * std::numbers::pi);
+    const double series = tau * s * (h / 2 + h * h / (2 * s) + h * h * h / 12);
+    EXPECT_NEAR(ou_first_passage_time(h, tau) / series, 1.0, 3e-7); // next term: 0.07 h^3
+}
+
+// Large h: int_0^h e^{u^2/2} Phi(u) du = e^{h^2/2}/h (1 + 1/h^2 + 3/h^4 + ...)
+// up to Phi(u) - 1 = O(e^{-u^2/2}/u), negligible at h = 8.
+TEST(OuFirstPassage, LargeThresholdAsymptotics) {
+    const double tau = 2.0, h = 8.0;
+    const double asym = tau * std::sqrt(2 * std::numbers::pi) * std::exp(h * h / 2) / h *
+                        (1 + 1 / (h * h) + 3 / std::pow(h, 4) + 15 / std::pow(h, 6));
+    EXPECT_NEAR(ou_first_passage_time(h, tau) / asym, 1.0, 2e-4); // next term 105/h^8 = 6e-6
+}
+
+TEST(OuFirstPassage, EdgesAndMonotone) {
+    EXPECT_EQ(ou_first_passage_time(0.0, 1.0), 0.0);
+    EXPECT_TRUE(std::isinf(ou_first_passage_time(38.0, 1.0)));
+    double last = 0.0;
+    for (double h = 0.5; h < 36; h += 0.5) {
+        const double t = ou_first_passage_time(h, 1.0);
+        EXPECT_GT(t, last) << "h = " << h;
+        EXPECT_TRUE(std::isfinite(t)) << "h = " << h;
+        last = t;
+    }
+}
+
+// Fig. 2 case: the bound (3.4 s) lies below the measured E[t1] = 8.04 s
+// (docs/validation.md, sec. 2), as a lower bound must, and within a factor 3.
+TEST(ExcursionBound, BelowTheMeasuredMeanDurationOfFig2) {
+    const ModelParams p; // the paper's Fig. 2 case
+    const double bound = excursion_duration_lower_bound(p);
+    EXPECT_GT(bound, 8.04 / 3);
+    EXPECT_LT(bound, 8.04);
+    EXPECT_EQ(excursion_duration_lower_bound(ModelParams{1, 1, 0, INFINITY, 0}), 0.0); // white noise
+}
+
+} // namespace
+} // namespace stickslip::detail
