@@ -7,8 +7,10 @@
 #include "run.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "distributed.hpp"
@@ -24,6 +26,50 @@ namespace {
 int report(int code, const std::string& line) {
     if (is_root()) std::fprintf(stderr, "stickslip: %s\n", line.c_str());
     return code;
+}
+
+/// Levenshtein distance of a and b (short strings: flag names).
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+/// "; did you mean --excursions?" for the first --flag on the command line
+/// that the chosen subcommand does not have, when one of its flags is within
+/// two edits of it; else "".
+std::string flag_suggestion(CLI::App& app, int argc, char** argv) {
+    const std::vector<CLI::App*> chosen = app.get_subcommands();
+    CLI::App* sub = chosen.empty() ? &app : chosen.front();
+    std::vector<std::string> names;
+    for (const CLI::Option* o : sub->get_options())
+        for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+    for (const CLI::Option* o : app.get_options())
+        for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+    for (int k = 1; k < argc; ++k) {
+        std::string given(argv[k]);
+        if (given.rfind("--", 0) != 0 || given.size() < 4) continue;
+        given = given.substr(0, given.find('='));
+        if (std::find(names.begin(), names.end(), given) != names.end()) continue;
+        std::string best;
+        std::size_t best_distance = 3;
+        for (const std::string& n : names)
+            if (const std::size_t d = edit_distance(given, n); d < best_distance) {
+                best = n;
+                best_distance = d;
+            }
+        return best.empty() ? std::string() : "; did you mean " + best + "?";
+    }
+    return "";
 }
 
 } // namespace
@@ -57,7 +103,7 @@ int run_command(int argc, char** argv) {
         std::string msg = e.what();
         for (auto& ch : msg)
             if (ch == '\n') ch = ' ';
-        return report(kExitBadInput, "error: " + msg + " (see --help)");
+        return report(kExitBadInput, "error: " + msg + flag_suggestion(app, argc, argv) + " (see --help)");
     }
 
     // Bad input and capped runs are found by every process alike (validation

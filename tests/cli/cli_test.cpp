@@ -362,6 +362,8 @@ const BadInput kBadInputs[] = {
     {{"diffusivity", "--excursions", "1e300"}, "--excursions"},
     {{"diffusivity", "--seed", "18446744073709551616"}, "--seed"},
     {{"trajectory", "--max-points", "0"}, "--max-points: max-points must be at least 2"},
+    {{"diffusivity", "--excursion", "200"}, "--excursion; did you mean --excursions?"},
+    {{"sweep", "--noises=1,2"}, "did you mean --noise?"},
 };
 
 std::string bad_input_name(const ::testing::TestParamInfo<BadInput>& info) {
