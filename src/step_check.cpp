@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kWarnBias = 0.02;    ///< a step whose predicted bias of D exceeds this is warned about
 constexpr double kRefuseBias = 0.20;  ///< ... and refused beyond this
-constexpr double kLongRun = 1e11;     ///< steps or events in all: "this run is long"
+constexpr double kLongRun = 3e10;     ///< steps or events in all: "this run is long" (a lower bound: 2-3x short)
 constexpr double kStepsPerSecond = 1e8; ///< one core, the inclusion kernel (bench/): for the time estimate
 
 std::string rounded(double x) { return format_number(x, 2); }

@@ -58,7 +58,7 @@ void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
 void check_excursions_can_end(const PreparedEngine& e);
 
 /// A note when `samples` long excursions are predicted to cost more than
-/// 1e11 steps or events (about twenty minutes on one core and more), with the
+/// 3e10 steps or events (five minutes on one core at least; the bound is 2-3x short), with the
 /// estimate; nothing otherwise.
 void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes);
 

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "../../src/step_check.hpp"
+#include "stickslip/diffusivity.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip::detail {
@@ -50,6 +51,23 @@ TEST(ExcursionBound, BelowTheMeasuredMeanDurationOfFig2) {
     EXPECT_GT(bound, 8.04 / 3);
     EXPECT_LT(bound, 8.04);
     EXPECT_EQ(excursion_duration_lower_bound(ModelParams{1, 1, 0, INFINITY, 0}), 0.0); // white noise
+}
+
+// A sweep point at noise 1 (Fig. 2 otherwise) needs at least 1.1e7 steps per
+// excursion (measured E[t1] = 3374 s, 3.4e7 steps): 5000 excursions are a
+// long run worth a note, 64 are not.
+TEST(CostNote, SaysALongRunIsLongBeforeItStarts) {
+    DiffusivityRequest req;
+    req.params.noise = 1.0;
+    const PreparedEngine e = prepare(req);
+    std::vector<std::string> notes;
+    note_cost(e, 5000, notes);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("a long run: at least about"), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("--checkpoint"), std::string::npos) << notes[0];
+    notes.clear();
+    note_cost(e, 64, notes);
+    EXPECT_TRUE(notes.empty());
 }
 
 } // namespace
