@@ -509,6 +509,17 @@ TEST(CliCheckDt, EventSchemeShowsNoBiasAndTheTableSaysSo) {
     EXPECT_NE(csv.out.find(",check_dt,diffusivity_difference,"), std::string::npos) << csv.out;
 }
 
+TEST(CliStepNotes, AStepNearTheRelaxationTimeGetsItsOwnNote) {
+    // Fig. 2 case, dt = 0.06 s = 0.9 relaxation times: measured D -5%, where
+    // the friction-time law alone says +6% (docs/validation.md, "Step checks").
+    const Result r = run({"diffusivity", "--dt", "0.06", "--excursions", "2000"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("0.9 relaxation times: the explicit drift step's own error"), std::string::npos) << r.out;
+    const Result fine = run({"diffusivity", "--dt", "0.03", "--excursions", "2000"});
+    ASSERT_EQ(fine.code, 0) << fine.err;
+    EXPECT_EQ(fine.out.find("relaxation times"), std::string::npos) << fine.out;
+}
+
 TEST(CliCheckDt, RefusedWhereItCannotRun) {
     const Result pdmp = run({"diffusivity", "--engine", "pdmp", "--check-dt"});
     EXPECT_EQ(pdmp.code, 2) << pdmp.err;
