@@ -24,41 +24,6 @@ using namespace clitest;
 using nlohmann::json;
 using clock_type = std::chrono::steady_clock;
 
-std::string make_dir(const char* tag) {
-    std::string base = ::testing::TempDir();
-    if (base.empty()) base = "/tmp/";
-    if (base.back() != '/') base += '/';
-    std::string path = base + "stickslip_ckpt_" + tag + "_XXXXXX";
-    std::vector<char> buf(path.begin(), path.end());
-    buf.push_back('\0');
-    if (!::mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed for " + path);
-    return buf.data();
-}
-
-std::vector<std::string> list_dir(const std::string& dir) {
-    std::vector<std::string> names;
-    if (DIR* d = ::opendir(dir.c_str())) {
-        while (dirent* e = ::readdir(d))
-            if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.push_back(e->d_name);
-        ::closedir(d);
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
-/// A directory of the test's own, removed with its files however the test ends.
-struct Scratch {
-    const std::string path;
-    explicit Scratch(const char* tag) : path(make_dir(tag)) {}
-    ~Scratch() {
-        for (const auto& name : list_dir(path)) ::unlink((path + "/" + name).c_str());
-        ::rmdir(path.c_str());
-    }
-    std::string operator/(const std::string& name) const { return path + "/" + name; }
-    Scratch(const Scratch&) = delete;
-    Scratch& operator=(const Scratch&) = delete;
-};
-
 void write_file(const std::string& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << text;

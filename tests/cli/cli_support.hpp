@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dirent.h>
 #include <fcntl.h>
 #include <fstream>
 #include <initializer_list>
@@ -43,6 +45,44 @@ inline std::string slurp(const std::string& path) {
     ss << in.rdbuf();
     return ss.str();
 }
+
+/// A fresh directory under the test temp dir, named stickslip_<tag>_XXXXXX.
+inline std::string make_dir(const char* tag) {
+    std::string base = ::testing::TempDir();
+    if (base.empty()) base = "/tmp/";
+    if (base.back() != '/') base += '/';
+    std::string path = base + "stickslip_" + tag + "_XXXXXX";
+    std::vector<char> buf(path.begin(), path.end());
+    buf.push_back('\0');
+    if (!::mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed for " + path);
+    return buf.data();
+}
+
+/// The names in `dir` (without "." and ".."), sorted.
+inline std::vector<std::string> list_dir(const std::string& dir) {
+    std::vector<std::string> names;
+    if (DIR* d = ::opendir(dir.c_str())) {
+        while (dirent* e = ::readdir(d))
+            if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.push_back(e->d_name);
+        ::closedir(d);
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+/// A directory of the test's own, removed with its entries (the tests make
+/// no deeper ones) however the test ends, a failed ASSERT included.
+struct Scratch {
+    const std::string path;
+    explicit Scratch(const char* tag) : path(make_dir(tag)) {}
+    ~Scratch() {
+        for (const auto& name : list_dir(path)) ::unlink((path + "/" + name).c_str());
+        ::rmdir(path.c_str());
+    }
+    std::string operator/(const std::string& name) const { return path + "/" + name; }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+};
 
 inline std::string temp_file(const char* tag) {
     std::string dir = ::testing::TempDir();

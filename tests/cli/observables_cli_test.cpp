@@ -151,26 +151,7 @@ TEST(CliObservables, SameJsonForAnyThreadCount) {
 
 // --- --output: atomic, nothing half-written --------------------------------------------
 
-std::string temp_dir() {
-    std::string base = ::testing::TempDir();
-    if (base.empty()) base = "/tmp/";
-    if (base.back() != '/') base += '/';
-    std::string path = base + "stickslip_out_XXXXXX";
-    std::vector<char> buf(path.begin(), path.end());
-    buf.push_back('\0');
-    if (!::mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed");
-    return buf.data();
-}
-
-std::vector<std::string> list_dir(const std::string& dir) {
-    std::vector<std::string> names;
-    if (DIR* d = ::opendir(dir.c_str())) {
-        while (dirent* e = ::readdir(d))
-            if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.push_back(e->d_name);
-        ::closedir(d);
-    }
-    return names;
-}
+std::string temp_dir() { return make_dir("out"); }
 
 TEST(CliOutput, WritesTheFileAndNothingOnStdout) {
     const std::string dir = temp_dir(), file = dir + "/d.json";

@@ -41,41 +41,6 @@ bool is_json_object(const std::string& text) {
     }
 }
 
-std::string make_dir(const char* tag) {
-    std::string base = ::testing::TempDir();
-    if (base.empty()) base = "/tmp/";
-    if (base.back() != '/') base += '/';
-    std::string path = base + "stickslip_output_" + tag + "_XXXXXX";
-    std::vector<char> buf(path.begin(), path.end());
-    buf.push_back('\0');
-    if (!::mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed for " + path);
-    return buf.data();
-}
-
-std::vector<std::string> list_dir(const std::string& dir) {
-    std::vector<std::string> names;
-    if (DIR* d = ::opendir(dir.c_str())) {
-        while (dirent* e = ::readdir(d))
-            if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.push_back(e->d_name);
-        ::closedir(d);
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
-/// A directory of the test's own, removed with its entries (the tests make
-/// no deeper ones) however the test ends, a failed ASSERT included.
-struct Scratch {
-    const std::string path;
-    explicit Scratch(const char* tag) : path(make_dir(tag)) {}
-    ~Scratch() {
-        for (const auto& name : list_dir(path)) ::unlink((path + "/" + name).c_str());
-        ::rmdir(path.c_str());
-    }
-    Scratch(const Scratch&) = delete;
-    Scratch& operator=(const Scratch&) = delete;
-};
-
 struct stat lstat_of(const std::string& path) {
     struct stat st {};
     if (::lstat(path.c_str(), &st) != 0) st.st_mode = 0;
