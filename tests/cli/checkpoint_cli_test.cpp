@@ -156,8 +156,16 @@ TEST_P(CliMerging, KilledAndResumedRunEqualsTheUninterruptedOne) {
         ASSERT_GT(pid, 0);
         if (kills < 2) {
             std::this_thread::sleep_for(std::chrono::duration<double>(when(gen) * seconds));
+            // The first kill waits, if need be, for the first checkpoint: on a
+            // loaded machine the drawn moment can come before it, and the
+            // resumed run would then start afresh and test nothing.
             int st = 0;
-            if (::waitpid(pid, &st, WNOHANG) == 0) {
+            bool running = ::waitpid(pid, &st, WNOHANG) == 0;
+            while (running && kills == 0 && !std::ifstream(ckpt)) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                running = ::waitpid(pid, &st, WNOHANG) == 0;
+            }
+            if (running) {
                 ::kill(pid, SIGKILL);
                 ::waitpid(pid, nullptr, 0);
                 ++kills;
