@@ -103,7 +103,7 @@ const Case kCases[] = {
     {"bruteforce", {"bruteforce", "--dt", "1e-2", "--time", "5", "--trajectories", "60000"}},
     {"bruteforce_pdmp", {"bruteforce", "--engine", "pdmp", "--time", "5", "--trajectories", "12000"}},
     {"density", {"density", "--dt", "1e-2", "--excursions", "30000"}},
-    {"correlation", {"correlation", "--dt", "1e-2", "--excursions", "8000", "--lags", "20"}},
+    {"correlation", {"correlation", "--dt", "1e-2", "--excursions", "30000", "--lags", "20"}}, // ~0.8 s: kills land after a checkpoint
     {"moments", {"moments", "--dt", "1e-2", "--trajectories", "40000", "--times", "5,20"}}, // ~0.5 s: kills land after a checkpoint
     {"sweep", {"sweep", "--dt", "1e-2", "--noise", "3,5,8", "--tau", "0.5", "--excursions", "15000"}},
 };
