@@ -40,12 +40,7 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
                 const OUStep ou = ou_step(p.tau, L.len);
                 L.x_keep = ou.end_coef;
                 L.x_sd = std::sqrt(ou.s22);
-                {
-                    const OUStep half = ou_step(p.tau, 0.5 * L.len);
-                    const double k = half.end_coef;
-                    L.x_mid_coef = k / (1.0 + k * k);
-                    L.x_mid_sd = std::sqrt(half.s22 / (1.0 + k * k));
-                }
+                L.x_mid = ou_bridge(p.tau, L.len);
                 L.x_grow = std::exp(L.len / p.tau);
                 L.x_u_len = 0.5 * p.tau * std::expm1(2.0 * L.len / p.tau);
                 L.x_var_rate = 2.0 / (p.tau * p.tau);

@@ -99,13 +99,7 @@ struct EventLevel {
     /// [s^-1/2].
     double x_keep, x_sd;       ///< stuck step: X' = x_keep X + x_sd n
     /// @}
-    /// @{
-    /// The OU bridge over a stuck step of length len: given X at both ends (a,
-    /// b), X at its midpoint is x_mid_coef (a + b) + x_mid_sd n with n ~ N(0, 1):
-    /// with k = e^{-len/(2 tau)} and s^2 = (1 - k^2)/tau the half step's law,
-    /// x_mid_coef = k / (1 + k^2) and x_mid_sd = s / sqrt(1 + k^2).
-    double x_mid_coef, x_mid_sd;
-    /// @}
+    OUBridge x_mid;            ///< stuck step: X at its midpoint given both ends
     double x_grow;             ///< e^{len/tau}: X e^{t/tau} is a Brownian motion (see first_passage)
     double x_u_len;            ///< tau (e^{2 len/tau} - 1) / 2 [s]: the step in that motion's clock
     double x_var_rate;         ///< its variance rate 2 / tau^2 [s^-2]
@@ -328,7 +322,7 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
                 ((reach_up && reach_down) || ((reach_up || reach_down) && L.len > event_stuck_piece_max * c.lv[0].x_tau))) {
                 if (w.steps + w.midpoints >= c.max_work) return EventStatus::Capped;
                 ++w.midpoints;
-                const double m = L.x_mid_coef * (cur.a + cur.b) + L.x_mid_sd * ref.normal2().x;
+                const double m = apply(L.x_mid, cur.a, cur.b, ref.normal2().x);
                 stack[top++] = Piece{m, cur.b, cur.d + 1, cur.t + L.leaves / 2};
                 cur = Piece{cur.a, m, cur.d + 1, cur.t};
                 u = ref.side_draw().y; // the left half's uniform; a right half draws its own
