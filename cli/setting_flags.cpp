@@ -98,6 +98,8 @@ std::string SettingFlags::config_text(const std::string& command) const {
             line += "[";
             for (char c : v) line += c == ',' ? std::string(", ") : std::string(1, c);
             line += "]";
+        } else if (v == "auto") {
+            line += "\"auto\""; // a NumberOrAuto left to the library
         } else {
             line += v;
         }

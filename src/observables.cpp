@@ -251,7 +251,8 @@ VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b) {
 
 namespace {
 
-PreparedEngine prepare_request(const StationaryDensityRequest& req) {
+PreparedEngine prepare_request(const StationaryDensityRequest& req_in) {
+    const StationaryDensityRequest req = with_resolved_time_step(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     check_bins(req.bins);
@@ -315,7 +316,8 @@ bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engin
 
 } // namespace
 
-StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req) {
+StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req_in) {
+    const StationaryDensityRequest req = with_resolved_time_step(req_in);
     const PreparedEngine prepared = prepare_request(req);
     const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
     const SampledEngine engine(prepared);
@@ -406,7 +408,8 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
 
 namespace {
 
-PreparedEngine prepare_request(const CorrelationRequest& req) {
+PreparedEngine prepare_request(const CorrelationRequest& req_in) {
+    const CorrelationRequest req = with_resolved_time_step(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     if (req.lags < 1 || req.lags > kMaxLags)
@@ -427,7 +430,8 @@ PreparedEngine prepare_request(const CorrelationRequest& req) {
 
 void validate(const CorrelationRequest& req) { prepare_request(req); }
 
-CorrelationResult compute_correlation(const CorrelationRequest& req) {
+CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
+    const CorrelationRequest req = with_resolved_time_step(req_in);
     const PreparedEngine prepared = prepare_request(req);
     const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
     CorrelationResult out;
@@ -596,7 +600,8 @@ std::vector<double> transient_times(const TransientRequest& req) {
     return times;
 }
 
-PreparedEngine prepare_request(const TransientRequest& req) {
+PreparedEngine prepare_request(const TransientRequest& req_in) {
+    const TransientRequest req = with_resolved_time_step(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     if (req.trajectories < 2)
         throw InvalidParameter("trajectories",
@@ -629,7 +634,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
     const PreparedEngine prepared = prepare_request(req_in);
     const std::vector<std::string> notes = detail::start_notes(prepared, 0, req_in.control);
     // The defaults that depend on the model, resolved once: the report shows them.
-    TransientRequest req = req_in;
+    TransientRequest req = with_resolved_time_step(req_in);
     if (std::isnan(req.v0)) req.v0 = scales_of(req.params).velocity;
     req.times = transient_times(req);
     TransientResult out;
@@ -780,7 +785,8 @@ TransientResult compute_transient(const TransientRequest& req_in) {
 
 namespace {
 
-PreparedEngine prepare_request(const TrajectoryRequest& req) {
+PreparedEngine prepare_request(const TrajectoryRequest& req_in) {
+    const TrajectoryRequest req = with_resolved_time_step(req_in);
     PreparedEngine engine = prepare_engine(req.params, req.engine);
     check_run_control(req.control);
     if (req.paths > 1000) throw InvalidParameter("paths", "paths must be at most 1000");
@@ -818,7 +824,8 @@ struct TooManyPoints {};
 
 void validate(const TrajectoryRequest& req) { prepare_request(req); }
 
-TrajectoryResult compute_trajectory(const TrajectoryRequest& req) {
+TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
+    const TrajectoryRequest req = with_resolved_time_step(req_in);
     const PreparedEngine prepared = prepare_request(req);
     TrajectoryResult out;
     out.request = req;

@@ -64,7 +64,10 @@ ordered_json params_json(const RunSettings& r) {
     j["relaxation"] = json_number(p.relaxation);
     j["bias"] = p.bias;
     if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid;
-    else j["dt"] = r.engine.dt;
+    else {
+        j["dt"] = r.engine.dt;
+        if (r.engine.dt_auto) j["dt_auto"] = true; // the step --dt auto chose
+    }
     j["seed"] = r.control.seed;
     return j;
 }
@@ -137,7 +140,7 @@ std::string relaxation_text(double relaxation) {
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra) {
     std::ostringstream os;
     os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
-       << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : "dt " + format_number(s.dt) + " s")
+       << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : (s.dt_auto && std::isnan(s.dt) ? std::string("dt auto, per point") : "dt " + format_number(s.dt) + " s" + (s.dt_auto ? " (auto)" : "")))
        << (s.engine == Engine::Inclusion && s.scheme == Scheme::Event ? ", event scheme" : "") << extra << "\n";
     return os.str();
 }

@@ -7,7 +7,18 @@
 
 namespace stickslip {
 
-PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s) {
+double auto_time_step(const ModelParams& p, Scheme scheme) {
+    validate(p);
+    return detail::auto_step(p, scheme);
+}
+
+EngineSettings resolve_time_step(const ModelParams& p, EngineSettings s) {
+    if (s.dt_auto && s.engine == Engine::Inclusion) s.dt = auto_time_step(p, s.scheme);
+    return s;
+}
+
+PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given) {
+    const EngineSettings s = resolve_time_step(p, given);
     PreparedEngine e;
     e.params = p;
     e.settings = s;

@@ -83,6 +83,7 @@ std::string format_setting(unsigned x) { return std::to_string(x); }
 std::string format_setting(int x) { return std::to_string(x); }
 std::string format_setting(bool x) { return x ? "true" : "false"; }
 std::string format_setting(const OptionalNumber& x) { return std::isnan(x.value) ? "" : format_setting(x.value); }
+std::string format_setting(const NumberOrAuto& x) { return x.automatic ? "auto" : format_setting(x.value); }
 std::string format_setting(const SeedValue& x) { return std::to_string(x.value); }
 
 std::string format_setting(const NumberList& x) {
@@ -178,6 +179,21 @@ void parse_setting(const SettingInfo& info, const std::string& text, const Optio
     parse_setting(info, text, out.value);
 }
 
+void parse_setting(const SettingInfo& info, const std::string& text, const NumberOrAuto& out) {
+    if (text == "auto") {
+        out.automatic = true;
+        return;
+    }
+    double x = 0;
+    try {
+        parse_setting(info, text, x);
+    } catch (const InvalidParameter&) {
+        fail(info, "must be a number or auto, got " + quoted(text));
+    }
+    out.value = x;
+    out.automatic = false;
+}
+
 void parse_setting(const SettingInfo& info, const std::string& text, const SeedValue& out) {
     // Decimal digits only: no sign, no spaces, no octal/hex surprises ("010" is ten).
     char* end = nullptr;
@@ -244,6 +260,7 @@ const char* setting_form(const unsigned&) { return "INT"; }
 const char* setting_form(const int&) { return "INT"; }
 const char* setting_form(const bool&) { return ""; }
 const char* setting_form(const OptionalNumber&) { return "NUM"; }
+const char* setting_form(const NumberOrAuto&) { return "NUM|auto"; }
 const char* setting_form(const SeedValue&) { return "INT"; }
 const char* setting_form(const NumberList&) { return "LIST"; }
 const char* setting_form(const NumberRange&) { return "LO,HI"; }

@@ -13,6 +13,11 @@
 //   the friction time, is refused. The event scheme and the PDMP are exact
 //   within phases and are not judged by this rule.
 //
+// * Which step does --dt auto take? The largest at which the measured
+//   convergence shows the scheme's bias of D below 0.1%: for the resolvent
+//   scheme, the law above solved for 0.1%; for the event scheme, a fixed
+//   fraction of the shortest time scale (see auto_step).
+//
 // * Can an excursion finish? An excursion of coloured noise ends only when,
 //   stuck, the noise has crossed the static band from one threshold to the
 //   other, so it lasts at least about the mean first-passage time of the
@@ -47,6 +52,13 @@ double excursion_work_lower_bound(const PreparedEngine& e);
 /// The predicted relative bias of D of the resolvent scheme (see above): > 0
 /// when D comes out too high.
 double resolvent_bias(const ModelParams& p, double dt);
+
+/// The resolvent step [s] whose predicted relative bias of D is `bias` (> 0),
+/// from the law above.
+double resolvent_step_for_bias(const ModelParams& p, double bias);
+
+/// The step --dt auto chooses (stickslip::auto_time_step, run.hpp).
+double auto_step(const ModelParams& p, Scheme scheme);
 
 /// Refuses (InvalidParameter "dt") a resolvent step whose predicted bias of D
 /// exceeds 20% or that is longer than the friction time; adds a note for one

@@ -79,6 +79,8 @@ SweepResult compute_sweep(const SweepRequest& req) {
     out.request = req;
     out.request.noises = prepared.noises;
     out.request.taus = prepared.taus;
+    // With --dt auto each point has its own step (SweepPoint::dt), none the sweep's.
+    if (out.request.engine.dt_auto) out.request.engine.dt = std::numeric_limits<double>::quiet_NaN();
     const auto& noises = out.request.noises;
     const auto& taus = out.request.taus;
     const auto start = std::chrono::steady_clock::now();
@@ -109,6 +111,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             p.tau = tau;
             p.estimates = r.estimates;
             p.stop_rule = r.resolved.stop_rule;
+            p.dt = r.request.engine.dt;
             p.work = r.totals.work;
             p.seconds = r.totals.seconds;
             p.warnings = r.warnings;

@@ -68,6 +68,10 @@ struct EngineSettings {
     Engine engine = Engine::Inclusion;
     Scheme scheme = Scheme::Resolvent; ///< how the inclusion engine steps
     double dt = 1e-4;        ///< time step h of the inclusion engine [s]
+    /// --dt auto: the step is chosen from the model's time scales for the
+    /// scheme (auto_time_step, run.hpp), and `dt` holds it once a run has
+    /// resolved it (resolve_time_step).
+    bool dt_auto = false;
     double grid = 0.125;     ///< lattice step delta of the PDMP noise [s^-1/2]
     /// Half-width L of the PDMP lattice [s^-1/2]; 0 chooses it (see pdmp.hpp).
     double lattice_bound = 0.0;
@@ -90,7 +94,10 @@ void visit_settings(EngineSettings& s, Visitor&& v) {
     v(s.scheme, SettingInfo{"scheme", "",
                             "inclusion time stepping: resolvent (the paper's, first order) or event (exact within "
                             "phases, events at their times)"});
-    v(s.dt, SettingInfo{"dt", "s", "time step of the inclusion engine, > 0"});
+    v(NumberOrAuto{s.dt, s.dt_auto},
+      SettingInfo{"dt", "s",
+                  "time step of the inclusion engine, > 0; auto: from the model's time scales, the largest step at "
+                  "which the scheme's measured bias of D is below 0.1% (docs/guide.md, \"Choosing the step\")"});
     v(s.grid, SettingInfo{"grid", "s^-1/2", "lattice step delta of the pdmp noise, > 0"});
     v(s.lattice_bound, SettingInfo{"lattice-bound", "s^-1/2",
                                    "pdmp lattice half-width L; 0 = 8 tau^-1/2 (or what tau*grid*L < 2 allows)"});

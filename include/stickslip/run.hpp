@@ -89,8 +89,9 @@ struct ResolvedEngine {
 struct PreparedEngine {
     /// The model it was prepared for (SI units).
     ModelParams params;
-    /// The engine settings it was prepared from, as given (the resolved
-    /// choices, e.g. the stop rule, are in `resolved` and the constants).
+    /// The engine settings it was prepared from, with --dt auto resolved (the
+    /// other resolved choices, e.g. the stop rule, are in `resolved` and the
+    /// constants).
     EngineSettings settings;
     InclusionConstants inclusion{}; ///< inclusion engine, resolvent scheme
     EventConstants event{};         ///< inclusion engine, event scheme
@@ -103,8 +104,33 @@ struct PreparedEngine {
     std::vector<std::string> notes;
 };
 
+/// The step [s] that --dt auto chooses for the inclusion engine's `scheme` on
+/// model p: the largest step at which the project's measurements show the
+/// scheme's bias of D below 0.1% (docs/validation.md, "Choosing the step").
+///  * Resolvent: from the measured bias law in friction times T_f =
+///    noise/friction^2: (0.001/0.39)^2 T_f = 6.6e-6 T_f for white and
+///    near-white noise (tau < 0.3 T_f), 0.001/0.35 T_f = 2.9e-3 T_f for
+///    coloured noise; and at most relaxation/100.
+///  * Event: min(tau/16, relaxation/4, T_f/16), 4 or more times below the
+///    largest steps at which no bias was seen.
+/// Throws InvalidParameter for an invalid model.
+double auto_time_step(const ModelParams& p, Scheme scheme);
+
+/// s with dt = auto_time_step(p, s.scheme) when s.dt_auto and the engine is
+/// the inclusion engine (dt_auto stays true, so that reports say so); s
+/// unchanged otherwise. Every run resolves its settings so, first.
+EngineSettings resolve_time_step(const ModelParams& p, EngineSettings s);
+
+/// A request (any RunSettings) with its engine settings resolved so.
+template <class Request>
+Request with_resolved_time_step(Request r) {
+    r.engine = resolve_time_step(r.params, r.engine);
+    return r;
+}
+
 /// Validates the model and the engine settings together (InvalidParameter on
-/// the first problem) and builds the engine's constants.
+/// the first problem) and builds the engine's constants (resolving --dt auto
+/// first: `settings` holds the step used).
 PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s);
 
 /// The resolved details alone: prepare_engine(p, s).resolved.

@@ -66,6 +66,15 @@ struct OptionalNumber {
     double& value;
 };
 
+/// A number, or "auto": chosen by the library from other settings (e.g. the
+/// time step from the model's time scales). Text: "auto" or the number.
+struct NumberOrAuto {
+    /// The member holding the number (kept, not used, while automatic).
+    double& value;
+    /// The member that says "auto".
+    bool& automatic;
+};
+
 /// A random seed: a decimal integer in [0, 2^64), never rounded through a double.
 struct SeedValue {
     /// The member it stands for (the Philox key of the run's streams).
@@ -112,6 +121,7 @@ std::string format_setting(unsigned x);
 std::string format_setting(int x);
 std::string format_setting(bool x);
 std::string format_setting(const OptionalNumber& x);
+std::string format_setting(const NumberOrAuto& x);
 std::string format_setting(const SeedValue& x);
 std::string format_setting(const NumberList& x);
 std::string format_setting(const NumberRange& x);
@@ -126,6 +136,7 @@ std::string format_setting(const NumberRange& x);
 /// negative, fractional or too large value for an integer (all integer
 /// settings are counts, >= 0; "1e6" is accepted); anything but decimal digits
 /// for a seed; a bool other than true/True/1/yes/on or false/False/0/no/off;
+/// "auto" makes a NumberOrAuto automatic, a number makes it that number;
 /// a malformed list or range. "" unsets an OptionalNumber and makes a
 /// NumberRange automatic. Range checks (e.g. friction > 0) are left to the
 /// struct's validate().
@@ -135,6 +146,7 @@ void parse_setting(const SettingInfo& info, const std::string& text, unsigned& o
 void parse_setting(const SettingInfo& info, const std::string& text, int& out);
 void parse_setting(const SettingInfo& info, const std::string& text, bool& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const OptionalNumber& out);
+void parse_setting(const SettingInfo& info, const std::string& text, const NumberOrAuto& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const SeedValue& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberList& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberRange& out);
@@ -145,7 +157,7 @@ void parse_setting(const SettingInfo& info, const std::string& text, const Numbe
 
 /// What --help shows as the value's form, by the field's type: NUM (double,
 /// OptionalNumber), INT (integers, SeedValue), LIST (NumberList), LO,HI
-/// (NumberRange), the enums' choices, and "" for a bool (a flag without a
+/// (NumberRange), NUM|auto (NumberOrAuto), the enums' choices, and "" for a bool (a flag without a
 /// value). SettingInfo::form overrides it (e.g. NUM|inf).
 const char* setting_form(const double&);
 const char* setting_form(const std::uint64_t&);
@@ -153,6 +165,7 @@ const char* setting_form(const unsigned&);
 const char* setting_form(const int&);
 const char* setting_form(const bool&);
 const char* setting_form(const OptionalNumber&);
+const char* setting_form(const NumberOrAuto&);
 const char* setting_form(const SeedValue&);
 const char* setting_form(const NumberList&);
 const char* setting_form(const NumberRange&);

@@ -65,6 +65,9 @@ struct SweepPoint {
     /// The stop rule used there (ResolvedEngine::stop_rule): with the
     /// automatic rule it can change along the grid, as dt/tau does.
     std::string stop_rule;
+    /// The inclusion engine's step at the point [s]: the request's, or with
+    /// --dt auto the point's own (it follows tau and noise).
+    double dt = 0;
     /// Steps or events used at the point.
     std::uint64_t work = 0;
     /// Wall time of the point [s].

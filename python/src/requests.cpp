@@ -58,6 +58,8 @@ py::object python_value(const Field& f) {
     else if constexpr (std::is_same_v<T, double>) return py::float_(f);
     else if constexpr (std::is_integral_v<T>) return py::int_(f);
     else if constexpr (std::is_same_v<T, SeedValue>) return py::int_(f.value);
+    else if constexpr (std::is_same_v<T, NumberOrAuto>)
+        return f.automatic ? py::object(py::str("auto")) : py::object(py::float_(f.value));
     else if constexpr (std::is_enum_v<T>) return py::str(format_setting(f));
     else return py::none(); // OptionalNumber, NumberList, NumberRange
 }
@@ -71,6 +73,7 @@ const char* python_type(const Field&) {
     else if constexpr (std::is_integral_v<T> || std::is_same_v<T, SeedValue>) return "int";
     else if constexpr (std::is_enum_v<T>) return "str";
     else if constexpr (std::is_same_v<T, OptionalNumber>) return "float or None";
+    else if constexpr (std::is_same_v<T, NumberOrAuto>) return "float or 'auto'";
     else if constexpr (std::is_same_v<T, NumberList>) return "sequence of float or None";
     else return "(float, float) or None"; // NumberRange
 }

@@ -99,6 +99,19 @@ class DiffusivityTest(unittest.TestCase):
         self.assertEqual(r.to_dict()["discretisation"]["mobility"]["difference"], c["mobility"]["difference"])
         self.assertIsNone(stickslip.diffusivity(P, dt=0.03, excursions=64, threads=1).discretisation)
 
+    def test_dt_auto(self):
+        # Fig. 2 case, event scheme: relaxation/4 = 0.01675 s; twice that for the check.
+        r = stickslip.diffusivity(P, scheme="event", dt="auto", excursions=256, check_dt=True, threads=1)
+        d = r.to_dict()
+        self.assertEqual((d["params"]["dt"], d["params"]["dt_auto"]), (0.01675, True))
+        self.assertEqual(r.discretisation["check_dt"], 2 * 0.01675)
+        cli = cli_json("diffusivity", "--scheme", "event", "--dt", "auto", "--excursions", "256", "--check-dt",
+                       "--threads", "1")
+        self.assertEqual(without_work(d), without_work(cli))
+        with self.assertRaises(stickslip.InvalidParameterError) as c:
+            stickslip.diffusivity(P, dt="fast", excursions=64)
+        self.assertEqual(c.exception.parameter, "dt")
+
     def test_progress_line(self):
         err = io.StringIO()
         with contextlib.redirect_stderr(err):

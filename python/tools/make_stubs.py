@@ -51,6 +51,7 @@ def annotation(s):
         return "Literal[" + ", ".join(repr(c) for c in s["form"].split("|")) + "]"
     return {
         "float or None": "Optional[float]",
+        "float or 'auto'": "Union[float, Literal['auto']]",
         "sequence of float or None": "Optional[_Numbers]",
         "(float, float) or None": "Optional[Tuple[float, float]]",
     }.get(kind, kind)

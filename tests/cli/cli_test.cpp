@@ -520,6 +520,52 @@ TEST(CliStepNotes, AStepNearTheRelaxationTimeGetsItsOwnNote) {
     EXPECT_EQ(fine.out.find("relaxation times"), std::string::npos) << fine.out;
 }
 
+TEST(CliAutoStep, TheJsonSaysTheStepWasChosenAndWhichOne) {
+    // Fig. 2 case: the event scheme's automatic step is relaxation/4 = 0.01675 s.
+    const Result r = run({"diffusivity", "--scheme", "event", "--dt", "auto", "--excursions", "200", "--check-dt",
+                          "--format", "json", "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j.at("params").at("dt").get<double>(), 0.01675);
+    EXPECT_TRUE(j.at("params").at("dt_auto").get<bool>());
+    EXPECT_EQ(j.at("discretisation").at("check_dt").get<double>(), 2 * 0.01675); // twice the chosen step
+    const Result table = run({"diffusivity", "--dt", "auto", "--excursions", "200"});
+    ASSERT_EQ(table.code, 0) << table.err;
+    EXPECT_NE(table.out.find("dt 0.00067 s (auto)"), std::string::npos) << table.out;
+    const Result given = run({"diffusivity", "--dt", "0.001", "--excursions", "200", "--format", "json"});
+    ASSERT_EQ(given.code, 0) << given.err;
+    EXPECT_FALSE(json::parse(given.out).at("params").contains("dt_auto"));
+}
+
+TEST(CliAutoStep, PrintConfigKeepsAutoAndABadValueNamesBothForms) {
+    Scratch dir("auto_step");
+    const Result printed = run({"diffusivity", "--dt", "auto", "--print-config"});
+    ASSERT_EQ(printed.code, 0) << printed.err;
+    EXPECT_NE(printed.out.find("dt = \"auto\""), std::string::npos) << printed.out;
+    const std::string config = dir.path + "/run.toml";
+    std::ofstream(config) << printed.out;
+    const Result reread = run({"diffusivity", "--config", config, "--excursions", "200", "--format", "json"});
+    ASSERT_EQ(reread.code, 0) << reread.err;
+    EXPECT_TRUE(json::parse(reread.out).at("params").at("dt_auto").get<bool>());
+    const Result bad = run({"diffusivity", "--dt", "automatic"});
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.err.find("dt must be a number or auto, got 'automatic'"), std::string::npos) << bad.err;
+}
+
+TEST(CliAutoStep, ASweepChoosesAStepPerPoint) {
+    const Result r = run({"sweep", "--scheme", "event", "--dt", "auto", "--noise", "0.25,1", "--tau", "0.5",
+                          "--friction", "1", "--relaxation", "inf", "--bias", "0", "--excursions", "100",
+                          "--format", "json", "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_FALSE(j.at("params").contains("dt"));
+    const json& pts = j.at("points");
+    ASSERT_EQ(pts.size(), 2u);
+    // min(tau/16 = 0.03125 s, T_f/16 = noise/16 s): 0.015625 and 0.03125 s.
+    EXPECT_EQ(pts[0].at("dt").get<double>(), 0.25 / 16);
+    EXPECT_EQ(pts[1].at("dt").get<double>(), 0.5 / 16);
+}
+
 TEST(CliCheckDt, RefusedWhereItCannotRun) {
     const Result pdmp = run({"diffusivity", "--engine", "pdmp", "--check-dt"});
     EXPECT_EQ(pdmp.code, 2) << pdmp.err;

@@ -9,6 +9,7 @@
 #include "../../src/step_check.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/params.hpp"
+#include "stickslip/run.hpp"
 
 namespace stickslip::detail {
 namespace {
@@ -68,6 +69,50 @@ TEST(CostNote, SaysALongRunIsLongBeforeItStarts) {
     notes.clear();
     note_cost(e, 64, notes);
     EXPECT_TRUE(notes.empty());
+}
+
+TEST(AutoStep, FollowsTheMeasuredLawsAndTheTimeScales) {
+    // Fig. 2 case: T_f = noise/friction^2 = 0.339 s, relaxation 0.067 s, tau 0.5 s.
+    const ModelParams fig2;
+    // Resolvent: the coloured law gives 0.001/0.35 T_f = 9.7e-4 s; relaxation/100 = 6.7e-4 s wins.
+    EXPECT_DOUBLE_EQ(auto_time_step(fig2, Scheme::Resolvent), 0.01 * fig2.relaxation);
+    // Event: min(tau/16 = 0.031, relaxation/4 = 0.01675, T_f/16 = 0.021).
+    EXPECT_DOUBLE_EQ(auto_time_step(fig2, Scheme::Event), fig2.relaxation / 4);
+    ModelParams dry; // pure dry friction, friction = noise = 1 (T_f = 1 s)
+    dry.friction = 1;
+    dry.noise = 1;
+    dry.relaxation = INFINITY;
+    dry.bias = 0;
+    dry.tau = 0;
+    const double white = auto_time_step(dry, Scheme::Resolvent); // (0.001/0.39)^2 s
+    EXPECT_NEAR(white, 6.5746e-6, 1e-9);
+    EXPECT_NEAR(std::fabs(resolvent_bias(dry, white)), 1e-3, 1e-12); // the law's 0.1%
+    dry.tau = 0.1;
+    EXPECT_DOUBLE_EQ(auto_time_step(dry, Scheme::Event), 0.1 / 16);
+    dry.tau = 1; // tau' = 1: the coloured law, 0.001/0.35 T_f
+    EXPECT_NEAR(resolvent_bias(dry, auto_time_step(dry, Scheme::Resolvent)), 1e-3, 1e-15);
+    EXPECT_DOUBLE_EQ(auto_time_step(dry, Scheme::Event), 1.0 / 16);
+    // It scales with the model: twice the noise, twice T_f.
+    dry.noise = 2;
+    dry.tau = 100;
+    EXPECT_DOUBLE_EQ(auto_time_step(dry, Scheme::Event), 2.0 / 16);
+    dry.friction = -1;
+    EXPECT_THROW(auto_time_step(dry, Scheme::Event), InvalidParameter);
+}
+
+TEST(AutoStep, ResolvedOnlyWhenAskedAndForTheInclusionEngine) {
+    const ModelParams fig2;
+    EngineSettings s;
+    EXPECT_EQ(resolve_time_step(fig2, s).dt, 1e-4); // a given step is kept
+    s.dt_auto = true;
+    s.scheme = Scheme::Event;
+    const EngineSettings r = resolve_time_step(fig2, s);
+    EXPECT_DOUBLE_EQ(r.dt, fig2.relaxation / 4);
+    EXPECT_TRUE(r.dt_auto); // so that reports can say so
+    EXPECT_EQ(resolve_time_step(fig2, r).dt, r.dt); // idempotent
+    EXPECT_EQ(prepare_engine(fig2, s).settings.dt, r.dt);
+    s.engine = Engine::Pdmp; // no time step to choose
+    EXPECT_EQ(resolve_time_step(fig2, s).dt, 1e-4);
 }
 
 } // namespace
