@@ -22,18 +22,31 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
     c.inv_relaxation = p.inverse_relaxation();
     c.noise = p.noise;
     c.max_work = s.max_work_per_excursion;
-    if (p.white())
-        throw InvalidParameter("scheme", "the event scheme needs colored noise (tau > 0); for white noise use "
-                                         "--scheme resolvent");
-    c.x_up = p.upper_threshold();
-    c.x_down = p.lower_threshold();
+    c.white = p.white();
+    if (c.white) {
+        c.level = s.white_level > 0 ? s.white_level : white_level_default(p);
+        double r = c.level * c.level / (36.0 * p.noise);
+        if (std::isfinite(p.relaxation)) r = std::fmin(r, p.relaxation / 16.0);
+        const double leaves = std::floor(r / c.leaf);
+        c.leave_zero_leaves = leaves < 1.0 ? 1 : (leaves >= std::ldexp(1.0, event_depth) ? std::uint64_t{1} << event_depth
+                                                                                        : static_cast<std::uint64_t>(leaves));
+    } else {
+        c.x_up = p.upper_threshold();
+        c.x_down = p.lower_threshold();
+    }
     // The laws reject what they cannot compute (tiny or huge ratios); say it with the flag's name.
     try {
         for (int d = 0; d <= event_depth; ++d) {
             EventLevel& L = c.lv[d];
             L.leaves = std::uint64_t{1} << (event_depth - d);
             L.len = std::ldexp(s.dt, -d);
-            {
+            if (c.white) {
+                L.wslide = white_slide_law(p.relaxation, p.noise, L.len);
+                L.wmid = white_slide_bridge(p.relaxation, p.noise, L.len);
+                const double k = p.inverse_relaxation();
+                L.v_grow = k == 0.0 ? 1.0 : std::exp(L.len * k);
+                L.v_u_len = k == 0.0 ? L.len : 0.5 * std::expm1(2.0 * L.len * k) / k;
+            } else {
                 L.slide = colored_slide_law(p.tau, p.relaxation, c.amp, L.len);
                 L.mid = colored_slide_bridge(p.tau, p.relaxation, c.amp, L.len);
                 L.v_mid_sd = std::sqrt(L.mid.cov[1][1]);

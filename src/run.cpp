@@ -35,7 +35,8 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
         r.jump_rate = c.rate;
     } else if (s.scheme == Scheme::Event) {
         e.event = make_event_constants(p, s);
-        r.stop_rule = "exact";
+        r.stop_rule = e.event.white ? "velocity-levels" : "exact";
+        if (e.event.white) r.white_level = e.event.level;
     } else {
         e.inclusion = make_inclusion_constants(p, s);
         const InclusionConstants& c = e.inclusion;

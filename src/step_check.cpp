@@ -28,6 +28,10 @@ constexpr double kAutoRelaxation = 0.01;       ///< resolvent: dt <= relaxation 
 /// 0.18 T_f on the Fig. 2 case, and E[t1], M0 flat to 1% up to dt = tau at
 /// tau' = 0.1; these fractions stay 4 or more times below.
 constexpr double kAutoEventTau = 1.0 / 16, kAutoEventRelaxation = 1.0 / 4, kAutoEventFriction = 1.0 / 16;
+/// White noise, event scheme: dt = min(T_f / 16, relaxation / 8). Measured
+/// (1e6 excursions): no bias of D or M0 up to dt = 0.1 T_f without drag; with
+/// relaxation 0.2 T_f, none at 0.15 relaxation, D -1.0% at 0.25.
+constexpr double kAutoEventWhiteRelaxation = 1.0 / 8;
 
 bool near_white(const ModelParams& p, const Scales& sc) { return p.white() || p.tau / sc.time < kNearWhite; }
 
@@ -92,7 +96,8 @@ double auto_step(const ModelParams& p, Scheme scheme) {
     }
     double dt = kAutoEventFriction * sc.time;
     if (!p.white()) dt = std::fmin(dt, kAutoEventTau * p.tau);
-    if (std::isfinite(p.relaxation)) dt = std::fmin(dt, kAutoEventRelaxation * p.relaxation);
+    if (std::isfinite(p.relaxation))
+        dt = std::fmin(dt, (p.white() ? kAutoEventWhiteRelaxation : kAutoEventRelaxation) * p.relaxation);
     return dt;
 }
 

@@ -45,7 +45,9 @@
 // (seed, excursion, counter): results are bitwise the same for any thread
 // count and process split.
 //
-// White noise (tau = 0) has no event scheme yet: make_event_constants refuses it.
+// White noise (tau = 0): no stuck phase and no X; V itself is linear within a
+// sign, and the events are V reaching 0 and V reaching the level that ends
+// the half; see event_white_step.
 //
 // Units are SI; the constants are built once per run by make_event_constants
 // (src/event_scheme.cpp), and the kernels below are STICKSLIP_HD, without
@@ -68,6 +70,9 @@
 #include "portable_math.hpp"
 #include "rng.hpp"
 
+
+
+
 namespace stickslip {
 
 /// Depth of the finest refinement: events are placed to h / 2^16.
@@ -82,6 +87,13 @@ inline constexpr double event_sigma_margin = 6.0;
 /// halved: first_passage takes the threshold, in its Brownian clock, as a
 /// straight line, which is exact to second order in len/tau only.
 inline constexpr double event_stuck_piece_max = 0.125;
+/// White noise: a piece where V may touch a level is halved, whether or not
+/// it does, down to h / 2^this; only below it are touches decided from the
+/// piece's ends and U at a touch taken by the trapezoid. Measured (drag 0.2,
+/// bias 0.3 in friction units, dt' = 0.01 and 0.03): D -1.5% and -5.5% with
+/// no halving, within 0.2% (z < 1) with 3 levels, no better with 6 at 2.6
+/// times the cost (docs/validation.md, "The event scheme for white noise").
+inline constexpr int event_white_refine_depth = 3;
 /// Bridge crossing probabilities below this count as no crossing.
 inline constexpr double event_crossing_floor = 1e-12;
 
@@ -104,6 +116,16 @@ struct EventLevel {
     double x_u_len;            ///< tau (e^{2 len/tau} - 1) / 2 [s]: the step in that motion's clock
     double x_var_rate;         ///< its variance rate 2 / tau^2 [s^-2]
     double x_tau;              ///< tau [s]
+    // white noise
+    WhiteSlideLaw wslide;      ///< sliding step of (V, U)
+    WhiteSlideBridge wmid;     ///< its midpoint bridge
+    /// @{
+    /// V - c tauL is an OU process: V e^{t/tauL} is a Brownian motion of
+    /// variance rate noise in the clock tauL (e^{2t/tauL} - 1)/2 (as X for
+    /// the stuck phase): v_grow = e^{len/tauL}, v_u_len = the step in that
+    /// clock [s] (len and 1 without drag).
+    double v_grow, v_u_len;
+    /// @}
 };
 
 /// Per-run constants of the event scheme (SI units).
@@ -124,6 +146,12 @@ struct EventConstants {
     double x_up, x_down;   ///< x*, x-* [s^-1/2] (coloured)
     /// @}
     std::uint64_t max_work; ///< runaway guard: steps and midpoints per long excursion
+    bool white;             ///< tau = 0: the white-noise step (event_white_step)
+    double level;           ///< white noise: the regeneration velocity levels +-c [m/s]
+    /// White noise: the longest piece drawn from V = 0 [leaves]: short enough
+    /// that it practically never reaches a level (6 standard deviations) and
+    /// that the drag it leaves out is small (tauL/16).
+    std::uint64_t leave_zero_leaves;
     /// The laws of every refinement depth d = 0 .. event_depth (steps h / 2^d).
     EventLevel lv[event_depth + 1];
 };
@@ -199,6 +227,32 @@ STICKSLIP_HD inline bool threshold_reachable(const EventLevel& L, double da, dou
     return 2.0 * da * (db * L.x_grow) / (L.x_var_rate * L.x_u_len) <= exponent_of_floor;
 }
 
+/// The first time a Brownian bridge over [0, len] (variance rate var_rate)
+/// from distance a > 0 of a level to the signed distance y <= 0 (beyond it;
+/// for a bridge that touched the level and came back, the reflected end)
+/// reaches the level, in [0, len]. After the time change s = t/(1 - t/len)
+/// the bridge is a Brownian motion with drift y/len, whose hitting time of -a
+/// is inverse Gaussian: s ~ IG(mean a len / |y|, shape a^2 / var_rate),
+/// drawn from one normal and one uniform of the refinement stream (Michael,
+/// Schucany, Haas 1976).
+template <class RefRng>
+STICKSLIP_HD inline double bridge_hitting_time(double a, double y, double len, double var_rate, RefRng& ref) {
+    const NormalPair n = ref.normal2();
+    const double v = ref.side_draw().y;
+    double s_hit;
+    if (y == 0.0) {
+        s_hit = 1e300;
+    } else {
+        const double mu = a * len / -y, lambda = a * a / var_rate;
+        // The smaller root mu (1 + r - sqrt(r (r + 2))), r = mu nu^2 / (2 lambda),
+        // written without the cancellation that loses it when r is large.
+        const double r = mu * n.x * n.x / (2.0 * lambda);
+        const double root = mu / (1.0 + r + std::sqrt(r * (r + 2.0)));
+        s_hit = v * (mu + root) <= mu ? root : mu * mu / root;
+    }
+    return len * s_hit / (len + s_hit); // back to the bridge's clock
+}
+
 /// Does the noise, stuck through a step of level L from distance da > 0 to
 /// distance db (signed: <= 0 beyond) of a threshold, reach it? Returns the
 /// time of the first passage within the step [s], or -1 if there is none.
@@ -224,23 +278,8 @@ STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double 
         if (e > 50.0 || !kernel_below_exp(u, -e)) return -1.0;
         y = -b; // the reflected end
     }
-    // s ~ IG(mean a u_len / |y|, shape a^2 / sigma^2), the hitting time of -a
-    // by a Brownian motion with drift y / u_len (Michael, Schucany, Haas 1976).
-    const NormalPair n = ref.normal2();
-    const double v = ref.side_draw().y;
-    double s_hit;
-    if (y == 0.0) {
-        s_hit = 1e300;
-    } else {
-        const double mu = a * L.x_u_len / -y, lambda = a * a / L.x_var_rate;
-        // The smaller root mu (1 + r - sqrt(r (r + 2))), r = mu nu^2 / (2 lambda),
-        // written without the cancellation that loses it when r is large.
-        const double r = mu * n.x * n.x / (2.0 * lambda);
-        const double root = mu / (1.0 + r + std::sqrt(r * (r + 2.0)));
-        s_hit = v * (mu + root) <= mu ? root : mu * mu / root;
-    }
-    const double t_u = L.x_u_len * s_hit / (L.x_u_len + s_hit); // back to the bridge's clock
-    return 0.5 * L.x_tau * kernel_log1p(2.0 * t_u / L.x_tau); // and to real time
+    const double t_u = bridge_hitting_time(a, y, L.x_u_len, L.x_var_rate, ref);
+    return 0.5 * L.x_tau * kernel_log1p(2.0 * t_u / L.x_tau); // back to real time
 }
 
 /// The lowest value of s V over a piece of depth level L between the
@@ -450,10 +489,208 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     return EventStatus::Running;
 }
 
+namespace detail {
+
+/// White noise: V over a time r [s] from V = 0, drawn from the normal n and
+/// the uniforms u_sign and u_max (see event_white_step). Exact without drag
+/// and bias: |V| is then a reflected Brownian motion with drift -friction,
+/// whose value at r has the law of the running maximum of that motion
+/// (Levy), drawn from its endpoint and the bridge-maximum formula; the sign
+/// is a fair coin, independent of |V|. With a bias b each side pulls back
+/// with its own drift (friction -+ b), and the coin is tilted to
+/// 1/2 + b sqrt(pi r / (32 noise)) so that E[V(r)] = b r + O(r^{3/2}), as
+/// for the true motion (the side drifts alone give E[V(r)] = b r / 2 at this
+/// order, the tilt the other half); E[V(r)^2] is right to O(r^{3/2}) too. The
+/// drag, of order |V| / tauL, is left out over such a short piece.
+STICKSLIP_HD inline double white_leave_zero(const EventConstants& c, double r, double n, double u_sign, double u_max) {
+    double p_plus = 0.5 + c.bias * std::sqrt(3.141592653589793 * r / (32.0 * c.noise));
+    p_plus = p_plus < 0.0 ? 0.0 : (p_plus > 1.0 ? 1.0 : p_plus);
+    const double s = u_sign <= p_plus ? 1.0 : -1.0;
+    const double pull = c.friction - s * c.bias;
+    const double end = -pull * r + std::sqrt(c.noise * r) * n;
+    const double m = 0.5 * (end + std::sqrt(end * end - 2.0 * c.noise * r * kernel_log(u_max)));
+    return s * m;
+}
+
+/// White noise: the time [s] within a piece of level L at which V first
+/// touches a level, from distance a > 0 to the clock-changed end distance y
+/// <= 0 (see EventLevel::v_grow): the Brownian bridge's hitting time, back
+/// in real time.
+template <class RefRng>
+STICKSLIP_HD inline double white_touch_time(const EventConstants& c, const EventLevel& L, double a, double y,
+                                            RefRng& ref) {
+    const double t_u = bridge_hitting_time(a, y, L.v_u_len, c.noise, ref);
+    if (c.inv_relaxation == 0.0) return t_u;
+    return 0.5 * kernel_log1p(2.0 * t_u * c.inv_relaxation) / c.inv_relaxation;
+}
+
+} // namespace detail
+
+/// A touch whose bridge exponent exceeds this has a probability below
+/// event_crossing_floor (e^-27.63 = 1e-12): no touch.
+inline constexpr double kWhiteNoTouch = 27.631021115928547;
+
+/// One white-noise step of length h / 2^d0 from w, cut short at the first
+/// event (theory.md, section 10).
+///
+/// While V keeps its sign s, dV = (bias - s friction - V/tauL) dt +
+/// sqrt(noise) dW is linear and (V, U) is exactly Gaussian over the step
+/// (phase_law.hpp): the step's end is drawn from it (the two normals of the
+/// step's draw). Two events can cut it short: V reaching 0, and V reaching the
+/// level -dir c that ends the half. Whether the path touched a level between
+/// the two ends is decided exactly (for a constant drift; to first order in
+/// h/tauL with drag) by the Brownian-bridge probability exp(-2 d_a d_b /
+/// (noise h)) against the step's side uniform, and the time of the touch is
+/// drawn from the bridge's first-passage law (bridge_hitting_time), so no
+/// refinement is needed; only a piece that can reach both levels is halved
+/// at its bridge midpoint, its halves tested in time order. U at the touch is
+/// the trapezoid over the piece cut there. At a touch of the half's level the
+/// half is over (V set to the level). From V = 0 the object leaves at once,
+/// the rest of the step drawn by detail::white_leave_zero (U by the
+/// trapezoid), so the many zeros of V near a touch need no steps of their
+/// own. Weak order 1 (docs/validation.md, "The event scheme for white noise").
+template <class Rng, class RefRng, class Observer>
+STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventWalk& w, int d0, Rng& rng, RefRng& ref,
+                                                 Observer& observe) {
+    if (w.steps + w.midpoints >= c.max_work) return EventStatus::Capped;
+    ++w.steps;
+    const NormalPair z = rng.normal2();
+    const EventLevel& L0 = c.lv[d0];
+    const std::uint64_t t0 = w.t, t_end = t0 + L0.leaves;
+    const bool has_level = w.dir != 0;
+    const double level = -w.dir * c.level; // the level that ends the half
+    const double v_start = w.v, u_start = w.u;
+    // The rest of the step from V = 0 at time t (leaves); HalfDone if it ends beyond the level.
+    // (The step then ends after that piece, which may be before t_end.)
+    auto leave_zero = [&](std::uint64_t t, double u, double n, double u_sign, double u_max) {
+        const std::uint64_t t_stop = t_end - t > c.leave_zero_leaves ? t + c.leave_zero_leaves : t_end;
+        const double r = c.leaf * static_cast<double>(t_stop - t);
+        const double v = detail::white_leave_zero(c, r, n, u_sign, u_max);
+        const double u_next = u + 0.5 * r * v;
+        const bool beyond = has_level && (level < 0.0 ? v <= level : v >= level);
+        const double v_next = beyond ? level : v;
+        observe(EventPiece{t, t_stop, v_next > 0 ? 1 : -1, 0.0, 0.0, u, 0.0, v_next, u_next});
+        w.v = v_next;
+        w.u = u_next;
+        w.t = t_stop;
+        w.phase = v_next > 0 ? 1 : (v_next < 0 ? -1 : 0);
+        return beyond ? EventStatus::HalfDone : EventStatus::Running;
+    };
+    if (v_start == 0.0) {
+        const double u_sign = rng.side_uniform();
+        const double u_max = ref.uniform();
+        return leave_zero(t0, u_start, z.x, u_sign, u_max);
+    }
+    const int s = v_start > 0.0 ? 1 : -1;
+    const double cs = c.bias - s * c.friction;
+    const bool level_here = has_level && (level > 0.0) == (s > 0); // on this side of 0
+    struct Piece {
+        double a[2], b[2];
+        int d;
+        std::uint64_t t;
+    };
+    Piece stack[event_depth + 1];
+    int top = 0;
+    Piece cur{{v_start, u_start}, {0.0, 0.0}, d0, t0};
+    {
+        const double n[2] = {z.x, z.y};
+        apply(L0.wslide, cur.a, cs, n, cur.b);
+    }
+    const double whole_b[2] = {cur.b[0], cur.b[1]};
+    // Most steps are far from both levels: no touch is possible, and the
+    // step's side uniform is not even computed.
+    {
+        const double rate = 2.0 * L0.v_grow / (c.noise * L0.v_u_len);
+        const double ez = s * cur.b[0] <= 0.0 ? 0.0 : cur.a[0] * cur.b[0] * rate;
+        const double el = !level_here ? 1e300 : (s * (cur.b[0] - level) >= 0.0 ? 0.0 : (cur.a[0] - level) * (cur.b[0] - level) * rate);
+        if (ez > kWhiteNoTouch && el > kWhiteNoTouch) {
+            observe(EventPiece{t0, t_end, s, 0.0, v_start, u_start, 0.0, whole_b[0], whole_b[1]});
+            w.v = whole_b[0];
+            w.u = whole_b[1];
+            w.t = t_end;
+            w.phase = s;
+            return EventStatus::Running;
+        }
+    }
+    double u = rng.side_uniform();
+    double hit = -1.0; // time of the touch within the current piece [s]
+    bool hit_level = false;
+    for (;;) {
+        const EventLevel& L = c.lv[cur.d];
+        const double rate = 2.0 * L.v_grow / (c.noise * L.v_u_len);
+        const double pz = s * cur.b[0] <= 0.0 ? 1.0 : detail::bridge_touch(cur.a[0], cur.b[0], 0.0, rate);
+        const double pl = !level_here ? 0.0
+                          : (s * (cur.b[0] - level) >= 0.0 ? 1.0 : detail::bridge_touch(cur.a[0], cur.b[0], level, rate));
+        const bool both = pz > event_crossing_floor && pl > event_crossing_floor;
+        const bool near = cur.d < d0 + event_white_refine_depth && (pz > event_crossing_floor || pl > event_crossing_floor);
+        if (cur.d < event_depth && (both || near)) {
+            if (w.steps + w.midpoints >= c.max_work) return EventStatus::Capped;
+            ++w.midpoints;
+            const NormalPair nm = ref.normal2();
+            const double n[2] = {nm.x, nm.y};
+            const double a_rel[2] = {cur.a[0], 0.0};
+            const double b_rel[2] = {cur.b[0], cur.b[1] - cur.a[1]};
+            double m[2];
+            apply(L.wmid, a_rel, b_rel, cs, n, m);
+            m[1] += cur.a[1];
+            stack[top++] = Piece{{m[0], m[1]}, {cur.b[0], cur.b[1]}, cur.d + 1, cur.t + L.leaves / 2};
+            cur = Piece{{cur.a[0], cur.a[1]}, {m[0], m[1]}, cur.d + 1, cur.t};
+            u = ref.side_draw().y;
+            continue;
+        }
+        // (1 - u for the level: the two touches are disjoint events.)
+        if (pz >= 1.0 || u < pz) {
+            const double db = s * cur.b[0] * L.v_grow; // the end's distance, in the Brownian clock
+            hit = detail::white_touch_time(c, L, s * cur.a[0], db <= 0.0 ? db : -db, ref);
+        } else if (pl > 0.0 && (pl >= 1.0 || 1.0 - u < pl)) {
+            const double da = s * (level - cur.a[0]), db = s * (level - cur.b[0]) * L.v_grow;
+            hit = detail::white_touch_time(c, L, da, db <= 0.0 ? db : -db, ref);
+            hit_level = true;
+        }
+        if (hit >= 0.0 || top == 0) break;
+        cur = stack[--top];
+        u = ref.uniform();
+    }
+    if (hit < 0.0) { // no event: the whole step
+        observe(EventPiece{t0, t_end, s, 0.0, v_start, u_start, 0.0, whole_b[0], whole_b[1]});
+        w.v = whole_b[0];
+        w.u = whole_b[1];
+        w.t = t_end;
+        w.phase = s;
+        return EventStatus::Running;
+    }
+    const std::uint64_t t_hit = cur.t + detail::leaves_of(c, hit, c.lv[cur.d].leaves);
+    const double v_hit = hit_level ? level : 0.0;
+    const double u_hit = cur.a[1] + 0.5 * c.leaf * static_cast<double>(t_hit - cur.t) * (cur.a[0] + v_hit);
+    observe(EventPiece{t0, t_hit, s, 0.0, v_start, u_start, 0.0, v_hit, u_hit});
+    w.v = v_hit;
+    w.u = u_hit;
+    w.t = t_hit;
+    if (hit_level) {
+        w.phase = s;
+        return EventStatus::HalfDone;
+    }
+    w.phase = 0;
+    if (t_hit == t_end) return EventStatus::Running; // at 0 at the step's end: the next step leaves it
+    // (One draw at a time: the order of a call's arguments is unspecified.)
+    const double n_leave = ref.normal2().x;
+    const double u_sign = ref.side_draw().y;
+    const double u_max = ref.uniform();
+    return leave_zero(t_hit, u_hit, n_leave, u_sign, u_max);
+}
+
 /// Puts w at the start of half `dir` at its current time: it launches from
-/// (x*, 0) upwards (+1) or from (x-*, 0) downwards (-1).
+/// (x*, 0) upwards (+1) or from (x-*, 0) downwards (-1); white noise: it
+/// starts at V = +c (+1) or -c (-1).
 STICKSLIP_HD inline void event_start_half(const EventConstants& c, EventWalk& w, int dir) {
     w.dir = dir;
+    if (c.white) { // from V = dir c (the levels +-c of white noise)
+        w.v = dir * c.level;
+        w.x = 0.0;
+        w.phase = dir;
+        w.launched = false;
+        return;
+    }
     w.v = 0.0;
     w.x = dir > 0 ? c.x_up : c.x_down;
     w.phase = dir;
@@ -499,6 +736,7 @@ STICKSLIP_HD inline ExcursionOutcome event_long_excursion(const EventConstants& 
 template <class Rng, class RefRng, class Observer>
 STICKSLIP_HD inline EventStatus event_step(const EventConstants& c, EventWalk& w, int d0, Rng& rng, RefRng& ref,
                                            Observer& observe) {
+    if (c.white) return event_white_step(c, w, d0, rng, ref, observe);
     return event_colored_step(c, w, d0, rng, ref, observe);
 }
 

@@ -1,11 +1,13 @@
 // The event scheme (event_scheme.hpp): time kept in whole leaves, results
 // bitwise the same for any thread count, paths that end exactly at their
-// times, the start of a walk from any state, the refusal of white noise, and
-// the first-passage law of a stuck step against its closed forms.
+// times, the start of a walk from any state, the white-noise step (exact far
+// from zero, the exact law of leaving zero, thread invariance), and the
+// first-passage law of a stuck step against its closed forms.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "stickslip/analytic.hpp"
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/event_scheme.hpp"
@@ -90,15 +92,91 @@ TEST(EventScheme, CappedExcursionsAreCounted) {
     EXPECT_EQ(t.capped + t.moments.count(), 64u);
 }
 
-TEST(EventScheme, WhiteNoiseIsRefusedNamingTheScheme) {
-    ss::ModelParams p;
+ss::ModelParams dry_white() {
+    ss::ModelParams p; // pure dry friction, white noise, friction = noise = 1
+    p.friction = 1;
+    p.noise = 1;
     p.tau = 0;
-    try {
-        ss::make_event_constants(p, event(1e-2));
-        FAIL() << "white noise accepted";
-    } catch (const ss::InvalidParameter& e) {
-        EXPECT_EQ(e.parameter(), "scheme");
+    p.relaxation = INFINITY;
+    p.bias = 0;
+    return p;
+}
+
+TEST(EventScheme, WhiteNoiseStepFarFromZeroIsTheExactGaussianStep) {
+    // Far from both levels no touch is possible: the step is the exact law of
+    // (V, U) applied to the step's two normals, bit for bit, and draws nothing
+    // from the refinement stream.
+    ss::ModelParams p = dry_white();
+    p.relaxation = 0.5;
+    p.bias = 0.2;
+    const ss::EventConstants c = ss::make_event_constants(p, event(1e-2));
+    ss::EventWalk w = ss::event_walk_from(c, 0.0, 3.0);
+    ss::BatchedCounterRng rng(5, ss::StreamPurpose::Test, 0), twin(5, ss::StreamPurpose::Test, 0);
+    ss::CounterRng ref(5, ss::StreamPurpose::Refinement, 0);
+    ss::NoPieceObserver none;
+    ASSERT_EQ(ss::event_step(c, w, 0, rng, ref, none), ss::EventStatus::Running);
+    const ss::NormalPair z = twin.normal2();
+    const double a[2] = {3.0, 0.0}, n[2] = {z.x, z.y};
+    double b[2];
+    ss::apply(c.lv[0].wslide, a, p.bias - p.friction, n, b);
+    EXPECT_EQ(w.v, b[0]);
+    EXPECT_EQ(w.u, b[1]);
+    EXPECT_EQ(w.t, c.lv[0].leaves);
+    EXPECT_EQ(w.midpoints, 0u);
+    EXPECT_EQ(ref.draws(), 0u);
+}
+
+TEST(EventScheme, WhiteNoiseLeavesZeroWithTheDryFrictionPropagator) {
+    // From V = 0 without bias or drag the law of V(r) is exact: against the
+    // propagator p(v, r | 0) (analytic.hpp), P(V > 0), E|V| and E[V^2].
+    const ss::ModelParams p = dry_white();
+    const ss::EventConstants c = ss::make_event_constants(p, event(1e-2));
+    for (double r : {0.01, 0.3}) {
+        const int n = 200000;
+        double pos = 0, abs1 = 0, sq = 0, sq4 = 0;
+        ss::CounterRng rng(9, ss::StreamPurpose::Test, static_cast<std::uint64_t>(r * 1000));
+        for (int k = 0; k < n; ++k) {
+            const double z = rng.normal2().x;
+            const double u_sign = rng.side_draw().y;
+            const double u_max = rng.uniform();
+            const double v = ss::detail::white_leave_zero(c, r, z, u_sign, u_max);
+            pos += v > 0;
+            abs1 += std::fabs(v);
+            sq += v * v;
+            sq4 += v * v * v * v;
+        }
+        double e_abs = 0, e_sq = 0;
+        const double hi = 12 * std::sqrt(r) + 12 * r, dv = hi / 200000;
+        for (int i = 0; i < 200000; ++i) {
+            const double v = (i + 0.5) * dv, q = 2 * ss::dry_friction_propagator(p, v, r, 0.0) * dv;
+            e_abs += v * q;
+            e_sq += v * v * q;
+        }
+        const double mean_abs = abs1 / n, mean_sq = sq / n;
+        const double se_abs = std::sqrt((mean_sq - mean_abs * mean_abs) / n);
+        const double se_sq = std::sqrt((sq4 / n - mean_sq * mean_sq) / n);
+        EXPECT_NEAR(pos / n, 0.5, 4 * std::sqrt(0.25 / n)) << "r = " << r;
+        EXPECT_NEAR(mean_abs, e_abs, 4 * se_abs) << "r = " << r << ", z = " << (mean_abs - e_abs) / se_abs;
+        EXPECT_NEAR(mean_sq, e_sq, 4 * se_sq) << "r = " << r << ", z = " << (mean_sq - e_sq) / se_sq;
     }
+}
+
+TEST(EventScheme, WhiteNoiseIsBitwiseTheSameForAnyThreadCount) {
+    ss::ModelParams p = dry_white();
+    p.bias = 0.3;
+    ss::RunTotals t[2];
+    const unsigned threads[2] = {1, 3};
+    for (int k = 0; k < 2; ++k) {
+        ss::RunControl ctl;
+        ctl.seed = 4;
+        ctl.threads = threads[k];
+        t[k] = ss::run_long_excursions(p, event(0.05), 300, ctl);
+    }
+    EXPECT_EQ(t[0].moments.count(), 300u);
+    EXPECT_EQ(t[0].work, t[1].work);
+    EXPECT_EQ(t[0].moments.mean_x(), t[1].moments.mean_x());
+    EXPECT_EQ(t[0].moments.central_sum(2, 0), t[1].moments.central_sum(2, 0));
+    EXPECT_EQ(t[0].moments.mean_y(), t[1].moments.mean_y());
 }
 
 // The stuck step's crossing: for a Brownian bridge (tau large against the
