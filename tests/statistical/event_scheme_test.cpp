@@ -154,7 +154,7 @@ TEST(EventSchemeStatistics, WhiteNoiseAtTheAutomaticStepMatchesTheQuadrature) {
     // The white-noise event scheme at its automatic step against the exact
     // quadrature (friction = noise = 1): pure dry friction (dt' = 1/16; the
     // resolvent step is -10% there), a bias of 0.3 (dt' = 1/16), and a drag
-    // of relaxation 0.2 with that bias (dt = relaxation/8 = 0.025). Allowance
+    // of relaxation 0.2 with that bias (dt = relaxation/16 = 0.0125). Allowance
     // 0.5% of the value: over 1e6 excursions per case no bias was seen at
     // 0.3 to 1.8% standard errors (docs/validation.md, "The event scheme for
     // white noise").

@@ -87,6 +87,10 @@ TEST(AutoStep, FollowsTheMeasuredLawsAndTheTimeScales) {
     const double white = auto_time_step(dry, Scheme::Resolvent); // (0.001/0.39)^2 s
     EXPECT_NEAR(white, 6.5746e-6, 1e-9);
     EXPECT_NEAR(std::fabs(resolvent_bias(dry, white)), 1e-3, 1e-12); // the law's 0.1%
+    EXPECT_DOUBLE_EQ(auto_time_step(dry, Scheme::Event), 1.0 / 16); // white: T_f/16
+    dry.relaxation = 0.2;
+    EXPECT_DOUBLE_EQ(auto_time_step(dry, Scheme::Event), 0.2 / 16); // white with drag: relaxation/16
+    dry.relaxation = INFINITY;
     dry.tau = 0.1;
     EXPECT_DOUBLE_EQ(auto_time_step(dry, Scheme::Event), 0.1 / 16);
     dry.tau = 1; // tau' = 1: the coloured law, 0.001/0.35 T_f
