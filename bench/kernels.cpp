@@ -17,6 +17,13 @@
 //                                 excursions per iteration; items = steps.
 //   BM_PdmpEvents/<case>          pdmp_long_excursion, grid 0.125
 //                                 (BatchedUniformRng); items = events.
+//   BM_EventSteps/<case>          event_long_excursion (the event scheme, one
+//                                 excursion at a time, no lanes); items =
+//                                 steps and refinement midpoints.
+//   BM_InclusionLanes/white_dry_dt1e-2, BM_EventSteps/white_dry_dt1e-2 and
+//   .../white_dry_dt0.0625: white noise (friction 1, noise 1, tau 0,
+//                                 relaxation inf, bias 0); 0.0625 is the
+//                                 event scheme's automatic step.
 //
 // Cases: fig2 = ModelParams defaults (the paper's Fig. 2), inclusion dt 1e-4;
 //        dry  = pure dry friction: friction 1, noise 1, tau 0.5, relaxation inf,
@@ -27,6 +34,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "stickslip/event_scheme.hpp"
 #include "stickslip/inclusion.hpp"
 #include "stickslip/inclusion_lanes.hpp"
 #include "stickslip/pdmp.hpp"
@@ -147,6 +155,36 @@ void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
     report_work(state, sink, work, excursions, "events_per_excursion");
 }
 
+// The event scheme: one excursion at a time (it has no lanes).
+void run_event(benchmark::State& state, const ModelParams& p, double dt) {
+    EngineSettings s;
+    s.scheme = Scheme::Event;
+    s.dt = dt;
+    const EventConstants c = make_event_constants(p, s);
+    std::uint64_t index = 0, work = 0, excursions = 0;
+    double sink = 0.0;
+    for (auto _ : state) {
+        BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, index);
+        CounterRng ref(kSeed, StreamPurpose::Refinement, index++);
+        const ExcursionOutcome o = event_long_excursion(c, rng, ref);
+        sink += o.displacement;
+        work += o.work;
+        ++excursions;
+    }
+    report_work(state, sink, work, excursions, "steps_per_excursion");
+}
+
+ModelParams white_dry_params() {
+    ModelParams p = dry_params();
+    p.tau = 0.0;
+    return p;
+}
+
+void BM_EventSteps_fig2(benchmark::State& st) { run_event(st, fig2_params(), 1e-4); }
+void BM_EventSteps_fig2_auto(benchmark::State& st) { run_event(st, fig2_params(), 0.01675); }
+void BM_EventSteps_white(benchmark::State& st) { run_event(st, white_dry_params(), 1e-2); }
+void BM_EventSteps_white_auto(benchmark::State& st) { run_event(st, white_dry_params(), 0.0625); }
+void BM_InclusionLanes_white(benchmark::State& st) { run_inclusion_lanes(st, white_dry_params(), 1e-2); }
 void BM_InclusionSteps_fig2(benchmark::State& st) { run_inclusion(st, fig2_params(), 1e-4); }
 void BM_InclusionSteps_dry(benchmark::State& st) { run_inclusion(st, dry_params(), 1e-3); }
 void BM_InclusionLanes_fig2(benchmark::State& st) { run_inclusion_lanes(st, fig2_params(), 1e-4); }
@@ -166,6 +204,11 @@ BENCHMARK(BM_InclusionLanes_fig2)->Name("BM_InclusionLanes/fig2_dt1e-4")->Unit(b
 BENCHMARK(BM_InclusionLanes_dry)->Name("BM_InclusionLanes/dry_dt1e-3")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_fig2)->Name("BM_PdmpEvents/fig2_grid0.125")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_dry)->Name("BM_PdmpEvents/dry_grid0.125")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventSteps_fig2)->Name("BM_EventSteps/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventSteps_fig2_auto)->Name("BM_EventSteps/fig2_dt0.01675")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InclusionLanes_white)->Name("BM_InclusionLanes/white_dry_dt1e-2")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventSteps_white)->Name("BM_EventSteps/white_dry_dt1e-2")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventSteps_white_auto)->Name("BM_EventSteps/white_dry_dt0.0625")->Unit(benchmark::kMillisecond);
 
 // BENCHMARK_MAIN, plus which code paths ran, in the report's context.
 int main(int argc, char** argv) {
