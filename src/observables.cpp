@@ -886,7 +886,8 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
                     });
                 }
                 if (!out.excursion.capped) // the regeneration state that ends it
-                    append(path, out.excursion.duration, c.x_up, 1, 0.0, out.excursion.displacement);
+                    append(path, out.excursion.duration, c.white ? 0.0 : c.x_up, 1, c.white ? c.level : 0.0,
+                           out.excursion.displacement);
             } else {
                 const InclusionConstants& c = prepared.inclusion;
                 const auto stride =

@@ -66,7 +66,7 @@ ordered_json params_json(const RunSettings& r) {
     if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid;
     else {
         j["dt"] = r.engine.dt;
-        if (r.engine.dt_auto) j["dt_auto"] = true; // the step --dt auto chose
+        if (r.engine.dt_auto) j["dt_auto"] = true; // the step --dt auto chose (inclusion engine)
     }
     j["seed"] = r.control.seed;
     return j;

@@ -19,7 +19,8 @@ std::string to_json(const SweepResult& r, int indent) {
     auto params = params_json(q);
     params.erase("noise");
     params.erase("tau");
-    if (q.engine.dt_auto) params.erase("dt"); // each point's own: points[k].dt
+    const bool dt_per_point = q.engine.dt_auto && q.engine.engine == Engine::Inclusion;
+    if (dt_per_point) params.erase("dt"); // each point's own: points[k].dt
     params["noises"] = q.noises;
     params["taus"] = q.taus;
     params["excursions"] = q.excursions;
@@ -35,7 +36,7 @@ std::string to_json(const SweepResult& r, int indent) {
         o["noise"] = p.noise;
         o["tau"] = p.tau;
         o["stop_rule"] = p.stop_rule;
-        if (q.engine.dt_auto) o["dt"] = p.dt; // --dt auto: the point's own step
+        if (dt_per_point) o["dt"] = p.dt; // --dt auto: the point's own step
         append_members(o, long_excursion_json(p.estimates));
         o["slope"] = {{"value", json_number(p.slope.value)}, {"stderr", json_number(p.slope.std_error)}};
         o["nondimensional"] = {{"tau", p.tau / sc.time},

@@ -108,8 +108,8 @@ RunTotals run_bruteforce(const ModelParams& p, const EngineSettings& s, double h
         throw InvalidParameter("time", "time must be a finite number > 0 (s)");
     detail::check_start(x0, v0);
     check_run_control(ctl);
-    const PreparedEngine e = prepare_engine(p, s);
-    if (s.engine == Engine::Inclusion) bruteforce_steps(horizon, s.dt);
+    const PreparedEngine e = prepare_engine(p, s); // e.settings: --dt auto resolved
+    if (s.engine == Engine::Inclusion) bruteforce_steps(horizon, e.settings.dt);
     return run_bruteforce(e, horizon, x0, v0, trajectories, ctl);
 }
 

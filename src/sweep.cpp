@@ -80,7 +80,8 @@ SweepResult compute_sweep(const SweepRequest& req) {
     out.request.noises = prepared.noises;
     out.request.taus = prepared.taus;
     // With --dt auto each point has its own step (SweepPoint::dt), none the sweep's.
-    if (out.request.engine.dt_auto) out.request.engine.dt = std::numeric_limits<double>::quiet_NaN();
+    if (out.request.engine.dt_auto && out.request.engine.engine == Engine::Inclusion)
+        out.request.engine.dt = std::numeric_limits<double>::quiet_NaN();
     const auto& noises = out.request.noises;
     const auto& taus = out.request.taus;
     const auto start = std::chrono::steady_clock::now();

@@ -629,7 +629,9 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
             return EventStatus::Running;
         }
     }
-    double u = rng.side_uniform();
+    // The step's side uniform decides a touch only for a step at the finest
+    // depth; any other step where a touch is possible is halved first.
+    double u = d0 < event_depth ? 0.0 : rng.side_uniform();
     double hit = -1.0; // time of the touch within the current piece [s]
     bool hit_level = false;
     for (;;) {
