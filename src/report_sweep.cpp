@@ -79,10 +79,12 @@ std::string to_table(const SweepResult& r) {
         char slope[64];
         if (std::isnan(p.slope.value)) std::snprintf(slope, sizeof slope, "%s", "-");
         else std::snprintf(slope, sizeof slope, "%7.3f +- %-7.3f", p.slope.value, p.slope.std_error);
-        std::snprintf(buf, sizeof buf, "%10.4g %10.4g  %s %s %10.4g +- %-7.2g %s\n", p.tau, p.noise,
+        std::snprintf(buf, sizeof buf, "%10.4g %10.4g  %s %s %10.4g +- %-7.2g %s", p.tau, p.noise,
                       estimate_cell(p.estimates.diffusivity).c_str(), estimate_cell(p.estimates.mobility).c_str(),
                       p.estimates.mean_duration.value, p.estimates.mean_duration.std_error, slope);
         os << buf;
+        if (q.engine.dt_auto && q.engine.engine == Engine::Inclusion) os << "  dt " << format_number(p.dt) << " s";
+        os << "\n";
     }
     if (!r.exponents.empty()) {
         os << "\nfitted D ~ noise^alpha per tau (weighted least squares in log-log):\n";
@@ -101,7 +103,8 @@ std::string to_table(const SweepResult& r) {
 std::string to_csv(const SweepResult& r) {
     std::ostringstream os;
     os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
-       << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions\n";
+       << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"
+       << (r.request.engine.dt_auto && r.request.engine.engine == Engine::Inclusion ? ",dt" : "") << "\n";
     for (const auto& p : r.points) {
         ModelParams mp = r.request.params;
         mp.noise = p.noise;
@@ -112,7 +115,9 @@ std::string to_csv(const SweepResult& r) {
            << csv_number(p.estimates.mean_duration.std_error) << "," << csv_number(p.slope.value) << ","
            << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time) << ","
            << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << ","
-           << p.estimates.excursions << "\n";
+           << p.estimates.excursions;
+        if (r.request.engine.dt_auto && r.request.engine.engine == Engine::Inclusion) os << "," << csv_number(p.dt);
+        os << "\n";
     }
     return os.str();
 }

@@ -666,12 +666,14 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
             hit = detail::white_touch_time(c, L, da, db <= 0.0 ? db : -db, ref);
             hit_level = true;
         }
-        if (hit >= 0.0 || top == 0) break;
+        if (hit >= 0.0) break;
+        // No touch in this piece: the observer sees it with its exact ends.
+        observe(EventPiece{cur.t, cur.t + L.leaves, s, 0.0, cur.a[0], cur.a[1], 0.0, cur.b[0], cur.b[1]});
+        if (top == 0) break;
         cur = stack[--top];
         u = ref.uniform();
     }
     if (hit < 0.0) { // no event: the whole step
-        observe(EventPiece{t0, t_end, s, 0.0, v_start, u_start, 0.0, whole_b[0], whole_b[1]});
         w.v = whole_b[0];
         w.u = whole_b[1];
         w.t = t_end;
@@ -681,7 +683,7 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
     const std::uint64_t t_hit = cur.t + detail::leaves_of(c, hit, c.lv[cur.d].leaves);
     const double v_hit = hit_level ? level : 0.0;
     const double u_hit = cur.a[1] + 0.5 * c.leaf * static_cast<double>(t_hit - cur.t) * (cur.a[0] + v_hit);
-    observe(EventPiece{t0, t_hit, s, 0.0, v_start, u_start, 0.0, v_hit, u_hit});
+    observe(EventPiece{cur.t, t_hit, s, 0.0, cur.a[0], cur.a[1], 0.0, v_hit, u_hit});
     w.v = v_hit;
     w.u = u_hit;
     w.t = t_hit;

@@ -564,6 +564,11 @@ TEST(CliAutoStep, ASweepChoosesAStepPerPoint) {
     // min(tau/16 = 0.03125 s, T_f/16 = noise/16 s): 0.015625 and 0.03125 s.
     EXPECT_EQ(pts[0].at("dt").get<double>(), 0.25 / 16);
     EXPECT_EQ(pts[1].at("dt").get<double>(), 0.5 / 16);
+    const Result table = run({"sweep", "--scheme", "event", "--dt", "auto", "--noise", "0.25,1", "--tau", "0.5",
+                              "--friction", "1", "--relaxation", "inf", "--bias", "0", "--excursions", "100"});
+    ASSERT_EQ(table.code, 0) << table.err;
+    EXPECT_NE(table.out.find("dt auto, per point"), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("dt 0.015625 s"), std::string::npos) << table.out;
 }
 
 TEST(CliCheckDt, RefusedWhereItCannotRun) {
