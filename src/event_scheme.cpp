@@ -20,6 +20,7 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
     c.bias = p.bias;
     c.friction = p.friction;
     c.inv_relaxation = p.inverse_relaxation();
+    c.relaxation = p.relaxation;
     c.noise = p.noise;
     c.max_work = s.max_work_per_excursion;
     c.white = p.white();
@@ -46,6 +47,7 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
                 const double k = p.inverse_relaxation();
                 L.v_grow = k == 0.0 ? 1.0 : std::exp(L.len * k);
                 L.v_u_len = k == 0.0 ? L.len : 0.5 * std::expm1(2.0 * L.len * k) / k;
+                L.v_touch_rate = 2.0 * L.v_grow / (p.noise * L.v_u_len);
             } else {
                 L.slide = colored_slide_law(p.tau, p.relaxation, c.amp, L.len);
                 L.mid = colored_slide_bridge(p.tau, p.relaxation, c.amp, L.len);

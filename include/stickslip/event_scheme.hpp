@@ -126,6 +126,9 @@ struct EventLevel {
     /// clock [s] (len and 1 without drag).
     double v_grow, v_u_len;
     /// @}
+    /// 2 v_grow / (noise v_u_len) [s m^-2]: a touch between ends at distances
+    /// d_a, d_b has probability exp(-d_a d_b v_touch_rate).
+    double v_touch_rate;
 };
 
 /// Per-run constants of the event scheme (SI units).
@@ -139,6 +142,7 @@ struct EventConstants {
     double bias, friction;
     /// @}
     double inv_relaxation; ///< 1/tauL [s^-1], 0 without drag
+    double relaxation;     ///< tauL [s], +inf without drag
     double noise;          ///< Gamma [m^2 s^-3]
     /// @{
     /// The noise thresholds x* (upper) and x-* (lower) [s^-1/2] of the static
@@ -218,6 +222,15 @@ STICKSLIP_HD inline std::uint64_t leaves_of(const EventConstants& c, double t, s
     return static_cast<std::uint64_t>(n + 0.5);
 }
 
+/// Real time [s] of the time t_u [s] in the Brownian clock tau (e^{2t/tau} -
+/// 1)/2 of an OU process of relaxation time tau (the identity when tau is
+/// infinite): the inverse of the clock change that first_passage and
+/// white_touch_time use.
+STICKSLIP_HD inline double from_brownian_clock(double t_u, double tau) {
+    if (tau == HUGE_VAL) return t_u;
+    return 0.5 * tau * kernel_log1p(2.0 * t_u / tau);
+}
+
 /// Can the noise, stuck through a step of level L from distance da to
 /// distance db (signed: <= 0 beyond) of a threshold, reach it with a
 /// probability above event_crossing_floor?
@@ -279,7 +292,7 @@ STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double 
         y = -b; // the reflected end
     }
     const double t_u = bridge_hitting_time(a, y, L.x_u_len, L.x_var_rate, ref);
-    return 0.5 * L.x_tau * kernel_log1p(2.0 * t_u / L.x_tau); // back to real time
+    return from_brownian_clock(t_u, L.x_tau); // back to real time
 }
 
 /// The lowest value of s V over a piece of depth level L between the
@@ -536,9 +549,7 @@ STICKSLIP_HD inline double white_leave_zero(const EventConstants& c, double r, d
 template <class RefRng>
 STICKSLIP_HD inline double white_touch_time(const EventConstants& c, const EventLevel& L, double a, double y,
                                             RefRng& ref) {
-    const double t_u = bridge_hitting_time(a, y, L.v_u_len, c.noise, ref);
-    if (c.inv_relaxation == 0.0) return t_u;
-    return 0.5 * kernel_log1p(2.0 * t_u * c.inv_relaxation) / c.inv_relaxation;
+    return from_brownian_clock(bridge_hitting_time(a, y, L.v_u_len, c.noise, ref), c.relaxation);
 }
 
 } // namespace detail
@@ -617,7 +628,7 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
     // Most steps are far from both levels: no touch is possible, and the
     // step's side uniform is not even computed.
     {
-        const double rate = 2.0 * L0.v_grow / (c.noise * L0.v_u_len);
+        const double rate = L0.v_touch_rate;
         const double ez = s * cur.b[0] <= 0.0 ? 0.0 : cur.a[0] * cur.b[0] * rate;
         const double el = !level_here ? 1e300 : (s * (cur.b[0] - level) >= 0.0 ? 0.0 : (cur.a[0] - level) * (cur.b[0] - level) * rate);
         if (ez > kWhiteNoTouch && el > kWhiteNoTouch) {
@@ -636,7 +647,7 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
     bool hit_level = false;
     for (;;) {
         const EventLevel& L = c.lv[cur.d];
-        const double rate = 2.0 * L.v_grow / (c.noise * L.v_u_len);
+        const double rate = L.v_touch_rate;
         const double pz = s * cur.b[0] <= 0.0 ? 1.0 : detail::bridge_touch(cur.a[0], cur.b[0], 0.0, rate);
         const double pl = !level_here ? 0.0
                           : (s * (cur.b[0] - level) >= 0.0 ? 1.0 : detail::bridge_touch(cur.a[0], cur.b[0], level, rate));
