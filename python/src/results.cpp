@@ -184,19 +184,7 @@ void bind_results(py::module_& m) {
                 "discretisation",
                 [](const DiffusivityResult& r) -> py::object {
                     if (!r.discretisation) return py::none();
-                    const DiscretisationCheck& c = *r.discretisation;
-                    py::dict d, dd, dm;
-                    d["dt"] = c.dt;
-                    d["check_dt"] = c.check_dt;
-                    d["excursions"] = c.excursions;
-                    d["steps"] = c.steps;
-                    dd["difference"] = c.diffusivity_difference;
-                    dd["stderr"] = c.diffusivity_stderr;
-                    dm["difference"] = c.mobility_difference;
-                    dm["stderr"] = c.mobility_stderr;
-                    d["diffusivity"] = dd;
-                    d["mobility"] = dm;
-                    return d;
+                    return json_loads(to_json(r, -1))["discretisation"]; // the JSON's layout, defined once
                 },
                 "check_dt=True: {'dt', 'check_dt', 'excursions', 'steps', 'diffusivity': {'difference', "
                 "'stderr'}, 'mobility': {...}}, the values at 2 dt minus those at dt [m^2/s, m/s]; None "
