@@ -105,18 +105,26 @@ InclusionConstants inclusion_constants(const ModelParams& p, double dt) {
     return make_inclusion_constants(p, s);
 }
 
-void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
-    const InclusionConstants c = inclusion_constants(p, dt);
-    std::uint64_t index = 0, work = 0, excursions = 0;
+// One long excursion per iteration: excursion(index) runs excursion `index`
+// on its own streams; successive iterations take successive indices.
+template <class Excursion>
+void time_excursions(benchmark::State& state, const char* per_excursion_name, Excursion excursion) {
+    std::uint64_t index = 0, work = 0;
     double sink = 0.0;
     for (auto _ : state) {
-        BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, index++);
-        const ExcursionOutcome o = inclusion_long_excursion(c, rng);
+        const ExcursionOutcome o = excursion(index++);
         sink += o.displacement;
         work += o.work;
-        ++excursions;
     }
-    report_work(state, sink, work, excursions, "steps_per_excursion");
+    report_work(state, sink, work, index, per_excursion_name);
+}
+
+void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
+    const InclusionConstants c = inclusion_constants(p, dt);
+    time_excursions(state, "steps_per_excursion", [&c](std::uint64_t k) {
+        BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, k);
+        return inclusion_long_excursion(c, rng);
+    });
 }
 
 // The kernel the runner uses (inclusion_long_excursions: 8 SIMD lanes where
@@ -143,16 +151,10 @@ void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
     s.engine = Engine::Pdmp;
     s.grid = grid;
     const PdmpConstants c = make_pdmp_constants(p, s);
-    std::uint64_t index = 0, work = 0, excursions = 0;
-    double sink = 0.0;
-    for (auto _ : state) {
-        BatchedUniformRng rng(kSeed, StreamPurpose::LongExcursion, index++);
-        const ExcursionOutcome o = pdmp_long_excursion(c, rng);
-        sink += o.displacement;
-        work += o.work;
-        ++excursions;
-    }
-    report_work(state, sink, work, excursions, "events_per_excursion");
+    time_excursions(state, "events_per_excursion", [&c](std::uint64_t k) {
+        BatchedUniformRng rng(kSeed, StreamPurpose::LongExcursion, k);
+        return pdmp_long_excursion(c, rng);
+    });
 }
 
 // The event scheme: one excursion at a time (it has no lanes).
@@ -161,17 +163,11 @@ void run_event(benchmark::State& state, const ModelParams& p, double dt) {
     s.scheme = Scheme::Event;
     s.dt = dt;
     const EventConstants c = make_event_constants(p, s);
-    std::uint64_t index = 0, work = 0, excursions = 0;
-    double sink = 0.0;
-    for (auto _ : state) {
-        BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, index);
-        CounterRng ref(kSeed, StreamPurpose::Refinement, index++);
-        const ExcursionOutcome o = event_long_excursion(c, rng, ref);
-        sink += o.displacement;
-        work += o.work;
-        ++excursions;
-    }
-    report_work(state, sink, work, excursions, "steps_per_excursion");
+    time_excursions(state, "steps_per_excursion", [&c](std::uint64_t k) {
+        BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, k);
+        CounterRng ref(kSeed, StreamPurpose::Refinement, k);
+        return event_long_excursion(c, rng, ref);
+    });
 }
 
 ModelParams white_dry_params() {
