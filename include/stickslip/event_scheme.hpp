@@ -214,6 +214,15 @@ STICKSLIP_HD inline double bridge_touch(double a, double b, double level, double
     return e > 50.0 ? 0.0 : std::exp(-e);
 }
 
+/// A piece of a step under refinement: the state (N components) at its
+/// start a and end b, its depth d (length h / 2^d) and start time t [leaves].
+template <int N>
+struct RefinedPiece {
+    double a[N], b[N];
+    int d;
+    std::uint64_t t;
+};
+
 /// Rounds a time within a step [s] to whole leaves, at least 1 and at most the step.
 STICKSLIP_HD inline std::uint64_t leaves_of(const EventConstants& c, double t, std::uint64_t step_leaves) {
     const double n = t / c.leaf;
@@ -419,11 +428,7 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     const int s = w.phase;
     const double cs = c.bias - s * c.friction;
     const NormalPair side = rng.side_draw();
-    struct Node {
-        double a[3], b[3];
-        int d;
-        std::uint64_t t;
-    };
+    using Node = detail::RefinedPiece<3>;
     Node stack[event_depth + 1];
     int top = 0;
     const EventLevel& L0 = c.lv[d0];
@@ -612,11 +617,7 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
     const int s = v_start > 0.0 ? 1 : -1;
     const double cs = c.bias - s * c.friction;
     const bool level_here = has_level && (level > 0.0) == (s > 0); // on this side of 0
-    struct Piece {
-        double a[2], b[2];
-        int d;
-        std::uint64_t t;
-    };
+    using Piece = detail::RefinedPiece<2>;
     Piece stack[event_depth + 1];
     int top = 0;
     Piece cur{{v_start, u_start}, {0.0, 0.0}, d0, t0};
