@@ -94,6 +94,9 @@ def main():
     for case, label in (("fig2_dt1e-4", "Fig. 2, dt 1e-4"), ("fig2_dt0.01675", "Fig. 2, dt 0.01675 (auto)"),
                         ("white_dry_dt1e-2", "white, pure dry, dt 1e-2"),
                         ("white_dry_dt0.0625", "white, pure dry, dt 0.0625 (auto)")):
+        if "BM_EventLanes/" + case in bm:
+            r, per = kernel("BM_EventLanes/" + case)
+            row("event scheme steps, 8 lanes (runner), " + label, r, normal_limit, per)
         if "BM_EventSteps/" + case in bm:
             r, per = kernel("BM_EventSteps/" + case)
             row("event scheme steps, one excursion, " + label, r, normal_limit, per)
@@ -177,15 +180,17 @@ def main():
         ("2 threads / 1 thread (whole run)", thread_speedup, TARGET_THREADS),
         ("PDMP events/s (Fig. 2) / uniform-pair limit", fig2_pdmp / uniform_limit, None),
     ]
-    if "BM_EventSteps/fig2_dt1e-4" in bm:
+    if "BM_EventLanes/fig2_dt1e-4" in bm:
         # Issue "event scheme", item 6: event-scheme steps/s per core at least 0.6 of the resolvent's
-        # (lanes) at the same step.
-        ev, _ = kernel("BM_EventSteps/fig2_dt1e-4")
-        targets.append(("event scheme steps/s / resolvent (8 lanes), Fig. 2, dt 1e-4", ev / lanes_fig2, 0.6))
+        # (lanes) at the same step, each with the kernel the runner uses.
+        ev, _ = kernel("BM_EventLanes/fig2_dt1e-4")
+        targets.append(("event scheme steps/s (8 lanes) / resolvent (8 lanes), Fig. 2, dt 1e-4",
+                        ev / lanes_fig2, 0.6))
     if "BM_EventSteps/white_dry_dt1e-2" in bm:
         ev, _ = kernel("BM_EventSteps/white_dry_dt1e-2")
         lw, _ = kernel("BM_InclusionLanes/white_dry_dt1e-2")
-        targets.append(("event scheme steps/s / resolvent (8 lanes), white, dt 1e-2", ev / lw, 0.6))
+        # (White noise has no lanes in either scheme: both run one excursion at a time.)
+        targets.append(("event scheme steps/s / resolvent, white, dt 1e-2", ev / lw, 0.6))
     for name, value, minimum in targets:
         if value is None:
             verdict = "not measured"

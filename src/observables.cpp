@@ -221,7 +221,7 @@ public:
         }
         if (e_.settings.scheme == Scheme::Event) {
             BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-            CounterRng ref(seed, StreamPurpose::Refinement, k);
+            BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
             auto sampler = event_sampler(e_.event, dt, [&](double, int, double v, double) { on_v(v); },
                                          random_phase ? sampling_phase(seed, k, dt) : 0.0);
             return event_long_excursion(e_.event, rng, ref, sampler);
@@ -533,7 +533,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
                 auto sampler =
                     event_sampler(c, dt, [&](double, int, double v, double) { push(st, v); }, sampling_phase(seed, k, dt));
                 BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-                CounterRng ref(seed, StreamPurpose::Refinement, k);
+                BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
                 const ExcursionOutcome o = event_long_excursion(c, rng, ref, sampler);
                 if (o.capped || st.m == 0) return o;
                 // Continue from the regeneration state s+ until every lag of every start is seen.
@@ -728,7 +728,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
                 thread_local std::vector<double> y;
                 y.assign(dim, 0.0);
                 BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
-                CounterRng ref(seed, StreamPurpose::Refinement, k);
+                BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
                 const double x = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
                 EventWalk w = event_walk_from(c, x, req.v0);
                 NoPieceObserver none;
@@ -872,7 +872,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
             } else if (req.engine.scheme == Scheme::Event) {
                 // Every piece's start, so events are in the path at their times (or a grid with --every).
                 const EventConstants& c = prepared.event;
-                CounterRng ref(seed, StreamPurpose::Refinement, req.index);
+                BatchedCounterRng ref(seed, StreamPurpose::Refinement, req.index);
                 if (req.every > 0) {
                     auto sampler = event_sampler(c, req.every, [&](double x, int y, double v, double u) {
                         guard(path);
@@ -935,7 +935,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
             if (path.t.size() < npoints) append(path, horizon, c.delta * s.i, s.y, s.v, o.displacement);
         } else if (req.engine.scheme == Scheme::Event) {
             const EventConstants& c = prepared.event;
-            CounterRng ref(seed, StreamPurpose::Refinement, k);
+            BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
             EventWalk w = event_walk_from(c, x0, req.v0);
             NoPieceObserver none;
             for (std::uint64_t i = 0; i < npoints; ++i) {

@@ -11,13 +11,13 @@ namespace detail {
 
 STICKSLIP_X86_CLONES
 void philox_batch(std::uint32_t key0, std::uint32_t key1, std::uint64_t j0, std::uint32_t c2, std::uint32_t c3,
-                  std::uint32_t (*words)[rng_batch_size]) {
+                  std::uint32_t (*words)[rng_batch_size], std::uint32_t hi_mask, std::uint32_t hi_tag) {
     constexpr int n = rng_batch_size;
     std::uint32_t a[n], b[n], c[n], d[n];
     for (int i = 0; i < n; ++i) {
         const std::uint64_t j = j0 + static_cast<std::uint64_t>(i);
         a[i] = static_cast<std::uint32_t>(j);
-        b[i] = static_cast<std::uint32_t>(j >> 32);
+        b[i] = (static_cast<std::uint32_t>(j >> 32) & hi_mask) | hi_tag;
         c[i] = c2;
         d[i] = c3;
     }
@@ -97,6 +97,23 @@ void detail::fill_normals(const CounterRng::Philox::key_type& key, std::uint32_t
                         key, c2, c3, j0 + static_cast<std::uint64_t>(i), half,
                         CounterRng::join(words[2 * half][i], words[2 * half + 1][i]));
         }
+}
+
+void detail::fill_side_draws(const CounterRng::Philox::key_type& key, std::uint32_t c2, std::uint32_t c3,
+                             std::uint64_t j0, double (*side)[rng_batch_size], int from) {
+    constexpr int n = rng_batch_size;
+    std::uint32_t words[4][n];
+    philox_batch(key.v[0], key.v[1], j0, c2, c3, words, 0x7fffu, 0x40000000u);
+    double normals[2][n];
+    alignas(8) std::uint8_t rejected[2][n];
+    const bool any = ziggurat_fast_batch(words, normals, rejected) != 0; // (half 1 is not used)
+    for (int i = 0; i < n; ++i) {
+        side[0][i] = normals[0][i];
+        side[1][i] = r123::u01<double>(CounterRng::join(words[2][i], words[3][i]));
+    }
+    if (!any) return;
+    for (int i = from; i < n; ++i) // the rare rejection: its own retry substream, as the scalar draw
+        if (rejected[0][i]) side[0][i] = CounterRng::side_draw_of(key, c2, c3, j0 + static_cast<std::uint64_t>(i)).x;
 }
 
 template <bool WithNormals>

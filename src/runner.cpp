@@ -5,6 +5,7 @@
 #include "block_runner.hpp"
 #include "run_checks.hpp"
 
+#include "stickslip/event_lanes.hpp"
 #include "stickslip/inclusion.hpp"
 #include "stickslip/inclusion_lanes.hpp"
 #include "stickslip/pdmp.hpp"
@@ -35,16 +36,18 @@ RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions,
             return pdmp_long_excursion(c, rng);
         });
     }
+    detail::NoTotal none;
     if (e.settings.scheme == Scheme::Event) {
         const EventConstants& c = e.event;
-        return run_samples(excursions, ctl, [&c, seed](std::uint64_t k) {
-            BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-            CounterRng ref(seed, StreamPurpose::Refinement, k);
-            return event_long_excursion(c, rng, ref);
-        });
+        return detail::run_blocks<detail::NoBlock>(
+            excursions, ctl, [] { return detail::NoBlock{}; },
+            [&c, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                                            detail::NoBlock&) {
+                return event_long_excursions(c, seed, first, count, out, cancel);
+            },
+            none);
     }
     const InclusionConstants& c = e.inclusion;
-    detail::NoTotal none;
     return detail::run_blocks<detail::NoBlock>(
         excursions, ctl, [] { return detail::NoBlock{}; },
         [&c, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
@@ -83,7 +86,7 @@ RunTotals run_bruteforce(const PreparedEngine& e, double horizon, double x0, dou
         const auto at = static_cast<std::uint64_t>(std::llround(horizon / c.leaf));
         return run_samples(trajectories, ctl, [&c, seed, x0, v0, at](std::uint64_t k) {
             BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);
-            CounterRng ref(seed, StreamPurpose::Refinement, k);
+            BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
             EventWalk w = event_walk_from(c, x0, v0);
             NoPieceObserver none;
             ExcursionOutcome o;

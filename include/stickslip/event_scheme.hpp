@@ -96,6 +96,9 @@ inline constexpr double event_stuck_piece_max = 0.125;
 inline constexpr int event_white_refine_depth = 3;
 /// Bridge crossing probabilities below this count as no crossing.
 inline constexpr double event_crossing_floor = 1e-12;
+/// A bridge crossing exponent above this is no crossing without a uniform
+/// being compared (e^-50 ~ 2e-22, far below any uniform's resolution).
+inline constexpr double event_exponent_max = 50.0;
 
 /// The laws of one refinement depth d: a step of length h / 2^d.
 struct EventLevel {
@@ -211,7 +214,7 @@ namespace detail {
 /// with the given exponent factor touches the level: exp(-(a-l)(b-l) rate).
 STICKSLIP_HD inline double bridge_touch(double a, double b, double level, double rate) {
     const double e = (a - level) * (b - level) * rate;
-    return e > 50.0 ? 0.0 : std::exp(-e);
+    return e > event_exponent_max ? 0.0 : std::exp(-e);
 }
 
 /// A piece of a step under refinement: the state (N components) at its
@@ -297,49 +300,87 @@ STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double 
     double y = b;
     if (b > 0.0) { // both ends short of it: cross with the bridge probability
         const double e = 2.0 * a * b / (L.x_var_rate * L.x_u_len);
-        if (e > 50.0 || !kernel_below_exp(u, -e)) return -1.0;
+        if (e > event_exponent_max || !kernel_below_exp(u, -e)) return -1.0;
         y = -b; // the reflected end
     }
     const double t_u = bridge_hitting_time(a, y, L.x_u_len, L.x_var_rate, ref);
     return from_brownian_clock(t_u, L.x_tau); // back to real time
 }
 
-/// The lowest value of s V over a piece of depth level L between the
-/// sliding states a and b (with constant c): given both ends, V's conditional
+/// The lowest value of s V [m/s] over a sliding piece of length len [s]
+/// between the states (xa, v_a) and (xb, v_b) of (X, V), with force amplitude amp, 1/tauL and
+/// the constant cs [m s^-2] of direction s (+1 or -1): given both ends, V's conditional
 /// mean path is close to the cubic that matches V and its slope
 /// dV/dt = a X + c - V/tauL at both ends (exactly that cubic for an
 /// integrated Brownian motion); this returns the cubic's minimum on the piece,
 /// ends included.
-STICKSLIP_HD inline double cubic_low(const EventConstants& c, const EventLevel& L, const double a[3],
-                                     const double b[3], int s, double cs) {
-    const double va = s * a[1], vb = s * b[1];
-    const double ma = s * (c.amp * a[0] + cs - a[1] * c.inv_relaxation) * L.len;
-    const double mb = s * (c.amp * b[0] + cs - b[1] * c.inv_relaxation) * L.len;
+STICKSLIP_HD inline double cubic_low(double amp, double inv_relaxation, double len, double xa, double v_a,
+                                     double xb, double v_b, double s, double cs) {
+    const double va = s * v_a, vb = s * v_b;
+    const double ma = s * (amp * xa + cs - v_a * inv_relaxation) * len;
+    const double mb = s * (amp * xb + cs - v_b * inv_relaxation) * len;
     // H(q) = va + ma q + c2 q^2 + c3 q^3 on q in [0, 1].
     const double c2 = 3.0 * (vb - va) - 2.0 * ma - mb, c3 = 2.0 * (va - vb) + ma + mb;
     double lowest = va < vb ? va : vb;
-    // Roots of H'(q) = ma + 2 c2 q + 3 c3 q^2 inside (0, 1).
+    // Roots of H'(q) = ma + 2 c2 q + 3 c3 q^2 inside (0, 1), written without
+    // branches (selects only) so that the SIMD lanes of event_lanes.cpp run
+    // this same code: the linear root where qa = 0 (if qb != 0), else the two
+    // quadratic roots where disc >= 0.
     const double qa = 3.0 * c3, qb = 2.0 * c2, qc = ma;
-    double roots[2];
-    int nroots = 0;
-    if (qa == 0.0) {
-        if (qb != 0.0) roots[nroots++] = -qc / qb;
-    } else {
-        const double disc = qb * qb - 4.0 * qa * qc;
-        if (disc >= 0.0) {
-            const double sq = std::sqrt(disc);
-            roots[nroots++] = (-qb - sq) / (2.0 * qa);
-            roots[nroots++] = (-qb + sq) / (2.0 * qa);
-        }
-    }
-    for (int k = 0; k < nroots; ++k) {
-        const double q = roots[k];
-        if (q > 0.0 && q < 1.0) {
-            const double hq = va + q * (ma + q * (c2 + q * c3));
-            if (hq < lowest) lowest = hq;
-        }
-    }
+    const double disc = qb * qb - 4.0 * qa * qc;
+    const double sq = std::sqrt(disc >= 0.0 ? disc : 0.0);
+    const bool linear = qa == 0.0;
+    // (Every quotient and comparison computed, then selected: one under a
+    // condition could trap, a branch that the vectoriser will not remove.)
+    const double q_linear = -qc / qb, q_quadratic = (-qb - sq) / (2.0 * qa);
+    const double q1 = linear ? q_linear : q_quadratic;
+    const double q2 = (-qb + sq) / (2.0 * qa);
+    const bool real_roots = disc >= 0.0, sloped = qb != 0.0;
+    const bool has1 = (linear & sloped) | (!linear & real_roots);
+    const bool has2 = !linear & real_roots;
+    const double h1 = va + q1 * (ma + q1 * (c2 + q1 * c3));
+    const double h2 = va + q2 * (ma + q2 * (c2 + q2 * c3));
+    lowest = (has1 & (q1 > 0.0) & (q1 < 1.0) & (h1 < lowest)) ? h1 : lowest;
+    lowest = (has2 & (q2 > 0.0) & (q2 < 1.0) & (h2 < lowest)) ? h2 : lowest;
     return lowest;
+}
+
+/// Is a stuck step from xa to xb certain not to reach either threshold
+/// (x_up, x_down [s^-1/2])? True where both ends are inside the band and both
+/// bridge exponents 2 d_a d_b x_grow / spread (spread = x_var_rate x_u_len of
+/// the step's level) exceed event_exponent_max, with a margin of 1e-6 for the
+/// rounding of the quotient, which is not taken: first_passage then says "no
+/// crossing" without a uniform, and the step is X' = xb and nothing more.
+/// Branch-free and without a division, for the SIMD lanes (event_lanes.cpp),
+/// which apply such steps and leave every other one to event_colored_step.
+STICKSLIP_HD inline bool stuck_step_is_quiet(double x_up, double x_down, double x_grow, double spread, double xa,
+                                             double xb) {
+    const double ua = x_up - xa, ub = x_up - xb, da = xa - x_down, db = xb - x_down;
+    const double limit = event_exponent_max * (1.0 + 1e-6) * spread;
+    return (ua > 0.0) & (ub > 0.0) & (da > 0.0) & (db > 0.0) & (2.0 * ua * (ub * x_grow) > limit) &
+           (2.0 * da * (db * x_grow) > limit);
+}
+
+/// Is a whole sliding step from (xa, v_a) to (xb, v_b) (direction s,
+/// constant cs; level of length len [s] and midpoint sd v_mid_sd [m/s])
+/// certain to be left whole by event_colored_step? True where s V stays above
+/// 0 at the end and a lower bound of the cubic that cubic_low minimises stays
+/// above event_sigma_margin midpoint standard deviations: in Hermite form the
+/// cubic is va h00 + vb h01 + ma h10 + mb h11, where h00 + h01 = 1 (both >= 0)
+/// and 0 <= h10, -h11 <= 4/27 on [0, 1], so it is at least min(va, vb) -
+/// 4/27 (max(0, -ma) + max(0, mb)); a margin of 1e-9 of the coefficients
+/// covers the rounding of cubic_low. Branch-free and without division or
+/// square root, for the SIMD lanes; a step it does not pass goes to
+/// event_colored_step, which decides exactly.
+STICKSLIP_HD inline bool slide_step_is_quiet(double amp, double inv_relaxation, double len, double v_mid_sd,
+                                             double xa, double v_a, double xb, double v_b, double s, double cs) {
+    const double va = s * v_a, vb = s * v_b;
+    const double ma = s * (amp * xa + cs - v_a * inv_relaxation) * len;
+    const double mb = s * (amp * xb + cs - v_b * inv_relaxation) * len;
+    const double down = (ma < 0.0 ? -ma : 0.0) + (mb > 0.0 ? mb : 0.0);
+    const double bound = (va < vb ? va : vb) - (4.0 / 27.0) * down;
+    const double size = (va < 0.0 ? -va : va) + (vb < 0.0 ? -vb : vb) + (ma < 0.0 ? -ma : ma) + (mb < 0.0 ? -mb : mb);
+    return (vb > 0.0) & (bound - 1e-9 * size >= 0.0 + event_sigma_margin * v_mid_sd);
 }
 
 } // namespace detail
@@ -364,6 +405,13 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
         // halves are tested in time order, down to the finest depth.
         const EventLevel& L0 = c.lv[d0];
         const double xa = w.x, xb = L0.x_keep * xa + L0.x_sd * z.x;
+        if (detail::stuck_step_is_quiet(c.x_up, c.x_down, L0.x_grow, L0.x_var_rate * L0.x_u_len, xa, xb)) {
+            // (What the refinement below does with this step, without its side draw.)
+            observe(EventPiece{t0, t0 + L0.leaves, 0, xa, 0.0, w.u, xb, 0.0, w.u});
+            w.x = xb;
+            w.t = t0 + L0.leaves;
+            return EventStatus::Running;
+        }
         const NormalPair side = rng.side_draw();
         struct Piece {
             double a, b;
@@ -461,7 +509,8 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     };
     for (;;) {
         const EventLevel& L = c.lv[cur.d];
-        const double low = s * cur.b[1] <= floor ? s * cur.b[1] : detail::cubic_low(c, L, cur.a, cur.b, s, cs);
+        const double low = s * cur.b[1] <= floor ? s * cur.b[1] : detail::cubic_low(c.amp, c.inv_relaxation, L.len, cur.a[0], cur.a[1], cur.b[0],
+                                                                          cur.b[1], s, cs);
         const double floor_before = floor;
         if (low < floor + event_sigma_margin * L.v_mid_sd) {
             const int max_depth = w.launched && cur.t < w.launch + window ? event_launch_depth : event_depth;

@@ -107,18 +107,27 @@ WhiteSlideBridge white_slide_bridge(double relaxation, double noise, double h);
 /// OU bridge at the midpoint of a step of length h > 0 for tau > 0.
 OUBridge ou_bridge(double tau, double h);
 
-/// out = m z0 + g c + chol n. out may alias z0.
+/// (x_out, v_out, u_out) = m (x, v, u) + g c + chol (n0, n1, n2): the sliding
+/// step from (X, V, U) with constant c and the normals n0, n1, n2.
+STICKSLIP_HD inline void apply(const ColoredSlideLaw& law, double x, double v, double u, double c, double n0,
+                               double n1, double n2, double& x_out, double& v_out, double& u_out) {
+    // Written out (the sums in the order of the lower-triangular rows, from
+    // 0.0) on scalars, so that the SIMD lanes of event_lanes.cpp vectorise it.
+    const auto& m = law.m;
+    const auto& l = law.chol;
+    const double r0 = 0.0 + m[0][0] * x + law.g[0] * c + l[0][0] * n0;
+    const double r1 = 0.0 + m[1][0] * x + m[1][1] * v + law.g[1] * c + l[1][0] * n0 + l[1][1] * n1;
+    const double r2 = 0.0 + m[2][0] * x + m[2][1] * v + m[2][2] * u + law.g[2] * c + l[2][0] * n0 + l[2][1] * n1 +
+                      l[2][2] * n2;
+    x_out = r0;
+    v_out = r1;
+    u_out = r2;
+}
+
+/// out = m z0 + g c + chol n, z0 = (X, V, U). out may alias z0.
 STICKSLIP_HD inline void apply(const ColoredSlideLaw& law, const double z0[3], double c, const double n[3],
                                double out[3]) {
-    double res[3];
-    for (int i = 0; i < 3; ++i) {
-        double s = 0.0;
-        for (int j = 0; j <= i; ++j) s += law.m[i][j] * z0[j];
-        s += law.g[i] * c;
-        for (int j = 0; j <= i; ++j) s += law.chol[i][j] * n[j];
-        res[i] = s;
-    }
-    for (int i = 0; i < 3; ++i) out[i] = res[i];
+    apply(law, z0[0], z0[1], z0[2], c, n[0], n[1], n[2], out[0], out[1], out[2]);
 }
 
 /// out = m z0 + g c + chol n. out may alias z0.

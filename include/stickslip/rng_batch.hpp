@@ -29,9 +29,12 @@ namespace detail {
 inline constexpr int rng_batch_size = 32;
 
 /// Philox blocks j0 .. j0+31 of the stream (key, counter words c2, c3) into
-/// words[w][i] (word w of block j0+i).
+/// words[w][i] (word w of block j0+i). Counter word 1 of block j is
+/// ((j >> 32) & hi_mask) | hi_tag: the main draws with the defaults, the side
+/// blocks of CounterRng::side_draw_of with mask 0x7fff and tag 0x40000000.
 void philox_batch(std::uint32_t key0, std::uint32_t key1, std::uint64_t j0, std::uint32_t c2, std::uint32_t c3,
-                  std::uint32_t (*words)[rng_batch_size]);
+                  std::uint32_t (*words)[rng_batch_size], std::uint32_t hi_mask = 0xffffffffu,
+                  std::uint32_t hi_tag = 0u);
 
 /// The ziggurat fast path of the two 64-bit words of each block into
 /// normals[half][i], with rejected[half][i] = 1 where it rejected (the normal
@@ -45,6 +48,13 @@ int ziggurat_fast_batch(const std::uint32_t (*words)[rng_batch_size], double (*n
 /// not use them).
 void fill_normals(const CounterRng::Philox::key_type& key, std::uint32_t c2, std::uint32_t c3, std::uint64_t j0,
                   std::uint32_t (*words)[rng_batch_size], double (*normals)[rng_batch_size], int from = 0);
+
+/// The side draws of draws j0 .. j0+31 (the event scheme's third normal and
+/// uniform of each step): side[0][i] and side[1][i] are bitwise
+/// CounterRng::side_draw_of(key, c2, c3, j0+i).x and .y, for slots i >= from
+/// (the slots below are left unresolved, as in fill_normals).
+void fill_side_draws(const CounterRng::Philox::key_type& key, std::uint32_t c2, std::uint32_t c3, std::uint64_t j0,
+                     double (*side)[rng_batch_size], int from = 0);
 
 /// Name of the instruction set the batch runs on here ("avx512", "avx2" or "baseline").
 const char* rng_batch_isa();
@@ -72,6 +82,7 @@ public:
         ctr_ = CounterRng::make_counter(purpose, index, 0);
         base_ = 0;
         pos_ = batch;
+        side_base_ = 0;
     }
 
     /// Two independent standard normals; the same as CounterRng::normal2.
@@ -112,8 +123,23 @@ public:
     /// The side uniform of the last draw; the same as CounterRng::side_uniform.
     double side_uniform() const { return CounterRng::side_uniform_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); }
 
-    /// The event scheme's side draw of the last draw; the same as CounterRng::side_draw.
-    NormalPair side_draw() const { return CounterRng::side_draw_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); }
+    /// The event scheme's side draw of the last draw; the same as
+    /// CounterRng::side_draw. The side draws of the buffered batch are
+    /// generated together on the first call in it (from the last draw on):
+    /// the event scheme asks for them on most of its draws when it slides or
+    /// refines.
+    template <bool W = WithNormals>
+    NormalPair side_draw()
+        requires W
+    {
+        if (base_ == 0) return CounterRng::side_draw_of(key_, ctr_.v[2], ctr_.v[3], draws() - 1); // (no draw yet)
+        const int i = pos_ - 1;
+        if (side_base_ != base_) {
+            detail::fill_side_draws(key_, ctr_.v[2], ctr_.v[3], base_ - batch, side_, i);
+            side_base_ = base_;
+        }
+        return {side_[0][i], side_[1][i]};
+    }
 
     /// Number of 128-bit blocks drawn so far.
     std::uint64_t draws() const { return base_ + static_cast<std::uint64_t>(pos_) - batch; }
@@ -128,6 +154,10 @@ private:
     std::uint32_t words_[4][batch];
     struct Empty {};
     [[no_unique_address]] std::conditional_t<WithNormals, double[2][batch], Empty> normals_;
+    /// Side draws (normal, uniform) of the buffered batch, valid from the
+    /// slot of the first side_draw() in it on, when side_base_ == base_.
+    [[no_unique_address]] std::conditional_t<WithNormals, double[2][batch], Empty> side_;
+    std::uint64_t side_base_ = 0;
 };
 
 /// The inclusion engine's stream: CounterRng's numbers, normals batched.
