@@ -21,9 +21,10 @@
 // (tests/unit/event_lanes_test.cpp), on any instruction set: the file is
 // compiled with -ffp-contract=off, once per x86-64 level.
 //
-// Coloured noise only; white noise runs the one-excursion kernel, and so does
-// every machine where the lane step is not vectorised (inclusion_lanes_
-// vectorised). Host only.
+// Coloured noise only; white noise runs the one-excursion kernel, and so do
+// steps longer than relaxation/16 (most of them refine: measured slower in
+// lanes, see event_long_excursions) and every machine where the lane step is
+// not vectorised (inclusion_lanes_vectorised). Host only.
 #pragma once
 
 /// \file
