@@ -29,7 +29,8 @@
 //                                 relaxation inf, bias 0); 0.0625 is the
 //                                 event scheme's automatic step.
 //
-// Cases: fig2 = ModelParams defaults (the paper's Fig. 2), inclusion dt 1e-4;
+// Cases: fig2 = ModelParams defaults (the paper's Fig. 2), inclusion dt 1e-4
+//               (and 6.7e-4, the resolvent's automatic step);
 //        dry  = pure dry friction: friction 1, noise 1, tau 0.5, relaxation inf,
 //               bias 0, inclusion dt 1e-3.
 // Successive iterations use successive sample indices: independent excursions.
@@ -212,6 +213,8 @@ void BM_InclusionLanes_white(benchmark::State& st) { run_inclusion_lanes(st, whi
 void BM_InclusionSteps_fig2(benchmark::State& st) { run_inclusion(st, fig2_params(), 1e-4); }
 void BM_InclusionSteps_dry(benchmark::State& st) { run_inclusion(st, dry_params(), 1e-3); }
 void BM_InclusionLanes_fig2(benchmark::State& st) { run_inclusion_lanes(st, fig2_params(), 1e-4); }
+// The resolvent's own automatic step on the Fig. 2 case (relaxation/100).
+void BM_InclusionLanes_fig2_auto(benchmark::State& st) { run_inclusion_lanes(st, fig2_params(), 6.7e-4); }
 void BM_InclusionLanes_dry(benchmark::State& st) { run_inclusion_lanes(st, dry_params(), 1e-3); }
 void BM_PdmpEvents_fig2(benchmark::State& st) { run_pdmp(st, fig2_params(), 0.125); }
 void BM_PdmpEvents_dry(benchmark::State& st) { run_pdmp(st, dry_params(), 0.125); }
@@ -225,6 +228,7 @@ BENCHMARK(BM_UniformPairsScalar)->Name("BM_UniformPairsScalar")->Unit(benchmark:
 BENCHMARK(BM_InclusionSteps_fig2)->Name("BM_InclusionSteps/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionSteps_dry)->Name("BM_InclusionSteps/dry_dt1e-3")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionLanes_fig2)->Name("BM_InclusionLanes/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InclusionLanes_fig2_auto)->Name("BM_InclusionLanes/fig2_dt6.7e-4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionLanes_dry)->Name("BM_InclusionLanes/dry_dt1e-3")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_fig2)->Name("BM_PdmpEvents/fig2_grid0.125")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_dry)->Name("BM_PdmpEvents/dry_grid0.125")->Unit(benchmark::kMillisecond);
