@@ -202,8 +202,9 @@ private:
     }
 
     /// Step p of every lane where the step is quiet; marks the others in
-    /// g_.attention. Returns whether any lane was marked. The tests and
-    /// updates are event_colored_step's own (stuck_step_is_quiet, apply,
+    /// g_.attention. Returns whether any lane was marked. The updates are
+    /// event_colored_step's own (apply, the stuck X step) and the tests
+    /// sufficient conditions of its decisions (stuck_step_is_quiet,
     /// slide_step_is_quiet), so the applied lanes get its bits.
     template <bool AnySliding>
     bool vector_step(int p) {
@@ -307,9 +308,12 @@ bool one_at_a_time(const EventConstants& c, std::uint64_t seed, std::uint64_t fi
 
 bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                            ExcursionOutcome* out, const std::atomic<bool>* cancel) {
-    // With drag, a step longer than relaxation/16 refines most of the time
-    // (V stays small), and a lane whose step refines pays for the vector step
-    // too. Measured (Fig. 2 case, 2048 excursions, time one at a time / in
+    // With drag, many steps longer than relaxation/16 are not quiet, and a
+    // lane whose step is not pays for the vector step too: on the Fig. 2 case,
+    // 22% of the steps fail a quiet test at relaxation/16 (3.3% refine), 63%
+    // at relaxation/4 (8.5% refine; most are stuck steps whose bridge
+    // exponent is below 50, which the scalar kernel settles without a
+    // refinement). Measured (Fig. 2 case, 2048 excursions, time one at a time / in
     // lanes): 1.25, 1.19, 1.04 at dt = 3e-4, 1e-3, relaxation/16; 0.93, 0.89
     // at relaxation/8, relaxation/4 (the automatic step). Without drag the
     // lanes win at every step measured (1.55, 1.19, 1.05 at tau/100, tau/10,

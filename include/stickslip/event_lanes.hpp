@@ -13,7 +13,8 @@
 // How: as inclusion_lanes.hpp. The eight excursions advance in lockstep, one
 // draw per step each. Each vector step applies the whole step to every lane
 // where it is quiet (detail::stuck_step_is_quiet, detail::slide_step_is_quiet:
-// the tests event_colored_step itself makes first); a lane where anything else
+// sufficient conditions of event_colored_step's own decisions, the first one
+// also its own first test); a lane where anything else
 // can happen -- an event, a refinement, the step cap -- is left untouched and
 // redone by event_colored_step itself, with the same draw and the lane's own
 // refinement stream. A finished lane takes the next excursion. The outcomes
@@ -22,9 +23,9 @@
 // compiled with -ffp-contract=off, once per x86-64 level.
 //
 // Coloured noise only; white noise runs the one-excursion kernel, and so do
-// steps longer than relaxation/16 (most of them refine: measured slower in
-// lanes, see event_long_excursions) and every machine where the lane step is
-// not vectorised (inclusion_lanes_vectorised). Host only.
+// steps longer than relaxation/16 (many of them are not quiet: measured
+// slower in lanes, see event_long_excursions) and every machine where the
+// lane step is not vectorised (inclusion_lanes_vectorised). Host only.
 #pragma once
 
 /// \file

@@ -307,6 +307,22 @@ STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double 
     return from_brownian_clock(t_u, L.x_tau); // back to real time
 }
 
+/// The ends of the cubic of cubic_low: s V at both ends (va, vb [m/s]) and
+/// its slopes there times the length (ma, mb [m/s]).
+struct CubicEnds {
+    /// @{
+    /// s V at the start and end, and len s dV/dt at the start and end [m/s].
+    double va, vb, ma, mb;
+    /// @}
+};
+
+/// The CubicEnds of a sliding piece (see cubic_low for the arguments).
+STICKSLIP_HD inline CubicEnds cubic_ends(double amp, double inv_relaxation, double len, double xa, double v_a,
+                                         double xb, double v_b, double s, double cs) {
+    return {s * v_a, s * v_b, s * (amp * xa + cs - v_a * inv_relaxation) * len,
+            s * (amp * xb + cs - v_b * inv_relaxation) * len};
+}
+
 /// The lowest value of s V [m/s] over a sliding piece of length len [s]
 /// between the states (xa, v_a) and (xb, v_b) of (X, V), with force amplitude amp, 1/tauL and
 /// the constant cs [m s^-2] of direction s (+1 or -1): given both ends, V's conditional
@@ -316,9 +332,8 @@ STICKSLIP_HD inline double first_passage(const EventLevel& L, double da, double 
 /// ends included.
 STICKSLIP_HD inline double cubic_low(double amp, double inv_relaxation, double len, double xa, double v_a,
                                      double xb, double v_b, double s, double cs) {
-    const double va = s * v_a, vb = s * v_b;
-    const double ma = s * (amp * xa + cs - v_a * inv_relaxation) * len;
-    const double mb = s * (amp * xb + cs - v_b * inv_relaxation) * len;
+    const CubicEnds e = cubic_ends(amp, inv_relaxation, len, xa, v_a, xb, v_b, s, cs);
+    const double va = e.va, vb = e.vb, ma = e.ma, mb = e.mb;
     // H(q) = va + ma q + c2 q^2 + c3 q^3 on q in [0, 1].
     const double c2 = 3.0 * (vb - va) - 2.0 * ma - mb, c3 = 2.0 * (va - vb) + ma + mb;
     double lowest = va < vb ? va : vb;
@@ -374,9 +389,8 @@ STICKSLIP_HD inline bool stuck_step_is_quiet(double x_up, double x_down, double 
 /// event_colored_step, which decides exactly.
 STICKSLIP_HD inline bool slide_step_is_quiet(double amp, double inv_relaxation, double len, double v_mid_sd,
                                              double xa, double v_a, double xb, double v_b, double s, double cs) {
-    const double va = s * v_a, vb = s * v_b;
-    const double ma = s * (amp * xa + cs - v_a * inv_relaxation) * len;
-    const double mb = s * (amp * xb + cs - v_b * inv_relaxation) * len;
+    const CubicEnds e = cubic_ends(amp, inv_relaxation, len, xa, v_a, xb, v_b, s, cs);
+    const double va = e.va, vb = e.vb, ma = e.ma, mb = e.mb;
     const double down = (ma < 0.0 ? -ma : 0.0) + (mb > 0.0 ? mb : 0.0);
     const double bound = (va < vb ? va : vb) - (4.0 / 27.0) * down;
     const double size = (va < 0.0 ? -va : va) + (vb < 0.0 ? -vb : vb) + (ma < 0.0 ? -ma : ma) + (mb < 0.0 ? -mb : mb);
