@@ -133,15 +133,15 @@ void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
     });
 }
 
-// The kernel the runner uses (inclusion_long_excursions: 8 SIMD lanes where
-// vectorised): one iteration = one block of 64 excursions.
-void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double dt) {
-    const InclusionConstants c = inclusion_constants(p, dt);
+// A block kernel as the runner calls it (block(first, count, out)): one
+// iteration = one block of 64 excursions; items = steps (and midpoints).
+template <class Block>
+void time_blocks(benchmark::State& state, Block&& block) {
     std::uint64_t first = 0, work = 0, excursions = 0;
     double sink = 0.0;
     ExcursionOutcome out[64];
     for (auto _ : state) {
-        inclusion_long_excursions(c, kSeed, first, 64, out);
+        block(first, 64, out);
         first += 64;
         for (const auto& o : out) {
             sink += o.displacement;
@@ -150,6 +150,14 @@ void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double d
         excursions += 64;
     }
     report_work(state, sink, work, excursions, "steps_per_excursion");
+}
+
+// The kernel the runner uses (inclusion_long_excursions: 8 SIMD lanes where vectorised).
+void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double dt) {
+    const InclusionConstants c = inclusion_constants(p, dt);
+    time_blocks(state, [&c](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out) {
+        inclusion_long_excursions(c, kSeed, first, count, out);
+    });
 }
 
 void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
@@ -182,19 +190,9 @@ void run_event_lanes(benchmark::State& state, const ModelParams& p, double dt) {
     s.scheme = Scheme::Event;
     s.dt = dt;
     const EventConstants c = make_event_constants(p, s);
-    std::uint64_t first = 0, work = 0, excursions = 0;
-    double sink = 0.0;
-    ExcursionOutcome out[64];
-    for (auto _ : state) {
-        event_long_excursions(c, kSeed, first, 64, out);
-        first += 64;
-        for (const auto& o : out) {
-            sink += o.displacement;
-            work += o.work;
-        }
-        excursions += 64;
-    }
-    report_work(state, sink, work, excursions, "steps_per_excursion");
+    time_blocks(state, [&c](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out) {
+        event_long_excursions(c, kSeed, first, count, out);
+    });
 }
 
 ModelParams white_dry_params() {

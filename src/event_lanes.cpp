@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "lane_streams.hpp"
 #include "stickslip/inclusion_lanes.hpp"
 #include "stickslip/rng.hpp"
 #include "stickslip/rng_batch.hpp"
@@ -90,8 +91,8 @@ class LaneRunner {
 public:
     LaneRunner(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                ExcursionOutcome* out, const std::atomic<bool>* cancel)
-        : c_(c), q_(quiet_constants(c)), seed_(seed), key_(CounterRng::make_key(seed)), first_(first),
-          count_(count), out_(out), cancel_(cancel) {}
+        : c_(c), q_(quiet_constants(c)), seed_(seed), key_(CounterRng::make_key(seed)), first_(first), out_(out),
+          dealer_(count, cancel) {}
 
     bool run() {
         int live = 0;
@@ -116,17 +117,13 @@ public:
                     refill(l, 0);
                 }
         }
-        return !cancelled_;
+        return !dealer_.cancelled();
     }
 
 private:
     /// Normals of lane l for draws base .. base+B-1, from buffer position `from` on.
     void refill(int l, int from) {
-        std::uint32_t words[4][B];
-        double normals[2][B];
-        detail::fill_normals(key_, g_.c2[l], g_.c3[l], g_.base[l], words, normals, from);
-        for (int h = 0; h < 2; ++h)
-            for (int i = from; i < B; ++i) g_.z[h][i][l] = normals[h][i];
+        detail::refill_lane_normals(g_, key_, l, from);
         g_.side_filled[l] = false;
     }
 
@@ -171,24 +168,18 @@ private:
 
     /// Gives lane l the next excursion, its draw 0 at buffer position `phase`.
     bool load(int l, int phase) {
-        // Only a cancel that stops an excursion from starting counts.
-        if (next_ < count_ && cancel_ && cancel_->load(std::memory_order_relaxed)) cancelled_ = true;
-        g_.active[l] = !cancelled_ && next_ < count_;
+        g_.active[l] = dealer_.next(g_.slot[l]);
         g_.attention[l] = 0;
         if (!g_.active[l]) {
             park(l);
             return false;
         }
-        g_.slot[l] = next_++;
-        const auto ctr = CounterRng::make_counter(StreamPurpose::LongExcursion, first_ + g_.slot[l], 0);
-        g_.c2[l] = ctr.v[2];
-        g_.c3[l] = ctr.v[3];
         ref_[l].emplace(seed_, StreamPurpose::Refinement, first_ + g_.slot[l]);
         EventWalk w;
         event_start_half(c_, w, +1);
         store(l, w);
-        g_.base[l] = std::uint64_t{0} - static_cast<std::uint64_t>(phase);
-        if (phase < B) refill(l, phase);
+        detail::start_lane_stream(g_, key_, l, first_ + g_.slot[l], phase);
+        g_.side_filled[l] = false; // (a new stream: nothing of it is filled)
         return true;
     }
 
@@ -276,11 +267,9 @@ private:
     const QuietStepConstants q_;
     const std::uint64_t seed_;
     const CounterRng::Philox::key_type key_;
-    const std::uint64_t first_, count_;
+    const std::uint64_t first_;
     ExcursionOutcome* const out_;
-    const std::atomic<bool>* const cancel_;
-    std::uint64_t next_ = 0;
-    bool cancelled_ = false;
+    detail::LaneDealer dealer_;
     LaneGroup g_{};
     std::optional<BatchedCounterRng> ref_[L]; ///< each lane's refinement stream
 };

@@ -36,25 +36,21 @@ RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions,
             return pdmp_long_excursion(c, rng);
         });
     }
-    detail::NoTotal none;
-    if (e.settings.scheme == Scheme::Event) {
-        const EventConstants& c = e.event;
+    // Both inclusion schemes run blocks of excursions (in SIMD lanes where vectorised).
+    const auto in_blocks = [&](auto&& kernel) {
+        detail::NoTotal none;
         return detail::run_blocks<detail::NoBlock>(
             excursions, ctl, [] { return detail::NoBlock{}; },
-            [&c, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
-                                            detail::NoBlock&) {
-                return event_long_excursions(c, seed, first, count, out, cancel);
-            },
+            [&kernel, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                                                 detail::NoBlock&) { return kernel(seed, first, count, out, cancel); },
             none);
+    };
+    if (e.settings.scheme == Scheme::Event) {
+        const EventConstants& c = e.event;
+        return in_blocks([&c](auto... a) { return event_long_excursions(c, a...); });
     }
     const InclusionConstants& c = e.inclusion;
-    return detail::run_blocks<detail::NoBlock>(
-        excursions, ctl, [] { return detail::NoBlock{}; },
-        [&c, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
-                                        detail::NoBlock&) {
-            return inclusion_long_excursions(c, seed, first, count, out, cancel);
-        },
-        none);
+    return in_blocks([&c](auto... a) { return inclusion_long_excursions(c, a...); });
 }
 
 RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,
