@@ -99,26 +99,30 @@ resume_case "resume density" density --dt 1e-2 --excursions 30000 --bins 8
 # and within 1.5 times its own at 1e5 excursions; their results are bitwise
 # equal. Before the exact sums each process gathered every block's record:
 # 127 MB per process at 1e7 (6.7 MB for one process).
-peak_kb() { # peak RSS (kB) of the process it runs, printed on stderr as "peak-kb N"
-  /usr/bin/python3 -c 'import resource, subprocess, sys
-r = subprocess.run(sys.argv[1:]).returncode
-print("peak-kb", resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr)
+peak_kb() { # runs "$2 ..." and writes its peak RSS (kB) to the file DIR/peak.PID, DIR = $1
+  # (one file per process: two processes' lines on one shared stderr can interleave)
+  /usr/bin/python3 -c 'import os, resource, subprocess, sys
+r = subprocess.run(sys.argv[2:]).returncode
+with open(os.path.join(sys.argv[1], "peak.%d" % os.getpid()), "w") as f:
+    print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=f)
 sys.exit(r)' "$@"
 }
 export -f peak_kb
+max_peak() { cat "$1"/peak.* 2>/dev/null | sort -n | tail -1; } # the largest peak of the processes of one run
 memory_case() {
   local white=(diffusivity --friction 1 --noise 1 --tau 0 --relaxation inf --bias 0 --dt 0.1 --threads 1 --quiet
                --format json)
   local one two small
-  "$mpirun" --oversubscribe -np 1 bash -c 'peak_kb "$@"' _ "$bin" "${white[@]}" --excursions 10000000 \
+  mkdir -p "$tmp/p1" "$tmp/p2" "$tmp/p3"
+  "$mpirun" --oversubscribe -np 1 bash -c 'peak_kb "$@"' _ "$tmp/p1" "$bin" "${white[@]}" --excursions 10000000 \
     >"$tmp/m1.json" 2>"$tmp/m1.err"
-  "$mpirun" --oversubscribe -np 2 bash -c 'peak_kb "$@"' _ "$bin" "${white[@]}" --excursions 10000000 \
+  "$mpirun" --oversubscribe -np 2 bash -c 'peak_kb "$@"' _ "$tmp/p2" "$bin" "${white[@]}" --excursions 10000000 \
     >"$tmp/m2.json" 2>"$tmp/m2.err"
-  "$mpirun" --oversubscribe -np 2 bash -c 'peak_kb "$@"' _ "$bin" "${white[@]}" --excursions 100000 \
+  "$mpirun" --oversubscribe -np 2 bash -c 'peak_kb "$@"' _ "$tmp/p3" "$bin" "${white[@]}" --excursions 100000 \
     >/dev/null 2>"$tmp/m3.err"
-  one=$(awk '/^peak-kb/ {print $2}' "$tmp/m1.err" | sort -n | tail -1)
-  two=$(awk '/^peak-kb/ {print $2}' "$tmp/m2.err" | sort -n | tail -1)
-  small=$(awk '/^peak-kb/ {print $2}' "$tmp/m3.err" | sort -n | tail -1)
+  one=$(max_peak "$tmp/p1")
+  two=$(max_peak "$tmp/p2")
+  small=$(max_peak "$tmp/p3")
   if [[ -z "$one" || -z "$two" || -z "$small" ]]; then
     echo "FAIL memory: no peak measured"; cat "$tmp/m1.err" "$tmp/m2.err"; fail=1; return
   fi
