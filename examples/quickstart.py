@@ -40,7 +40,7 @@ def main():
     ap.add_argument("--out", default="quickstart.png", help="PNG to write (default: quickstart.png)")
     ap.add_argument("--excursions", type=int, default=20000, help="long excursions per point (default 20000)")
     ap.add_argument("--engine", default="pdmp", choices=["pdmp", "inclusion"],
-                    help="pdmp (exact, lattice noise; default) or inclusion (time stepping, dt 1e-4 s, slower)")
+                    help="pdmp (exact, lattice noise; default) or inclusion (time stepping: the event scheme at its automatic step)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--threads", type=int, default=0, help="worker threads (0: all cores)")
     args = ap.parse_args()

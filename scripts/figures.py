@@ -50,7 +50,7 @@ DEFAULT = {
     "table1": {"tau": 5e-6, "dt": 2.5e-3, "trajectories": 500000},
     "fig23": {"excursions_pdmp": 4000, "excursions_incl": 1000, "max_index": 200},
     "fig4": {
-        "dt": 1e-3, "grid": 0.125,
+        "grid": 0.125,
         # tau: (Gammas, N pdmp, N inclusion). The low-noise end is cut where
         # E[t1] explodes (tau = 0.5: E[t1] ~ 3000 s at Gamma = 1; tau = 1: ~1000 s
         # at Gamma = 2.5, ~5000 s at Gamma = 2).
@@ -88,7 +88,7 @@ QUICK = {
     "table1": {"tau": 5e-6, "dt": 1.25e-2, "trajectories": 50000},
     "fig23": {"excursions_pdmp": 200, "excursions_incl": 50, "max_index": 40},
     "fig4": {
-        "dt": 2e-3, "grid": 0.125,
+        "grid": 0.125,
         "taus": {0.125: ([2, 5, 10], 400, 200), 0.25: ([2, 5, 10], 400, 200),
                  0.5: ([3, 5, 10], 300, 100), 1.0: ([5, 10], 200, 60)},
     },
@@ -224,7 +224,7 @@ TAU_COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"]
 def make_table1(R, cfg, out, written, summary, seed):
     c = cfg["table1"]
     times = ",".join(fmt(t) for t in TABLE1_TIMES)
-    mc = R("moments", ND + ["--tau", c["tau"], "--dt", c["dt"], "--v0", 1, "--times", times,
+    mc = R("moments", ND + ["--tau", c["tau"], "--scheme", "resolvent", "--dt", c["dt"], "--v0", 1, "--times", times,
                             "--trajectories", c["trajectories"]], seed=seed, label="moments", fig="table1")
     ef = R("analytic", ND + ["--v0", 1, "--times", times], threads=False, label="analytic", fig="table1")
     fine = R("analytic", ND + ["--v0", 1, "--times", "0.005:4:120"], threads=False, label="analytic curve",
@@ -322,7 +322,7 @@ def hle_split(traj):
 def make_fig23(R, cfg, out, written, summary, seed, only):
     c = cfg["fig23"]
     base = PAPER_B + ["--noise", 5, "--tau", 0.5]
-    engines = {"pdmp": ["--engine", "pdmp", "--grid", 0.125], "inclusion": ["--engine", "inclusion", "--dt", 1e-4]}
+    engines = {"pdmp": ["--engine", "pdmp", "--grid", 0.125], "inclusion": ["--engine", "inclusion"]}  # the defaults: event scheme, dt auto
     trajs, info = {}, {}
     for k, (name, eargs) in enumerate(engines.items()):
         n = c["excursions_pdmp"] if name == "pdmp" else c["excursions_incl"]
@@ -397,7 +397,7 @@ def make_fig23(R, cfg, out, written, summary, seed, only):
         fig, ax = plt.subplots(4, 2, figsize=(10, 13))
         panels(ax[:, 0], trajs["pdmp"], f"PDMP, delta = 0.125 s$^{{-1/2}}$ (excursion {info['pdmp']['index']})")
         panels(ax[:, 1], trajs["inclusion"],
-               f"differential inclusion, dt = 1e-4 s (excursion {info['inclusion']['index']})")
+               f"differential inclusion, event scheme, dt auto (excursion {info['inclusion']['index']})")
         fig.suptitle("Fig. 3: a long excursion, PDMP (left) and differential inclusion (right)\n" + params,
                      fontsize=10)
         fig.tight_layout()
@@ -423,7 +423,7 @@ def make_fig4(R, cfg, out, written, summary, seed):
         common = PAPER_B + ["--tau", tau, "--noise", ",".join(fmt(g) for g in gammas)]
         sp = R("sweep", common + ["--engine", "pdmp", "--grid", c["grid"], "--excursions", n_p],
                seed=seed + 10 * k, label=f"sweep pdmp tau={tau:g}", fig="fig4")
-        si = R("sweep", common + ["--engine", "inclusion", "--dt", c["dt"], "--excursions", n_i],
+        si = R("sweep", common + ["--engine", "inclusion", "--excursions", n_i],  # event scheme, dt auto
                seed=seed + 10 * k + 1, label=f"sweep inclusion tau={tau:g}", fig="fig4")
         gp, Dp, sDp, Tp, sTp = sweep_points(sp)
         gi, Di, sDi, Ti, sTi = sweep_points(si)
@@ -456,7 +456,7 @@ def make_fig4(R, cfg, out, written, summary, seed):
         a.grid(alpha=0.3, which="both")
     axD.set_ylabel("diffusivity D [m$^2$/s]")
     axT.set_ylabel("mean long-excursion duration E[t1] [s]")
-    axD.set_title("D vs Gamma (dots: PDMP, delta = 0.125; lines: inclusion, dt = %g s)" % c["dt"], fontsize=9)
+    axD.set_title("D vs Gamma (dots: PDMP, delta = 0.125; lines: inclusion, event scheme, dt auto)", fontsize=9)
     axT.set_title("E[t1] vs Gamma (bands and bars: 95% CI)", fontsize=9)
     axD.legend(fontsize=7, ncol=2)
     axT.legend(fontsize=7, ncol=2)
@@ -464,7 +464,7 @@ def make_fig4(R, cfg, out, written, summary, seed):
                  fontsize=10)
     fig.tight_layout()
     savefig(fig, os.path.join(out, "fig4.png"), written)
-    summary["fig4"] = {"dt_inclusion": c["dt"], "grid_pdmp": c["grid"], "per_tau": res}
+    summary["fig4"] = {"dt_inclusion": "auto", "scheme_inclusion": "event", "grid_pdmp": c["grid"], "per_tau": res}
 
 
 # Fig. 5 ------------------------------------------------------------------------------
@@ -478,7 +478,7 @@ def make_fig5(R, cfg, out, written, summary, seed):
         cp = R("correlation", common + ["--engine", "pdmp", "--grid", c["grid"], "--sample-dt", c["sample_dt"],
                                         "--excursions", n_p], seed=seed + 10 * k,
                label=f"correlation pdmp tau={tau:g}", fig="fig5")
-        ci = R("correlation", common + ["--engine", "inclusion", "--dt", dt_i, "--excursions", n_i],
+        ci = R("correlation", common + ["--engine", "inclusion", "--scheme", "resolvent", "--dt", dt_i, "--excursions", n_i],
                seed=seed + 10 * k + 1, label=f"correlation inclusion tau={tau:g}", fig="fig5")
         out_k = {}
         for name, d, ls in (("pdmp", cp, "-"), ("inclusion", ci, ":")):
@@ -526,7 +526,7 @@ def make_fig6(R, cfg, out, written, summary, seed):
     c = cfg["fig6"]
     model = PAPER_B + ["--noise", c["noise"]]
     lo, hi = c["range"]
-    d = R("density", model + ["--tau", c["tau"], "--dt", c["dt"], "--excursions", c["excursions"],
+    d = R("density", model + ["--tau", c["tau"], "--scheme", "resolvent", "--dt", c["dt"], "--excursions", c["excursions"],
                               f"--range={lo!r},{hi!r}", "--bins", c["bins"]], seed=seed, label="density", fig="fig6")
     bins = d["histogram"]["bins"]
     blo = np.array([b["lo"] for b in bins])
@@ -537,7 +537,7 @@ def make_fig6(R, cfg, out, written, summary, seed):
     _, pbar = bin_average(R, model, float(blo[0]), float(bhi[-1]), len(bins), fig="fig6")
     curve = R("analytic", model + [f"--velocities={even_grid(lo, hi, 481)}"], threads=False,
               label="analytic curve", fig="fig6")
-    paths = R("trajectory", model + ["--tau", c["tau"], "--dt", c["path_dt"], "--paths", c["paths"],
+    paths = R("trajectory", model + ["--tau", c["tau"], "--scheme", "resolvent", "--dt", c["path_dt"], "--paths", c["paths"],
                                      "--time", c["path_time"], "--every", c["path_time"] / 1000],
               seed=seed + 1, threads=False, label="trajectory --paths", fig="fig6")
     stuck = est(d["histogram"]["stuck"])
@@ -608,7 +608,7 @@ def make_fig7(R, cfg, out, written, summary, seed):
     pbar = None
     for k, tau in enumerate(c["taus"]):
         ax = axes.flat[k]
-        m = R("moments", ND + ["--tau", tau, "--dt", c["dt"], "--v0", 1, "--times", times, "--density",
+        m = R("moments", ND + ["--tau", tau, "--scheme", "resolvent", "--dt", c["dt"], "--v0", 1, "--times", times, "--density",
                                "--bins", c["bins"], f"--range={lo!r},{hi!r}", "--trajectories", c["trajectories"]],
               seed=seed + k, label=f"moments --density tau'={tau:g}", fig="fig7")
         if pbar is None:
@@ -662,7 +662,7 @@ def make_fig8(R, cfg, out, written, summary, seed):
     markers = ["o", "s", "^", "v"]
     for k, (tau, n) in enumerate(c["taus"].items()):
         col = TAU_COLORS[k]
-        d = R("correlation", ND + ["--tau", tau, "--dt", c["dt"], "--max-lag", c["max_lag"], "--lags", c["lags"],
+        d = R("correlation", ND + ["--tau", tau, "--scheme", "resolvent", "--dt", c["dt"], "--max-lag", c["max_lag"], "--lags", c["lags"],
                                    "--excursions", n], seed=seed + k, label=f"correlation tau'={tau:g}", fig="fig8")
         ac = d["autocorrelation"]
         r = np.array([p["lag"] for p in ac])
@@ -718,7 +718,8 @@ def make_fig9(R, cfg, out, written, summary, seed):
         for k, (tau, ns) in enumerate(c["taus"].items()):
             n = ns[bi]
             col = TAU_COLORS[k]
-            sw = R("sweep", bargs + ["--tau", tau, "--noise", ",".join(fmt(g) for g in c["gammas"]), "--dt", c["dt"],
+            sw = R("sweep", bargs + ["--tau", tau, "--noise", ",".join(fmt(g) for g in c["gammas"]),
+                                  "--scheme", "resolvent", "--dt", c["dt"],
                                      "--excursions", n], seed=seed + 100 * bi + 10 * k,
                    label=f"sweep {bname} tau={tau:g} (N={n})", fig="fig9")
             g, D, sD, T, sT = sweep_points(sw)
@@ -734,7 +735,7 @@ def make_fig9(R, cfg, out, written, summary, seed):
                          capsize=2)
             bf = []
             for j, gb in enumerate(c["bf_gammas"]):
-                b = R("bruteforce", bargs + ["--tau", tau, "--noise", gb, "--dt", c["dt"], "--time", c["bf_time"],
+                b = R("bruteforce", bargs + ["--tau", tau, "--noise", gb, "--scheme", "resolvent", "--dt", c["dt"], "--time", c["bf_time"],
                                             "--v0", 0, "--trajectories", c["bf_trajectories"]],
                       seed=seed + 100 * bi + 10 * k + 1 + j, label=f"bruteforce {bname} tau={tau:g} Gamma={gb:g}",
                       fig="fig9")

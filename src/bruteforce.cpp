@@ -16,7 +16,7 @@ namespace {
 
 /// Every check of a request, once; returns its prepared engine.
 PreparedEngine prepare_request(const BruteForceRequest& req_in) {
-    const BruteForceRequest req = with_resolved_time_step(req_in);
+    const BruteForceRequest req = with_resolved_engine(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     if (!std::isfinite(req.horizon) || req.horizon <= 0)
         throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + detail::format_number(req.horizon));
@@ -33,7 +33,7 @@ PreparedEngine prepare_request(const BruteForceRequest& req_in) {
 void validate(const BruteForceRequest& req) { prepare_request(req); }
 
 BruteForceResult compute_bruteforce(const BruteForceRequest& req_in) {
-    const BruteForceRequest req = with_resolved_time_step(req_in);
+    const BruteForceRequest req = with_resolved_engine(req_in);
     const PreparedEngine engine = prepare_request(req);
     const std::vector<std::string> notes = detail::start_notes(engine, 0, req.control);
     BruteForceResult out;

@@ -12,7 +12,7 @@
 namespace stickslip {
 
 PreparedEngine prepare(const DiffusivityRequest& req_in) {
-    const DiffusivityRequest req = with_resolved_time_step(req_in);
+    const DiffusivityRequest req = with_resolved_engine(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     if (!std::isfinite(req.rel_precision) || req.rel_precision < 0 || req.rel_precision >= 1)
@@ -42,7 +42,7 @@ DiffusivityRequest check_dt_request(const DiffusivityRequest& req, std::uint64_t
     coarse.check_dt = false;
     coarse.rel_precision = 0;
     coarse.excursions = excursions;
-    coarse.engine = resolve_time_step(req.params, req.engine);
+    coarse.engine = resolve_engine_settings(req.params, req.engine);
     coarse.engine.dt *= 2;
     coarse.engine.dt_auto = false; // twice the step the main run takes
     coarse.control.first_index = check_dt_first_index + req.control.first_index;
@@ -171,7 +171,7 @@ void validate(const DiffusivityRequest& req) { prepare(req); }
 DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) { return compute_diffusivity(req, prepare(req)); }
 
 DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const PreparedEngine& engine) {
-    const DiffusivityRequest req = with_resolved_time_step(req_in);
+    const DiffusivityRequest req = with_resolved_engine(req_in);
     using detail::format_number;
     const std::vector<std::string> notes = detail::start_notes(engine, req.excursions, req.control);
     DiffusivityResult out;

@@ -19,12 +19,19 @@ std::string to_string(StopRule r) {
     }
 }
 
-std::string to_string(Scheme s) { return s == Scheme::Event ? "event" : "resolvent"; }
+std::string to_string(Scheme s) {
+    switch (s) {
+    case Scheme::Resolvent: return "resolvent";
+    case Scheme::Event: return "event";
+    default: return "auto";
+    }
+}
 
 Scheme parse_scheme(const std::string& s) {
     if (s == "resolvent") return Scheme::Resolvent;
     if (s == "event") return Scheme::Event;
-    throw InvalidParameter("scheme", "scheme must be 'resolvent' or 'event', got '" + s + "'");
+    if (s == "auto") return Scheme::Auto;
+    throw InvalidParameter("scheme", "scheme must be 'event', 'resolvent' or 'auto', got '" + s + "'");
 }
 
 Engine parse_engine(const std::string& s) {
@@ -39,6 +46,14 @@ StopRule parse_stop_rule(const std::string& s) {
     if (s == "stuck" || s == "P") return StopRule::Stuck;
     throw InvalidParameter("stop-rule", "stop-rule must be 'auto', 'bridge' (rule Q) or 'stuck' (rule P), got '" +
                                             s + "'");
+}
+
+EngineSettings fixed_step_settings(Scheme scheme, double dt) {
+    EngineSettings s;
+    s.scheme = scheme;
+    s.dt = dt;
+    s.dt_auto = false;
+    return s;
 }
 
 void validate(const EngineSettings& s) {
@@ -65,7 +80,7 @@ void parse_setting(const SettingInfo&, const std::string& text, StopRule& out) {
 std::string format_setting(Scheme s) { return to_string(s); }
 void parse_setting(const SettingInfo&, const std::string& text, Scheme& out) { out = parse_scheme(text); }
 const char* setting_form(const Engine&) { return "inclusion|pdmp"; }
-const char* setting_form(const Scheme&) { return "resolvent|event"; }
+const char* setting_form(const Scheme&) { return "auto|event|resolvent"; }
 const char* setting_form(const StopRule&) { return "auto|bridge|stuck"; }
 
 } // namespace stickslip

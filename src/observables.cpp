@@ -264,7 +264,7 @@ VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b) {
 namespace {
 
 PreparedEngine prepare_request(const StationaryDensityRequest& req_in) {
-    const StationaryDensityRequest req = with_resolved_time_step(req_in);
+    const StationaryDensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     check_bins(req.bins);
@@ -330,7 +330,7 @@ bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engin
 } // namespace
 
 StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req_in) {
-    const StationaryDensityRequest req = with_resolved_time_step(req_in);
+    const StationaryDensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     const PreparedEngine prepared = prepare_request(req);
     const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
     const SampledEngine engine(prepared);
@@ -422,7 +422,7 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
 namespace {
 
 PreparedEngine prepare_request(const CorrelationRequest& req_in) {
-    const CorrelationRequest req = with_resolved_time_step(req_in);
+    const CorrelationRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     check_event_sampling(req);
@@ -445,7 +445,7 @@ PreparedEngine prepare_request(const CorrelationRequest& req_in) {
 void validate(const CorrelationRequest& req) { prepare_request(req); }
 
 CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
-    const CorrelationRequest req = with_resolved_time_step(req_in);
+    const CorrelationRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     const PreparedEngine prepared = prepare_request(req);
     const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
     CorrelationResult out;
@@ -615,7 +615,7 @@ std::vector<double> transient_times(const TransientRequest& req) {
 }
 
 PreparedEngine prepare_request(const TransientRequest& req_in) {
-    const TransientRequest req = with_resolved_time_step(req_in);
+    const TransientRequest req = with_resolved_engine(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     if (req.trajectories < 2)
         throw InvalidParameter("trajectories",
@@ -648,7 +648,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
     const PreparedEngine prepared = prepare_request(req_in);
     const std::vector<std::string> notes = detail::start_notes(prepared, 0, req_in.control);
     // The defaults that depend on the model, resolved once: the report shows them.
-    TransientRequest req = with_resolved_time_step(req_in);
+    TransientRequest req = with_resolved_engine(req_in);
     if (std::isnan(req.v0)) req.v0 = scales_of(req.params).velocity;
     req.times = transient_times(req);
     TransientResult out;
@@ -800,7 +800,7 @@ TransientResult compute_transient(const TransientRequest& req_in) {
 namespace {
 
 PreparedEngine prepare_request(const TrajectoryRequest& req_in) {
-    const TrajectoryRequest req = with_resolved_time_step(req_in);
+    const TrajectoryRequest req = with_resolved_engine(req_in);
     PreparedEngine engine = prepare_engine(req.params, req.engine);
     check_run_control(req.control);
     if (req.paths > 1000) throw InvalidParameter("paths", "paths must be at most 1000");
@@ -839,7 +839,7 @@ struct TooManyPoints {};
 void validate(const TrajectoryRequest& req) { prepare_request(req); }
 
 TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
-    const TrajectoryRequest req = with_resolved_time_step(req_in);
+    const TrajectoryRequest req = with_resolved_engine(req_in);
     const PreparedEngine prepared = prepare_request(req);
     TrajectoryResult out;
     out.request = req;
@@ -943,6 +943,13 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
                 if (event_advance_to(c, w, at, rng, ref, none) == EventStatus::Capped) break;
                 append(path, c.leaf * static_cast<double>(w.t), w.x, w.phase, w.v, w.u);
             }
+            // The walk's clock counts leaves (dt / 2^event_depth), so a grid
+            // time that is not a whole number of them is rounded to the nearest.
+            const double leaves = every / c.leaf;
+            if (k == 0 && std::fabs(leaves - std::round(leaves)) > 1e-9 * leaves)
+                out.warnings.push_back("recorded times rounded to the event scheme's clock, dt/" +
+                                       std::to_string(std::llround(c.h / c.leaf)) + " = " +
+                                       detail::format_number(c.leaf) + " s (at most half that off)");
         } else {
             const InclusionConstants& c = prepared.inclusion;
             const auto stride = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(every / c.h)));

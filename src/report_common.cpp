@@ -141,7 +141,10 @@ std::string engine_line(const char* what, const EngineSettings& s, const std::st
     std::ostringstream os;
     os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
        << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : (s.dt_auto && std::isnan(s.dt) ? std::string("dt auto, per point") : "dt " + format_number(s.dt) + " s" + (s.dt_auto ? " (auto)" : "")))
-       << (s.engine == Engine::Inclusion && s.scheme == Scheme::Event ? ", event scheme" : "") << extra << "\n";
+       << (s.engine != Engine::Inclusion ? std::string()
+           : s.scheme == Scheme::Auto   ? std::string(", scheme auto, per point") // a sweep's
+                                        : ", " + to_string(s.scheme) + " scheme")
+       << extra << "\n";
     return os.str();
 }
 

@@ -21,6 +21,7 @@ std::string to_json(const SweepResult& r, int indent) {
     params.erase("tau");
     const bool dt_per_point = q.engine.dt_auto && q.engine.engine == Engine::Inclusion;
     if (dt_per_point) params.erase("dt"); // each point's own: points[k].dt
+    const bool scheme_per_point = q.engine.scheme == Scheme::Auto && q.engine.engine == Engine::Inclusion;
     params["noises"] = q.noises;
     params["taus"] = q.taus;
     params["excursions"] = q.excursions;
@@ -37,6 +38,7 @@ std::string to_json(const SweepResult& r, int indent) {
         o["tau"] = p.tau;
         o["stop_rule"] = p.stop_rule;
         if (dt_per_point) o["dt"] = p.dt; // --dt auto: the point's own step
+        if (scheme_per_point) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
         append_members(o, long_excursion_json(p.estimates));
         o["slope"] = {{"value", json_number(p.slope.value)}, {"stderr", json_number(p.slope.std_error)}};
         o["nondimensional"] = {{"tau", p.tau / sc.time},
@@ -84,6 +86,7 @@ std::string to_table(const SweepResult& r) {
                       p.estimates.mean_duration.value, p.estimates.mean_duration.std_error, slope);
         os << buf;
         if (q.engine.dt_auto && q.engine.engine == Engine::Inclusion) os << "  dt " << format_number(p.dt) << " s";
+        if (q.engine.scheme == Scheme::Auto && q.engine.engine == Engine::Inclusion) os << "  " << to_string(p.scheme);
         os << "\n";
     }
     if (!r.exponents.empty()) {
@@ -104,7 +107,9 @@ std::string to_csv(const SweepResult& r) {
     std::ostringstream os;
     os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
        << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"
-       << (r.request.engine.dt_auto && r.request.engine.engine == Engine::Inclusion ? ",dt" : "") << "\n";
+       << (r.request.engine.dt_auto && r.request.engine.engine == Engine::Inclusion ? ",dt" : "")
+       << (r.request.engine.scheme == Scheme::Auto && r.request.engine.engine == Engine::Inclusion ? ",scheme" : "")
+       << "\n";
     for (const auto& p : r.points) {
         ModelParams mp = r.request.params;
         mp.noise = p.noise;
@@ -117,6 +122,8 @@ std::string to_csv(const SweepResult& r) {
            << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << ","
            << p.estimates.excursions;
         if (r.request.engine.dt_auto && r.request.engine.engine == Engine::Inclusion) os << "," << csv_number(p.dt);
+        if (r.request.engine.scheme == Scheme::Auto && r.request.engine.engine == Engine::Inclusion)
+            os << "," << to_string(p.scheme);
         os << "\n";
     }
     return os.str();

@@ -12,13 +12,23 @@ double auto_time_step(const ModelParams& p, Scheme scheme) {
     return detail::auto_step(p, scheme);
 }
 
-EngineSettings resolve_time_step(const ModelParams& p, EngineSettings s) {
+Scheme auto_scheme(const ModelParams& p, PathUse use) {
+    if (p.white()) return use == PathUse::GridSamples ? Scheme::Resolvent : Scheme::Event;
+    // Near-white noise (tau' below about 1e-4): the event step must resolve
+    // tau, the resolvent's follows the white-noise law and is the longer.
+    return auto_time_step(p, Scheme::Resolvent) > auto_time_step(p, Scheme::Event) ? Scheme::Resolvent
+                                                                                    : Scheme::Event;
+}
+
+EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, PathUse use) {
+    // The scheme matters to the inclusion engine only (the PDMP's is kept).
+    if (s.scheme == Scheme::Auto && s.engine == Engine::Inclusion) s.scheme = auto_scheme(p, use);
     if (s.dt_auto && s.engine == Engine::Inclusion) s.dt = auto_time_step(p, s.scheme);
     return s;
 }
 
 PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given) {
-    const EngineSettings s = resolve_time_step(p, given);
+    const EngineSettings s = resolve_engine_settings(p, given);
     PreparedEngine e;
     e.params = p;
     e.settings = s;

@@ -113,6 +113,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             p.estimates = r.estimates;
             p.stop_rule = r.resolved.stop_rule;
             p.dt = r.request.engine.dt;
+            p.scheme = r.request.engine.scheme;
             p.work = r.totals.work;
             p.seconds = r.totals.seconds;
             p.warnings = r.warnings;

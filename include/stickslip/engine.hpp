@@ -47,7 +47,12 @@ enum class StopRule { Auto, Bridge, Stuck };
 ///  * Event: exact Gaussian steps within a phase, events (landings, exits,
 ///    the end of a half) located by refinement and placed at their times
 ///    (event_scheme.hpp).
-enum class Scheme { Resolvent, Event };
+///  * Auto (the default): the event scheme, except where it cannot serve the
+///    quantity (white-noise paths sampled on a grid) or its step would be the
+///    shorter (near-white noise): the resolvent scheme there (auto_scheme,
+///    run.hpp). Every run resolves it first, so a prepared
+///    engine and a result's request hold Resolvent or Event.
+enum class Scheme { Resolvent, Event, Auto };
 
 /// dt/tau at or below which StopRule::Auto selects the bridge rule.
 inline constexpr double auto_bridge_ratio = 0.1;
@@ -56,22 +61,24 @@ inline constexpr double auto_bridge_ratio = 0.1;
 std::string to_string(Engine e);
 /// The setting's name of a stop rule: "auto" | "bridge" | "stuck".
 std::string to_string(StopRule r);
-/// The setting's name of a scheme: "resolvent" | "event".
+/// The setting's name of a scheme: "resolvent" | "event" | "auto".
 std::string to_string(Scheme s);
 Engine parse_engine(const std::string& s);     ///< "inclusion" | "pdmp"
-Scheme parse_scheme(const std::string& s);     ///< "resolvent" | "event"
+Scheme parse_scheme(const std::string& s);     ///< "resolvent" | "event" | "auto"
 StopRule parse_stop_rule(const std::string& s); ///< "auto" | "bridge" | "stuck"
 
 /// Numerical settings of the engines, SI units.
 struct EngineSettings {
     /// Which engine runs (--engine); the inclusion engine by default.
     Engine engine = Engine::Inclusion;
-    Scheme scheme = Scheme::Resolvent; ///< how the inclusion engine steps
-    double dt = 1e-4;        ///< time step h of the inclusion engine [s]
-    /// --dt auto: the step is chosen from the model's time scales for the
-    /// scheme (auto_time_step, run.hpp), and `dt` holds it once a run has
-    /// resolved it (resolve_time_step).
-    bool dt_auto = false;
+    Scheme scheme = Scheme::Auto; ///< how the inclusion engine steps
+    /// Time step h of the inclusion engine [s]; used only when dt_auto is
+    /// false (a run with dt_auto true overwrites it with the step it chose).
+    double dt = 1e-4;
+    /// --dt auto, the default: the step is chosen from the model's time scales
+    /// for the scheme (auto_time_step, run.hpp), and `dt` holds it once a run
+    /// has resolved it (resolve_engine_settings). Set it false to use `dt`.
+    bool dt_auto = true;
     double grid = 0.125;     ///< lattice step delta of the PDMP noise [s^-1/2]
     /// Half-width L of the PDMP lattice [s^-1/2]; 0 chooses it (see pdmp.hpp).
     double lattice_bound = 0.0;
@@ -92,8 +99,10 @@ template <class Visitor>
 void visit_settings(EngineSettings& s, Visitor&& v) {
     v(s.engine, SettingInfo{"engine", "", "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)"});
     v(s.scheme, SettingInfo{"scheme", "",
-                            "inclusion time stepping: resolvent (the paper's, first order) or event (exact within "
-                            "phases, events at their times)"});
+                            "inclusion time stepping: event (exact within phases, events at their times), resolvent "
+                            "(the paper's, first order) or auto: event, except resolvent for white-noise density and "
+                            "correlation, which event cannot sample, and for near-white noise (tau below 1e-4 "
+                            "noise/friction^2), where its step is the longer"});
     v(NumberOrAuto{s.dt, s.dt_auto},
       SettingInfo{"dt", "s",
                   "time step of the inclusion engine, > 0; auto: from the model's time scales, the largest step at "
@@ -108,6 +117,11 @@ void visit_settings(EngineSettings& s, Visitor&& v) {
     v(s.max_work_per_excursion, SettingInfo{"max-steps", "",
                                             "runaway guard: most steps (inclusion) or events (pdmp) per long excursion"});
 }
+
+/// The inclusion engine with `scheme` at the fixed step dt [s] (dt_auto
+/// false), every other setting at its default: what a C++ caller who wants a
+/// given step sets (the defaults choose both the scheme and the step).
+EngineSettings fixed_step_settings(Scheme scheme, double dt);
 
 /// Throws InvalidParameter for a non-positive or non-finite dt or grid, a
 /// negative lattice bound or white level, or a zero work cap. Both step

@@ -117,21 +117,40 @@ struct PreparedEngine {
 /// Throws InvalidParameter for an invalid model.
 double auto_time_step(const ModelParams& p, Scheme scheme);
 
-/// s with dt = auto_time_step(p, s.scheme) when s.dt_auto and the engine is
-/// the inclusion engine (dt_auto stays true, so that reports say so); s
-/// unchanged otherwise. Every run resolves its settings so, first.
-EngineSettings resolve_time_step(const ModelParams& p, EngineSettings s);
+/// What a quantity needs of the inclusion engine's paths, for Scheme::Auto.
+///  * Events: the long excursions' sums, moments at fixed times, a path with
+///    its event times (diffusivity, bruteforce, moments, trajectory, sweep).
+///  * GridSamples: stationary averages over paths sampled on a time grid
+///    (density, correlation).
+enum class PathUse { Events, GridSamples };
+
+/// The scheme Scheme::Auto stands for on model p: the event scheme, except
+///  * white noise with PathUse::GridSamples, which it cannot sample (between
+///    its events V is a Brownian bridge, which interpolation would flatten);
+///  * near-white coloured noise, where the resolvent's automatic step is the
+///    longer (the event step resolves tau: tau/16 against 6.6e-6 friction
+///    times, so below tau' = 1e-4),
+/// where it is the resolvent scheme. Throws InvalidParameter for an invalid
+/// model (coloured noise).
+Scheme auto_scheme(const ModelParams& p, PathUse use);
+
+/// s with Scheme::Auto replaced by auto_scheme(p, use) for the inclusion
+/// engine (a PDMP run keeps it: it has no scheme), then dt =
+/// auto_time_step(p, s.scheme) when s.dt_auto and the engine is the inclusion
+/// engine (dt_auto stays true, so that reports say so); the rest unchanged.
+/// Every run resolves its settings so, first; resolving again changes nothing.
+EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, PathUse use = PathUse::Events);
 
 /// A request (any RunSettings) with its engine settings resolved so.
 template <class Request>
-Request with_resolved_time_step(Request r) {
-    r.engine = resolve_time_step(r.params, r.engine);
+Request with_resolved_engine(Request r, PathUse use = PathUse::Events) {
+    r.engine = resolve_engine_settings(r.params, r.engine, use);
     return r;
 }
 
 /// Validates the model and the engine settings together (InvalidParameter on
-/// the first problem) and builds the engine's constants (resolving --dt auto
-/// first: `settings` holds the step used).
+/// the first problem) and builds the engine's constants (resolving the scheme
+/// and --dt auto first, for PathUse::Events: `settings` holds what was used).
 PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s);
 
 /// The resolved details alone: prepare_engine(p, s).resolved.

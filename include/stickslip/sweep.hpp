@@ -68,6 +68,9 @@ struct SweepPoint {
     /// The inclusion engine's step at the point [s]: the request's, or with
     /// --dt auto the point's own (it follows tau and noise).
     double dt = 0;
+    /// The inclusion engine's scheme at the point: the request's, or with
+    /// Scheme::Auto the point's own (auto_scheme: it follows tau).
+    Scheme scheme = Scheme::Event;
     /// Steps or events used at the point.
     std::uint64_t work = 0;
     /// Wall time of the point [s].

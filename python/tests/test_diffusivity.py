@@ -24,7 +24,7 @@ class DiffusivityTest(unittest.TestCase):
         self.assertEqual(r.completed, 192)
         self.assertEqual(r.capped, 0)
         self.assertEqual(r.excursions, 192)
-        self.assertEqual((r.engine, r.estimator, r.stop_rule, r.seed, r.level), ("inclusion", "renewal", "bridge", 7, 0.95))
+        self.assertEqual((r.engine, r.estimator, r.stop_rule, r.seed, r.level), ("inclusion", "renewal", "exact", 7, 0.95))
         self.assertEqual(r.params, P)
         self.assertGreater(r.work, 0)
         self.assertTrue(any("fewer than 5000" in w for w in r.warnings))
@@ -49,11 +49,12 @@ class DiffusivityTest(unittest.TestCase):
         self.assertEqual(r.to_dict()["params"]["relaxation"], "inf")
 
     def test_precision_on_demand_equals_cli(self):
-        r = stickslip.diffusivity(P, dt=1e-3, excursions=256, rel_precision=0.15, seed=5)
+        r = stickslip.diffusivity(P, scheme="resolvent", dt=1e-3, excursions=256, rel_precision=0.15, seed=5)
         self.assertTrue(r.precision["reached"])
         self.assertLessEqual(r.precision["relative_half_width"], 0.15)
         self.assertIsNone(self.r.precision)
-        cli = cli_json("diffusivity", "--dt", "1e-3", "--excursions", "256", "--rel-precision", "0.15", "--seed", "5")
+        cli = cli_json("diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "256", "--rel-precision", "0.15",
+                       "--seed", "5")
         self.assertEqual(without_work(r.to_dict()), without_work(cli))
 
     def test_threads_do_not_change_the_result(self):
@@ -66,7 +67,7 @@ class DiffusivityTest(unittest.TestCase):
 
     def test_paper_estimator_and_white_noise(self):
         white = stickslip.Params(friction=1, noise=1, tau=0, relaxation=float("inf"), bias=0)
-        r = stickslip.diffusivity(white, dt=1e-3, excursions=128, estimator="paper", threads=1)
+        r = stickslip.diffusivity(white, scheme="resolvent", dt=1e-3, excursions=128, estimator="paper", threads=1)
         self.assertEqual(r.stop_rule, "velocity-levels")
         self.assertEqual(r.estimator, "paper")
 
@@ -87,9 +88,10 @@ class DiffusivityTest(unittest.TestCase):
 
     def test_capped(self):
         with self.assertRaises(stickslip.CappedExcursionsError) as c:
-            stickslip.diffusivity(P, excursions=64, max_steps=50000, threads=1)
+            stickslip.diffusivity(P, scheme="resolvent", dt=1e-4, excursions=64, max_steps=50000, threads=1)
         self.assertIn("runaway guard", str(c.exception))
-        r = stickslip.diffusivity(P, excursions=64, max_steps=50000, threads=1, allow_capped=True)
+        r = stickslip.diffusivity(P, scheme="resolvent", dt=1e-4, excursions=64, max_steps=50000, threads=1,
+                                  allow_capped=True)
         self.assertGreater(r.capped, 0)
         self.assertEqual(r.completed + r.capped, 64)
 
@@ -97,7 +99,7 @@ class DiffusivityTest(unittest.TestCase):
         # tau' = 1e-8: every excursion ends within its first step; D would be 0/0.
         fast = stickslip.Params(friction=1, noise=1, tau=1e-8, relaxation=float("inf"), bias=0)
         with self.assertRaises(stickslip.UntrustworthyResultError) as c:
-            stickslip.diffusivity(fast, dt=1e-10, excursions=64, threads=1)
+            stickslip.diffusivity(fast, scheme="resolvent", dt=1e-10, excursions=64, threads=1)
         self.assertNotIsInstance(c.exception, stickslip.CappedExcursionsError)
         self.assertIn("first step", str(c.exception))
 

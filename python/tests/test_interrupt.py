@@ -75,10 +75,10 @@ class InterruptTest(unittest.TestCase):
     def test_checkpoint_then_resume_equals_the_uninterrupted_run(self):
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "run.ckpt")
-            settings = "excursions=150000, dt=1e-2, threads=2"
+            settings = "excursions=150000, scheme='resolvent', dt=1e-2, threads=2"
             self.interrupt(f"diffusivity({settings}, checkpoint={path!r}, checkpoint_every=0.05)", delay=0.5)
             self.assertTrue(os.path.exists(path))
-            kwargs = dict(excursions=150000, dt=1e-2)
+            kwargs = dict(excursions=150000, scheme="resolvent", dt=1e-2)
             resumed = stickslip.diffusivity(**kwargs, threads=1, resume=path)
             full = stickslip.diffusivity(**kwargs, threads=2)
             self.assertGreater(resumed.resumed, 0)
@@ -86,7 +86,7 @@ class InterruptTest(unittest.TestCase):
             a.pop("work"), b.pop("work")
             self.assertEqual(a, b)
             with self.assertRaisesRegex(stickslip.InvalidParameterError, "written with excursions = 150000"):
-                stickslip.diffusivity(excursions=1000, dt=1e-2, resume=path)
+                stickslip.diffusivity(excursions=1000, scheme="resolvent", dt=1e-2, resume=path)
 
 
 class GilTest(unittest.TestCase):

@@ -95,17 +95,17 @@ struct Case {
 };
 
 const Case kCases[] = {
-    {"diffusivity", {"diffusivity", "--dt", "1e-2", "--excursions", "60000"}},
+    {"diffusivity", {"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "60000"}},
     {"diffusivity_pdmp", {"diffusivity", "--engine", "pdmp", "--excursions", "6000"}},
     {"diffusivity_event", {"diffusivity", "--scheme", "event", "--dt", "0.05", "--excursions", "20000"}},
-    {"precision", {"diffusivity", "--dt", "1e-2", "--excursions", "2000", "--rel-precision", "0.02"}},
-    {"check_dt", {"diffusivity", "--dt", "1e-2", "--excursions", "30000", "--check-dt"}},
-    {"bruteforce", {"bruteforce", "--dt", "1e-2", "--time", "5", "--trajectories", "60000"}},
+    {"precision", {"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "2000", "--rel-precision", "0.02"}},
+    {"check_dt", {"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "30000", "--check-dt"}},
+    {"bruteforce", {"bruteforce", "--scheme", "resolvent", "--dt", "1e-2", "--time", "5", "--trajectories", "60000"}},
     {"bruteforce_pdmp", {"bruteforce", "--engine", "pdmp", "--time", "5", "--trajectories", "12000"}},
-    {"density", {"density", "--dt", "1e-2", "--excursions", "30000"}},
-    {"correlation", {"correlation", "--dt", "1e-2", "--excursions", "30000", "--lags", "20"}}, // ~0.8 s: kills land after a checkpoint
-    {"moments", {"moments", "--dt", "1e-2", "--trajectories", "40000", "--times", "5,20"}}, // ~0.5 s: kills land after a checkpoint
-    {"sweep", {"sweep", "--dt", "1e-2", "--noise", "3,5,8", "--tau", "0.5", "--excursions", "15000"}},
+    {"density", {"density", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "30000"}},
+    {"correlation", {"correlation", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "30000", "--lags", "20"}}, // ~0.8 s: kills land after a checkpoint
+    {"moments", {"moments", "--scheme", "resolvent", "--dt", "1e-2", "--trajectories", "40000", "--times", "5,20"}}, // ~0.5 s: kills land after a checkpoint
+    {"sweep", {"sweep", "--scheme", "resolvent", "--dt", "1e-2", "--noise", "3,5,8", "--tau", "0.5", "--excursions", "15000"}},
 };
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
@@ -195,7 +195,7 @@ INSTANTIATE_TEST_SUITE_P(All, CliMerging, ::testing::ValuesIn(kCases), case_name
 
 // ---- refused checkpoints ------------------------------------------------------------------------
 
-const Args kSmall{"diffusivity", "--dt", "1e-2", "--excursions", "2000", "--quiet", "--format", "json"};
+const Args kSmall{"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "2000", "--quiet", "--format", "json"};
 
 /// FNV-1a 64 as the checkpoint's checksum (of the compact dump without it,
 /// members in the file's order).
@@ -262,11 +262,11 @@ TEST(CliCheckpoint, RefusesCheckpointsThatDoNotMatch) {
     expect_refused(run(with(kSmall, {"--resume", dir / "nonexistent"})), "No such file", "a missing file");
     // Other settings: the first that differs is named, with both values.
     Args other_dt = kSmall;
-    other_dt[2] = "2e-2";
+    other_dt[4] = "2e-2"; // the value of --dt
     expect_refused(resume_from("dt", text, other_dt), "written with dt = 0.01, this run has dt = 0.02", "another dt");
     expect_refused(resume_from("seed", text, with(kSmall, {"--seed", "2"})), "seed = 1, this run has seed = 2",
                    "another seed");
-    const Args brute{"bruteforce", "--dt", "1e-2", "--time", "1", "--trajectories", "100", "--quiet"};
+    const Args brute{"bruteforce", "--scheme", "resolvent", "--dt", "1e-2", "--time", "1", "--trajectories", "100", "--quiet"};
     expect_refused(resume_from("command", text, brute), "checkpoint of `stickslip diffusivity`", "another command");
     // The thread count is not part of a run's identity.
     const auto threads = run(with(kSmall, {"--resume", good, "--threads", "3"}));
@@ -285,7 +285,7 @@ TEST(CliCheckpoint, RefusesABadPeriodAndAnUnwritablePath) {
 
 // ---- SIGINT and SIGTERM --------------------------------------------------------------------------
 
-const Args kLong{"diffusivity", "--dt", "1e-2", "--excursions", "100000000", "--threads", "2",
+const Args kLong{"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "100000000", "--threads", "2",
                  "--quiet", "--format", "json"};
 
 /// Waits until the run has written its first checkpoint (it has started computing).
@@ -358,7 +358,7 @@ TEST(CliStop, ASecondSignalAbortsAndLeavesNoFile) {
     const Scratch dir("abort");
     // Slow blocks (dt 1e-5: a block of 64 excursions takes about a second),
     // so that the second signal comes while the first is being honoured.
-    const Args slow{"diffusivity", "--dt", "1e-5", "--excursions", "100000000", "--threads", "2", "--quiet",
+    const Args slow{"diffusivity", "--scheme", "resolvent", "--dt", "1e-5", "--excursions", "100000000", "--threads", "2", "--quiet",
                     "--format", "json", "--output", dir / "out.json"};
     const pid_t pid = start(slow, "/dev/null", "/dev/null");
     ASSERT_GT(pid, 0);

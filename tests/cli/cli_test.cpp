@@ -17,7 +17,7 @@ using namespace clitest;
 using nlohmann::json;
 
 const Args kPdmp{"diffusivity", "--engine", "pdmp", "--excursions", "300", "--format", "json"};
-const Args kInclusion{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--format", "json"};
+const Args kInclusion{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "200", "--format", "json"};
 
 Args with(Args base, std::initializer_list<std::string> more) {
     base.insert(base.end(), more);
@@ -129,7 +129,7 @@ TEST(CliHelp, SubcommandHelpListsFlagsWithUnits) {
     const Result d = run({"diffusivity", "--help"});
     EXPECT_EQ(d.code, 0) << d.err;
     for (const char* s : {"--friction", "m s^-2", "--noise", "m^2 s^-3", "--tau", "--relaxation", "--bias", "--engine",
-                          "--dt", "--grid", "s^-1/2", "--excursions", "--estimator", "--seed", "--threads", "--format",
+                          "--scheme", "resolvent", "--dt", "--grid", "s^-1/2", "--excursions", "--estimator", "--seed", "--threads", "--format",
                           "--allow-capped"})
         EXPECT_NE(d.out.find(s), std::string::npos) << "diffusivity --help lacks " << s;
     const Result b = run({"bruteforce", "--help"});
@@ -160,7 +160,7 @@ TEST(CliDiffusivity, InclusionJsonSchema) {
 }
 
 TEST(CliDiffusivity, TableIsTheDefaultFormat) {
-    const Args args{"diffusivity", "--dt", "1e-3", "--excursions", "200"};
+    const Args args{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "200"};
     const Result r = run(args);
     ASSERT_EQ(r.code, 0) << r.err;
     for (const char* s : {"diffusivity D", "mobility M0", "E[t1]", "95% interval", "m^2/s", "nondim"})
@@ -253,7 +253,7 @@ INSTANTIATE_TEST_SUITE_P(
     Engines, CliThreads,
     ::testing::Values(kPdmp, kInclusion, with(kInclusion, {"--tau", "0"}),
                       Args{"bruteforce", "--engine", "pdmp", "--time", "1", "--trajectories", "200", "--format", "json"},
-                      Args{"bruteforce", "--dt", "1e-3", "--time", "1", "--trajectories", "200", "--format", "json"}),
+                      Args{"bruteforce", "--scheme", "resolvent", "--dt", "1e-3", "--time", "1", "--trajectories", "200", "--format", "json"}),
     engine_case_name);
 
 // --- bruteforce -----------------------------------------------------------------
@@ -262,7 +262,7 @@ TEST(CliBruteforce, JsonSchema) {
     for (const bool pdmp : {false, true}) {
         const Args args = pdmp ? Args{"bruteforce", "--engine", "pdmp", "--time", "2", "--trajectories", "200",
                                       "--format", "json"}
-                               : Args{"bruteforce", "--dt", "1e-3", "--time", "2", "--trajectories", "200",
+                               : Args{"bruteforce", "--scheme", "resolvent", "--dt", "1e-3", "--time", "2", "--trajectories", "200",
                                       "--format", "json"};
         const auto j = run_json(args);
         ASSERT_TRUE(j);
@@ -318,9 +318,9 @@ const BadInput kBadInputs[] = {
     {{"diffusivity", "--relaxation", "0"}, "relaxation"},
     {{"diffusivity", "--relaxation", "nan"}, "relaxation"},
     {{"diffusivity", "--bias", "nan"}, "bias"},
-    {{"diffusivity", "--dt", "0"}, "dt"},
-    {{"diffusivity", "--dt", "-1e-4"}, "dt"},
-    {{"diffusivity", "--dt", "1e-3x"}, "dt"},
+    {{"diffusivity", "--scheme", "resolvent", "--dt", "0"}, "dt"},
+    {{"diffusivity", "--scheme", "resolvent", "--dt", "-1e-4"}, "dt"},
+    {{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3x"}, "dt"},
     {{"diffusivity", "--engine", "pdmp", "--grid", "0"}, "grid"},
     {{"diffusivity", "--engine", "pdmp", "--tau", "0"}, "tau"},
     {{"diffusivity", "--engine", "pdmp", "--grid", "2"}, "grid"}, // tau*grid*L < 2 impossible
@@ -382,7 +382,7 @@ TEST(CliCapped, GuardHitIsAnErrorByDefault) {
     // 4000 steps of 1e-3 s lie above the lower bound of the mean excursion
     // (3.4 s, so the run is not refused up front) and below E[t1] = 8.1 s:
     // 154 of the 200 excursions hit the guard (seed 1).
-    const Args args{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--max-steps", "4000"};
+    const Args args{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "200", "--max-steps", "4000"};
     const Result r = run(args);
     EXPECT_EQ(r.code, 3) << r.err;
     EXPECT_EQ(r.out, "");
@@ -396,7 +396,7 @@ TEST(CliCapped, AllowCappedStillFailsWhenFewerThanTwoComplete) {
     // White noise: no lower bound of the excursion's length is known up
     // front, so the run starts, and 10 steps of 1e-3 s end none of them.
     const Args args{"diffusivity", "--friction", "1", "--noise", "1", "--tau", "0", "--relaxation", "inf",
-                    "--bias", "0", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10", "--allow-capped"};
+                    "--bias", "0", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10", "--allow-capped"};
     const Result r = run(args);
     EXPECT_EQ(r.code, 3) << r.err;
     EXPECT_EQ(r.out, "");
@@ -407,7 +407,7 @@ TEST(CliCapped, AllowCappedStillFailsWhenFewerThanTwoComplete) {
 TEST(CliCapped, RunsWhoseExcursionsCannotEndAreRefusedUpFront) {
     // The noise must cross the static band before an excursion ends: at least
     // 3.4 s on average in the Fig. 2 case, far beyond 10 steps or events.
-    for (const Args& args : {Args{"diffusivity", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10",
+    for (const Args& args : {Args{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "200", "--max-steps", "10",
                                   "--allow-capped"},
                              Args{"diffusivity", "--engine", "pdmp", "--excursions", "200", "--max-steps", "10",
                                   "--allow-capped", "--format", "json"},
@@ -428,7 +428,7 @@ TEST(CliUntrustworthy, ExcursionsShorterThanOneStepAreExitThree) {
     // so every excursion lasts 0 s and D would be 0/0 (it printed "nan").
     for (const char* cmd : {"diffusivity", "density", "correlation"}) {
         Args args{cmd, "--friction", "1", "--noise", "1", "--tau", "1e-8", "--relaxation", "inf",
-                  "--bias", "0", "--dt", "1e-10", "--excursions", "200"};
+                  "--bias", "0", "--scheme", "resolvent", "--dt", "1e-10", "--excursions", "200"};
         if (std::string(cmd) == "correlation") args.insert(args.end(), {"--max-lag", "1e-8"});
         const Result r = run(args);
         EXPECT_EQ(r.code, 3) << describe(args) << "\n" << r.err;
@@ -438,7 +438,7 @@ TEST(CliUntrustworthy, ExcursionsShorterThanOneStepAreExitThree) {
         EXPECT_EQ(r.err.find("nan"), std::string::npos) << r.err;
     }
     const Result sweep = run({"sweep", "--friction", "1", "--noise", "1", "--tau", "1e-8", "--relaxation", "inf",
-                              "--bias", "0", "--dt", "1e-10", "--excursions", "200"});
+                              "--bias", "0", "--scheme", "resolvent", "--dt", "1e-10", "--excursions", "200"});
     EXPECT_EQ(sweep.code, 3) << sweep.err;
     EXPECT_NE(sweep.err.find("[at noise 1, tau 1e-08]"), std::string::npos) << sweep.err;
 }
@@ -446,15 +446,15 @@ TEST(CliUntrustworthy, ExcursionsShorterThanOneStepAreExitThree) {
 TEST(CliNumbers, SubnormalsAndFullSeedsAreNumbersLikeAnyOther) {
     // 5e-324 is the smallest double (strtod flags it ERANGE, and it was
     // refused as "not a number"); seeds are read exactly up to 2^64 - 1.
-    const Result tiny = run({"diffusivity", "--bias", "5e-324", "--dt", "1e-2", "--excursions", "64", "--format",
+    const Result tiny = run({"diffusivity", "--bias", "5e-324", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "64", "--format",
                              "json", "--quiet"});
     EXPECT_EQ(tiny.code, 0) << tiny.err;
     EXPECT_EQ(nlohmann::json::parse(tiny.out)["params"]["bias"].get<double>(), 5e-324);
-    const Result seed = run({"diffusivity", "--seed", "18446744073709551615", "--dt", "1e-2", "--excursions", "64",
+    const Result seed = run({"diffusivity", "--seed", "18446744073709551615", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "64",
                              "--format", "json", "--quiet"});
     ASSERT_EQ(seed.code, 0) << seed.err;
     EXPECT_EQ(nlohmann::json::parse(seed.out)["params"]["seed"].get<std::uint64_t>(), 18446744073709551615ull);
-    const Result near = run({"diffusivity", "--seed", "9007199254740993", "--dt", "1e-2", "--excursions", "64",
+    const Result near = run({"diffusivity", "--seed", "9007199254740993", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "64",
                              "--format", "json", "--quiet"});
     ASSERT_EQ(near.code, 0) << near.err;
     EXPECT_EQ(nlohmann::json::parse(near.out)["params"]["seed"].get<std::uint64_t>(), 9007199254740993ull); // not rounded
@@ -467,7 +467,7 @@ TEST(CliHelp, HelpWinsOverAMisspeltSubcommand) { // found by tests/fuzz/ (fuzz_c
 }
 
 TEST(CliWarnings, TwoTrajectoriesSayTheirIntervalIsNotAnInterval) {
-    const Result r = run({"bruteforce", "--trajectories", "2", "--time", "1", "--dt", "1e-2"});
+    const Result r = run({"bruteforce", "--trajectories", "2", "--time", "1", "--scheme", "resolvent", "--dt", "1e-2"});
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("only 2 trajectories"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("0 by construction"), std::string::npos) << r.out;
@@ -481,7 +481,8 @@ TEST(CliCheckDt, DetectsTheResolventBiasOfWhiteNoiseAtACoarseStep) {
     // with 2e5 excursions per run its standard error is about 1.5% (seed 1:
     // -6.8% +- 1.7%, z = -3.9).
     const Result r = run({"diffusivity", "--friction", "1", "--noise", "1", "--tau", "0", "--relaxation", "inf",
-                          "--bias", "0", "--dt", "0.1", "--excursions", "200000", "--check-dt", "--format", "json",
+                          "--bias", "0", "--scheme", "resolvent", "--dt", "0.1", "--excursions", "200000",
+                          "--check-dt", "--format", "json",
                           "--quiet"});
     ASSERT_EQ(r.code, 0) << r.err;
     const json j = json::parse(r.out);
@@ -512,10 +513,10 @@ TEST(CliCheckDt, EventSchemeShowsNoBiasAndTheTableSaysSo) {
 TEST(CliStepNotes, AStepNearTheRelaxationTimeGetsItsOwnNote) {
     // Fig. 2 case, dt = 0.06 s = 0.9 relaxation times: measured D -5%, where
     // the friction-time law alone says +6% (docs/validation.md, "Step checks").
-    const Result r = run({"diffusivity", "--dt", "0.06", "--excursions", "2000"});
+    const Result r = run({"diffusivity", "--scheme", "resolvent", "--dt", "0.06", "--excursions", "2000"});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("0.9 relaxation times: the explicit drift step's own error"), std::string::npos) << r.out;
-    const Result fine = run({"diffusivity", "--dt", "0.03", "--excursions", "2000"});
+    const Result fine = run({"diffusivity", "--scheme", "resolvent", "--dt", "0.03", "--excursions", "2000"});
     ASSERT_EQ(fine.code, 0) << fine.err;
     EXPECT_EQ(fine.out.find("relaxation times"), std::string::npos) << fine.out;
 }
@@ -529,17 +530,24 @@ TEST(CliAutoStep, TheJsonSaysTheStepWasChosenAndWhichOne) {
     EXPECT_EQ(j.at("params").at("dt").get<double>(), 0.01675);
     EXPECT_TRUE(j.at("params").at("dt_auto").get<bool>());
     EXPECT_EQ(j.at("discretisation").at("check_dt").get<double>(), 2 * 0.01675); // twice the chosen step
-    const Result table = run({"diffusivity", "--dt", "auto", "--excursions", "200"});
+    const Result table = run({"diffusivity", "--scheme", "resolvent", "--dt", "auto", "--excursions", "200"});
     ASSERT_EQ(table.code, 0) << table.err;
-    EXPECT_NE(table.out.find("dt 0.00067 s (auto)"), std::string::npos) << table.out;
-    const Result given = run({"diffusivity", "--dt", "0.001", "--excursions", "200", "--format", "json"});
+    EXPECT_NE(table.out.find("dt 0.00067 s (auto), resolvent scheme"), std::string::npos) << table.out;
+    // The defaults: the event scheme at its automatic step.
+    const Result defaults = run({"diffusivity", "--excursions", "200", "--format", "json", "--quiet"});
+    ASSERT_EQ(defaults.code, 0) << defaults.err;
+    const json d = json::parse(defaults.out);
+    EXPECT_EQ(d.at("params").at("dt").get<double>(), 0.01675);
+    EXPECT_TRUE(d.at("params").at("dt_auto").get<bool>());
+    EXPECT_EQ(d.at("engine_details").at("scheme"), "event");
+    const Result given = run({"diffusivity", "--scheme", "resolvent", "--dt", "0.001", "--excursions", "200", "--format", "json"});
     ASSERT_EQ(given.code, 0) << given.err;
     EXPECT_FALSE(json::parse(given.out).at("params").contains("dt_auto"));
 }
 
 TEST(CliAutoStep, PrintConfigKeepsAutoAndABadValueNamesBothForms) {
     Scratch dir("auto_step");
-    const Result printed = run({"diffusivity", "--dt", "auto", "--print-config"});
+    const Result printed = run({"diffusivity", "--scheme", "resolvent", "--dt", "auto", "--print-config"});
     ASSERT_EQ(printed.code, 0) << printed.err;
     EXPECT_NE(printed.out.find("dt = \"auto\""), std::string::npos) << printed.out;
     const std::string config = dir.path + "/run.toml";
@@ -547,7 +555,7 @@ TEST(CliAutoStep, PrintConfigKeepsAutoAndABadValueNamesBothForms) {
     const Result reread = run({"diffusivity", "--config", config, "--excursions", "200", "--format", "json"});
     ASSERT_EQ(reread.code, 0) << reread.err;
     EXPECT_TRUE(json::parse(reread.out).at("params").at("dt_auto").get<bool>());
-    const Result bad = run({"diffusivity", "--dt", "automatic"});
+    const Result bad = run({"diffusivity", "--scheme", "resolvent", "--dt", "automatic"});
     EXPECT_EQ(bad.code, 2);
     EXPECT_NE(bad.err.find("dt must be a number or auto, got 'automatic'"), std::string::npos) << bad.err;
 }
@@ -576,7 +584,7 @@ TEST(CliCheckDt, RefusedWhereItCannotRun) {
     EXPECT_EQ(pdmp.code, 2) << pdmp.err;
     EXPECT_NE(pdmp.err.find("--check-dt"), std::string::npos) << pdmp.err;
     // 2 dt = 0.08 s would be longer than the relaxation time 0.067 s.
-    const Result coarse = run({"diffusivity", "--dt", "0.04", "--check-dt"});
+    const Result coarse = run({"diffusivity", "--scheme", "resolvent", "--dt", "0.04", "--check-dt"});
     EXPECT_EQ(coarse.code, 2) << coarse.err;
     EXPECT_NE(coarse.err.find("--check-dt: twice the step cannot be run: --dt"), std::string::npos) << coarse.err;
 }

@@ -42,25 +42,26 @@ void expect_reproduced(const Args& args) {
 }
 
 TEST(CliConfig, PrintConfigThenConfigReproducesEverySubcommand) {
-    expect_reproduced({"diffusivity", "--excursions", "128", "--dt", "2e-3", "--seed", "7", "--estimator", "paper",
+    expect_reproduced({"diffusivity", "--excursions", "128", "--scheme", "resolvent", "--dt", "2e-3", "--seed", "7", "--estimator", "paper",
                        "--relaxation", "inf", "--bias", "0.5", "--level", "0.9"});
     expect_reproduced({"diffusivity", "--engine", "pdmp", "--excursions", "64", "--grid", "0.25", "--rel-precision",
                        "0.3", "--max-excursions", "1000"});
-    expect_reproduced({"bruteforce", "--time", "1.5", "--trajectories", "64", "--dt", "1e-3", "--x0", "0.25"});
-    expect_reproduced({"density", "--excursions", "64", "--dt", "2e-3", "--bins", "7", "--range=-0.5,0.75"});
-    expect_reproduced({"correlation", "--excursions", "64", "--dt", "2e-3", "--lags", "3", "--max-lag", "0.2"});
-    expect_reproduced({"moments", "--trajectories", "64", "--dt", "1e-3", "--times", "0.1:1:3", "--density",
+    expect_reproduced({"bruteforce", "--time", "1.5", "--trajectories", "64", "--scheme", "resolvent", "--dt", "1e-3", "--x0", "0.25"});
+    expect_reproduced({"density", "--excursions", "64", "--scheme", "resolvent", "--dt", "2e-3", "--bins", "7", "--range=-0.5,0.75"});
+    expect_reproduced({"correlation", "--excursions", "64", "--scheme", "resolvent", "--dt", "2e-3", "--lags", "3", "--max-lag", "0.2"});
+    expect_reproduced({"moments", "--trajectories", "64", "--scheme", "resolvent", "--dt", "1e-3", "--times", "0.1:1:3", "--density",
                        "--v0", "0.3"});
-    expect_reproduced({"trajectory", "--dt", "1e-2", "--index", "1", "--every", "0.5"});
+    expect_reproduced({"trajectory", "--scheme", "resolvent", "--dt", "1e-2", "--index", "1", "--every", "0.5"});
     expect_reproduced({"analytic", "--friction", "2", "--relaxation", "0.5", "--times", "0.1,1", "--velocities=-1:1:3"});
-    expect_reproduced({"sweep", "--noise", "2,4", "--tau", "0,0.5", "--excursions", "64", "--dt", "1e-2",
+    expect_reproduced({"sweep", "--noise", "2,4", "--tau", "0,0.5", "--excursions", "64", "--scheme", "resolvent", "--dt", "1e-2",
                        "--allow-capped"});
 }
 
 TEST(CliConfig, FlagsOverrideTheFileAndDefaultsFillTheRest) {
-    const std::string path = write_file("excursions = 64\ndt = 2e-3\nseed = 3  # a comment\nengine = \"inclusion\"\n");
+    const std::string path =
+        write_file("excursions = 64\nscheme = \"resolvent\"\ndt = 2e-3\nseed = 3  # a comment\nengine = \"inclusion\"\n");
     const auto a = run_json({"diffusivity", "--config", path, "--seed", "4", "--format", "json", "--quiet"});
-    const auto b = run_json({"diffusivity", "--excursions", "64", "--dt", "2e-3", "--seed", "4", "--format", "json",
+    const auto b = run_json({"diffusivity", "--excursions", "64", "--scheme", "resolvent", "--dt", "2e-3", "--seed", "4", "--format", "json",
                              "--quiet"});
     ASSERT_TRUE(a && b);
     EXPECT_EQ(strip(*a), strip(*b));
@@ -71,7 +72,7 @@ TEST(CliConfig, FlagsOverrideTheFileAndDefaultsFillTheRest) {
 TEST(CliConfig, PrintConfigStatesUnitsAndEverySetting) {
     const Result r = run({"diffusivity", "--print-config"});
     ASSERT_EQ(r.code, 0) << r.err;
-    for (const char* s : {"friction = 3.84", "[m s^-2]", "noise = 5", "dt = 1e-4", "[s]", "max-steps = 200000000",
+    for (const char* s : {"friction = 3.84", "[m s^-2]", "noise = 5", "dt = \"auto\"", "scheme = \"auto\"", "[s]", "max-steps = 200000000",
                           "engine = \"inclusion\"", "allow-capped = false", "excursions = 10000", "seed = 1"})
         EXPECT_NE(r.out.find(s), std::string::npos) << "lacks " << s << ":\n" << r.out;
 }
@@ -86,7 +87,7 @@ class CliBadConfig : public ::testing::TestWithParam<BadConfig> {};
 
 TEST_P(CliBadConfig, ExitsTwoWithOneLineNamingTheKey) {
     const std::string path = GetParam().missing ? "/nonexistent/dir/run.toml" : write_file(GetParam().text);
-    const Result r = run({"diffusivity", "--config", path, "--excursions", "64", "--dt", "1e-3"});
+    const Result r = run({"diffusivity", "--config", path, "--excursions", "64", "--scheme", "resolvent", "--dt", "1e-3"});
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
@@ -95,7 +96,7 @@ TEST_P(CliBadConfig, ExitsTwoWithOneLineNamingTheKey) {
 }
 
 TEST(CliConfig, AFolderIsRefusedNotReadAsAnEmptyFile) { // found by tests/fuzz/ (fuzz_cli)
-    const Result r = run({"diffusivity", "--config", ::testing::TempDir(), "--excursions", "64", "--dt", "1e-3"});
+    const Result r = run({"diffusivity", "--config", ::testing::TempDir(), "--excursions", "64", "--scheme", "resolvent", "--dt", "1e-3"});
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(count_lines(r.err), 1) << r.err;

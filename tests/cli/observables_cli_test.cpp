@@ -55,7 +55,7 @@ TEST(CliAnalytic, StationaryOnlyWithoutTimesAndPhysicalUnits) {
 
 TEST(CliMoments, ContractFirstMomentRows) {
     const auto j = run_json(cmd({"moments", "--v0", "1", "--times", "0.5,1", "--trajectories", "500", "--tau", "0.001",
-                                 "--dt", "1e-3", "--format", "json"},
+                                 "--scheme", "resolvent", "--dt", "1e-3", "--format", "json"},
                                 kDry));
     ASSERT_TRUE(j);
     ASSERT_EQ((*j)["first_moment"].size(), 2u);
@@ -71,7 +71,7 @@ TEST(CliMoments, ContractFirstMomentRows) {
 }
 
 TEST(CliMoments, DensityHistogramsPerTime) {
-    const auto j = run_json(cmd({"moments", "--times", "0.5", "--trajectories", "300", "--tau", "0.01", "--dt", "1e-3",
+    const auto j = run_json(cmd({"moments", "--times", "0.5", "--trajectories", "300", "--tau", "0.01", "--scheme", "resolvent", "--dt", "1e-3",
                                  "--density", "--bins", "10", "--format", "json"},
                                 kDry));
     ASSERT_TRUE(j);
@@ -88,15 +88,15 @@ struct Case {
 };
 
 const Case kCases[] = {
-    {{"density", "--dt", "1e-3", "--excursions", "100", "--bins", "8"}, "kind"},
-    {{"correlation", "--dt", "1e-3", "--excursions", "100", "--max-lag", "0.2", "--lags", "4"}, "lag"},
-    {{"moments", "--dt", "1e-3", "--trajectories", "100", "--times", "0.1,0.2"}, "time"},
-    {{"trajectory", "--dt", "1e-3"}, "path"},
+    {{"density", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "100", "--bins", "8"}, "kind"},
+    {{"correlation", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "100", "--max-lag", "0.2", "--lags", "4"}, "lag"},
+    {{"moments", "--scheme", "resolvent", "--dt", "1e-3", "--trajectories", "100", "--times", "0.1,0.2"}, "time"},
+    {{"trajectory", "--scheme", "resolvent", "--dt", "1e-3"}, "path"},
     {{"trajectory", "--engine", "pdmp", "--paths", "2", "--time", "0.5"}, "path"},
     {{"analytic", "--times", "0.1"}, "mobility"},
-    {{"sweep", "--dt", "1e-3", "--noise", "4,6", "--tau", "0.5", "--excursions", "50", "--allow-capped"}, "tau"},
-    {{"diffusivity", "--dt", "1e-3", "--excursions", "100"}, "engine"},
-    {{"bruteforce", "--dt", "1e-3", "--time", "1", "--trajectories", "50"}, "engine"},
+    {{"sweep", "--scheme", "resolvent", "--dt", "1e-3", "--noise", "4,6", "--tau", "0.5", "--excursions", "50", "--allow-capped"}, "tau"},
+    {{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "100"}, "engine"},
+    {{"bruteforce", "--scheme", "resolvent", "--dt", "1e-3", "--time", "1", "--trajectories", "50"}, "engine"},
 };
 
 class CliEverySubcommand : public ::testing::TestWithParam<Case> {};
@@ -135,10 +135,10 @@ std::string case_name(const ::testing::TestParamInfo<Case>& info) {
 INSTANTIATE_TEST_SUITE_P(All, CliEverySubcommand, ::testing::ValuesIn(kCases), case_name);
 
 TEST(CliObservables, SameJsonForAnyThreadCount) {
-    for (const Args& a : {Args{"density", "--dt", "1e-3", "--excursions", "300", "--bins", "8", "--format", "json"},
+    for (const Args& a : {Args{"density", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "300", "--bins", "8", "--format", "json"},
                           Args{"correlation", "--engine", "pdmp", "--excursions", "300", "--max-lag", "0.2", "--lags",
                                "4", "--format", "json"},
-                          Args{"moments", "--dt", "1e-3", "--trajectories", "300", "--times", "0.1", "--format",
+                          Args{"moments", "--scheme", "resolvent", "--dt", "1e-3", "--trajectories", "300", "--times", "0.1", "--format",
                                "json"}}) {
         Args one = a, two = a;
         one.insert(one.end(), {"--threads", "1"});
@@ -174,7 +174,7 @@ TEST(CliOutput, FailedRunLeavesNothingAndKeepsAnOldFile) {
     EXPECT_EQ(slurp(file), "previous contents\n");
     EXPECT_EQ(list_dir(dir), std::vector<std::string>{"old.csv"});
     // Capped run (exit 3): same.
-    const Result capped = run({"diffusivity", "--dt", "1e-3", "--excursions", "100", "--max-steps", "4000", "--output",
+    const Result capped = run({"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "100", "--max-steps", "4000", "--output",
                                file});
     EXPECT_EQ(capped.code, 3) << capped.err;
     EXPECT_EQ(slurp(file), "previous contents\n");

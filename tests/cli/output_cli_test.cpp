@@ -329,7 +329,7 @@ TEST(CliOutputFile, FailedRunLeavesTheFileByteIdentical) {
     const std::string old(kOld, sizeof kOld - 1);
     { std::ofstream(file, std::ios::binary) << old; }
     ASSERT_EQ(::chmod(file.c_str(), 0604), 0);
-    const Result r = run({"diffusivity", "--excursions", "200", "--dt", "1e-3", "--max-steps", "4000", "--output", file});
+    const Result r = run({"diffusivity", "--excursions", "200", "--scheme", "resolvent", "--dt", "1e-3", "--max-steps", "4000", "--output", file});
     EXPECT_EQ(r.code, 3) << r.err;
     EXPECT_EQ(slurp(file), old);
     EXPECT_EQ(lstat_of(file).st_mode & 07777, 0604u);
@@ -343,7 +343,7 @@ TEST(CliOutputFile, DirectoryOrUnwritableDirectoryFailsBeforeAnyWork) {
     const Scratch scratch("bad");
     const std::string dir = scratch.path;
     ASSERT_EQ(::symlink(dir.c_str(), (dir + "/self").c_str()), 0);
-    const Args hours{"diffusivity", "--excursions", "1e9", "--dt", "1e-4", "--quiet", "--output"};
+    const Args hours{"diffusivity", "--excursions", "1e9", "--scheme", "resolvent", "--dt", "1e-4", "--quiet", "--output"};
     for (const std::string& path : {dir, dir + "/self"}) {
         Args a = hours;
         a.push_back(path);
@@ -374,7 +374,7 @@ TEST(CliOutputFile, DirectoryOrUnwritableDirectoryFailsBeforeAnyWork) {
 /// and SIGQUIT ignored) except `ignored`, and no core file (SIGQUIT, SIGXCPU
 /// and SIGXFSZ dump core by default).
 pid_t start_long_run(const std::string& dir, int ignored = 0) {
-    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH, "diffusivity", "--excursions", "100000000", "--dt", "1e-4",
+    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH, "diffusivity", "--excursions", "100000000", "--scheme", "resolvent", "--dt", "1e-4",
                                     "--output", dir + "/out.json", "--quiet"};
     std::vector<char*> argv;
     for (auto& a : argv_s) argv.push_back(a.data());

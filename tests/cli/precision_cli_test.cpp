@@ -9,7 +9,7 @@ namespace {
 using namespace clitest;
 using nlohmann::json;
 
-const Args kBase{"diffusivity", "--dt", "1e-3", "--excursions", "256", "--format", "json"};
+const Args kBase{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "256", "--format", "json"};
 
 Args with(Args a, std::initializer_list<std::string> more) {
     a.insert(a.end(), more);

@@ -31,7 +31,7 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 
 ss::PreparedEngine engine(ss::ModelParams p, ss::Scheme scheme = ss::Scheme::Resolvent,
                           ss::StopRule rule = ss::StopRule::Auto, std::uint64_t max_work = 200'000'000) {
-    ss::EngineSettings s;
+    ss::EngineSettings s = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     s.engine = ss::Engine::Inclusion;
     s.scheme = scheme;
     s.dt = 1e-4; // the Fig. 2 case's step

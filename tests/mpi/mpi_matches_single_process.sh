@@ -35,19 +35,20 @@ PY
     fail=1
   fi
 }
-run_case "diffusivity inclusion" 2 diffusivity --dt 1e-3 --excursions 1000
-run_case "diffusivity inclusion" 3 diffusivity --dt 1e-3 --excursions 1000
-run_case "diffusivity inclusion" 1 diffusivity --dt 1e-3 --excursions 1000
+run_case "diffusivity inclusion" 2 diffusivity --scheme resolvent --dt 1e-3 --excursions 1000
+run_case "diffusivity inclusion" 3 diffusivity --scheme resolvent --dt 1e-3 --excursions 1000
+run_case "diffusivity inclusion" 1 diffusivity --scheme resolvent --dt 1e-3 --excursions 1000
 run_case "diffusivity pdmp" 3 diffusivity --engine pdmp --excursions 1000 --seed 7
 run_case "diffusivity event scheme" 2 diffusivity --scheme event --dt 2e-2 --excursions 500
-run_case "diffusivity --rel-precision" 3 diffusivity --dt 1e-3 --excursions 256 --rel-precision 0.15
-run_case "bruteforce" 2 bruteforce --dt 1e-3 --time 1 --trajectories 300
-run_case "sweep" 3 sweep --dt 1e-3 --noise 4,6 --tau 0.5 --excursions 200 --allow-capped
+run_case "diffusivity defaults (event scheme, dt auto)" 2 diffusivity --excursions 500
+run_case "diffusivity --rel-precision" 3 diffusivity --scheme resolvent --dt 1e-3 --excursions 256 --rel-precision 0.15
+run_case "bruteforce" 2 bruteforce --scheme resolvent --dt 1e-3 --time 1 --trajectories 300
+run_case "sweep" 3 sweep --scheme resolvent --dt 1e-3 --noise 4,6 --tau 0.5 --excursions 200 --allow-capped
 # The observables merge exactly too, so they split across processes as well.
-run_case "density" 3 density --dt 1e-3 --excursions 200 --bins 6
+run_case "density" 3 density --scheme resolvent --dt 1e-3 --excursions 200 --bins 6
 run_case "density pdmp" 2 density --engine pdmp --excursions 200 --bins 6 --sample-dt 1e-3
-run_case "correlation" 3 correlation --dt 1e-3 --excursions 200 --lags 4
-run_case "moments" 2 moments --dt 1e-3 --trajectories 300 --density --bins 5
+run_case "correlation" 3 correlation --scheme resolvent --dt 1e-3 --excursions 200 --lags 4
+run_case "moments" 2 moments --scheme resolvent --dt 1e-3 --trajectories 300 --density --bins 5
 # Killed and resumed across process counts: a run checkpointed by 2
 # processes, killed (SIGKILL) a third of its wall time after it started, then
 # resumed by 3 processes (1 thread each), prints the single-process JSON.
@@ -91,8 +92,8 @@ PY
     fail=1
   fi
 }
-resume_case "resume diffusivity" diffusivity --dt 1e-2 --excursions 100000
-resume_case "resume density" density --dt 1e-2 --excursions 30000 --bins 8
+resume_case "resume diffusivity" diffusivity --scheme resolvent --dt 1e-2 --excursions 100000
+resume_case "resume density" density --scheme resolvent --dt 1e-2 --excursions 30000 --bins 8
 # Memory in constant space: the peak resident set of each process of
 # `mpirun -np 2` at 1e7 excursions (white noise, dt' = 0.1, the cheapest
 # setting) is within twice that of `mpirun -np 1` (the same MPI libraries)
@@ -110,7 +111,7 @@ sys.exit(r)' "$@"
 export -f peak_kb
 max_peak() { cat "$1"/peak.* 2>/dev/null | sort -n | tail -1; } # the largest peak of the processes of one run
 memory_case() {
-  local white=(diffusivity --friction 1 --noise 1 --tau 0 --relaxation inf --bias 0 --dt 0.1 --threads 1 --quiet
+  local white=(diffusivity --friction 1 --noise 1 --tau 0 --relaxation inf --bias 0 --scheme resolvent --dt 0.1 --threads 1 --quiet
                --format json)
   local one two small
   mkdir -p "$tmp/p1" "$tmp/p2" "$tmp/p3"
@@ -139,7 +140,7 @@ a.pop("work"); b.pop("work"); sys.exit(a != b)' "$tmp/m1.json" "$tmp/m2.json"; t
 }
 memory_case
 # A bad --output found by the writing process stops every process (no hang).
-if timeout 60 "$mpirun" --oversubscribe -np 2 "$bin" diffusivity --dt 1e-3 --excursions 2000 --quiet \
+if timeout 60 "$mpirun" --oversubscribe -np 2 "$bin" diffusivity --scheme resolvent --dt 1e-3 --excursions 2000 --quiet \
      --output /nonexistent-dir/x.json >/dev/null 2>"$tmp/o.err"; then
   echo "FAIL bad --output under mpirun should fail"; fail=1
 elif [[ $? -eq 124 ]]; then

@@ -17,7 +17,7 @@ using namespace sstest;
 
 TEST(BruteForce, AgreesWithLongExcursionsOnFig2Case) {
     const ss::ModelParams p; // Fig. 2 case
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     e.grid = 0.125;
     const auto le = run_le(p, e, 20000, 51);
@@ -32,7 +32,7 @@ TEST(BruteForce, DrivenCaseRenewalAgreesAndPaperEq12Disagrees) {
     // theory.md, section 7: relaxation 0.067, bias 2.0, friction 3.84, noise 3,
     // tau 0.1: eq. (12) gives about 3.2e-3, renewal and brute force about 1.8e-3.
     const ss::ModelParams p{.friction = 3.84, .noise = 3.0, .tau = 0.1, .relaxation = 0.067, .bias = 2.0};
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     e.grid = 0.25;
     const auto renewal = run_le(p, e, 20000, 61);

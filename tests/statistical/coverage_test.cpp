@@ -29,7 +29,7 @@ struct Coverage {
 
 /// `runs` runs of n excursions, seeds first_seed, first_seed + 1, ...
 Coverage measure(const ss::ModelParams& p, double dt, std::uint64_t n, int runs, std::uint64_t first_seed) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = dt;
     std::vector<ss::Estimate> d;
     ss::BivariateMoments pooled;

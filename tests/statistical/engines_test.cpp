@@ -14,10 +14,10 @@ using namespace sstest;
 
 TEST(Engines, PdmpAgreesWithInclusionOnFig4Case) {
     ss::ModelParams p; // Fig. 2/4 case
-    ss::EngineSettings pd;
+    ss::EngineSettings pd = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     pd.engine = ss::Engine::Pdmp;
     pd.grid = 0.125;
-    ss::EngineSettings in;
+    ss::EngineSettings in = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     in.dt = 1e-4;
     const auto a = run_le(p, pd, 20000, 41);
     const auto b = run_le(p, in, 6000, 42);
@@ -34,10 +34,10 @@ TEST(Engines, PdmpAgreesWithInclusionOnFig4Case) {
 TEST(Engines, PdmpWithoutViscousDragAgreesWithInclusion) {
     // Pure dry friction with a bias (relaxation inf: the linear flow formulas).
     const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 1.0, .relaxation = std::numeric_limits<double>::infinity(), .bias = 0.3};
-    ss::EngineSettings pd;
+    ss::EngineSettings pd = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     pd.engine = ss::Engine::Pdmp;
     pd.grid = 0.0625;
-    ss::EngineSettings in;
+    ss::EngineSettings in = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     in.dt = 1e-3;
     const auto a = run_le(p, pd, 20000, 43);
     const auto b = run_le(p, in, 10000, 44);

@@ -20,7 +20,7 @@ namespace {
 using namespace sstest;
 
 ss::EngineSettings event(double dt) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.scheme = ss::Scheme::Event;
     e.dt = dt;
     return e;
@@ -28,7 +28,7 @@ ss::EngineSettings event(double dt) {
 
 TEST(EventSchemeStatistics, Fig4CaseAgreesWithPdmpAtACoarseStep) {
     ss::ModelParams p; // Fig. 2/4: tau 0.5, relaxation 0.067, bias 0.342
-    ss::EngineSettings pdmp;
+    ss::EngineSettings pdmp = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     pdmp.engine = ss::Engine::Pdmp;
     const auto a = run_le(p, event(2e-2), 60000, 2024);
     const auto b = run_le(p, pdmp, 60000, 2025);
@@ -43,6 +43,7 @@ TEST(EventSchemeStatistics, Fig4CaseAgreesWithPdmpAtACoarseStep) {
 TEST(EventSchemeStatistics, StuckFractionAgreesWithPdmp) {
     auto stuck = [](const ss::EngineSettings& e, std::uint64_t seed) {
         ss::StationaryDensityRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.engine = e;
         r.excursions = 6000;
         r.bins.count = 4;
@@ -50,7 +51,7 @@ TEST(EventSchemeStatistics, StuckFractionAgreesWithPdmp) {
         r.control.seed = seed;
         return ss::compute_stationary_density(r).histogram.stuck;
     };
-    ss::EngineSettings pdmp;
+    ss::EngineSettings pdmp = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     pdmp.engine = ss::Engine::Pdmp;
     const auto a = stuck(event(1e-2), 1), b = stuck(pdmp, 2);
     // Allowance 0.002: the launch cascade resolved to h/64 (measured here:
@@ -68,6 +69,7 @@ TEST(EventSchemeStatistics, StuckFractionHasNoStepPartAtTauOverTen) {
     // 1e6 excursions; 0.0907 before every refined piece was observed on its
     // own (a step from a launch to a landing read as stuck throughout).
     ss::StationaryDensityRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params.friction = 3.84;
     r.params.noise = 1;
     r.params.tau = 0.01;

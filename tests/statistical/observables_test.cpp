@@ -25,6 +25,7 @@ ss::ModelParams dry(double tau) { return {.friction = 1, .noise = 1, .tau = tau,
 // the test also bounds |z| by 4.
 TEST(Transient, TableIFirstMomentMatchesTouchette) {
     ss::TransientRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = dry(0.5e-5);
     r.engine.dt = 2.5e-3; // every Table I time is a whole number of steps
     r.v0 = 1.0;
@@ -49,6 +50,7 @@ TEST(Transient, TableIFirstMomentMatchesTouchette) {
 // step resolves the noise; the stuck atom (an O(dt) artefact here) is small.
 TEST(StationaryDensity, FigureSixMatchesHayakawa) {
     ss::StationaryDensityRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = {.friction = 3.84, .noise = 0.16, .tau = 1e-5, .relaxation = 0.067, .bias = 0.342};
     r.engine.dt = 1e-5;
     r.excursions = 4000;
@@ -81,6 +83,7 @@ TEST(StationaryDensity, FigureSixMatchesHayakawa) {
 // Fig. 8: stationary autocorrelation for tau' = 0.5e-4 against (2.13).
 TEST(Correlation, NearWhiteNoiseMatchesTouchette) {
     ss::CorrelationRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = dry(0.5e-4);
     r.engine.dt = 1e-3;
     r.excursions = 3000;
@@ -105,6 +108,7 @@ TEST(StationaryDensity, StuckProbabilityVanishesForWhiteNoiseAndGrowsWithTau) {
     std::vector<ss::Estimate> stuck;
     for (double tau : {0.0, 0.01, 0.1, 1.0}) {
         ss::StationaryDensityRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.params = dry(tau);
         r.engine.dt = 1e-3;
         r.excursions = tau == 1.0 ? 300 : 1000;
@@ -127,6 +131,7 @@ TEST(StationaryDensity, StuckProbabilityVanishesForWhiteNoiseAndGrowsWithTau) {
 // Both engines estimate the same stationary law (Fig. 2 case, PDMP grid 0.125).
 TEST(StationaryDensity, PdmpAndInclusionAgree) {
     ss::StationaryDensityRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.excursions = 3000;
     r.bins = {-0.4, 0.4, 16};
     r.control.seed = 5;
@@ -152,6 +157,7 @@ TEST(StationaryDensity, PdmpAndInclusionAgree) {
 // Fig. 5 case: the normalised covariance of both engines agree at a few lags.
 TEST(Correlation, PdmpAndInclusionAgree) {
     ss::CorrelationRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.excursions = 2000;
     r.max_lag = 0.6;
     r.lags = 3;
@@ -174,6 +180,7 @@ TEST(Correlation, PdmpAndInclusionAgree) {
 // gives Hayakawa's mean and variance.
 TEST(StationaryDensity, WhiteNoiseWithDragAndBiasMatchesHayakawa) {
     ss::StationaryDensityRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = {.friction = 1, .noise = 1, .tau = 0, .relaxation = 0.5, .bias = 0.3};
     r.engine.dt = 1e-3;
     r.excursions = 3000;
@@ -194,6 +201,7 @@ TEST(StationaryDensity, WhiteNoiseWithDragAndBiasMatchesHayakawa) {
 // fitted exponent is 3 and every local slope is 3.
 TEST(Sweep, WhiteNoiseExponentIsThree) {
     ss::SweepRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = dry(0);
     r.engine.dt = 1e-4;
     r.noises = {1, 2, 4};

@@ -29,7 +29,7 @@ ss::RunTotals le(const ss::EngineSettings& e, unsigned threads, std::uint64_t se
 }
 
 TEST(Reproducibility, PdmpIdenticalForAnyThreadCount) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     const auto t1 = le(e, 1, 5, 1000), t2 = le(e, 2, 5, 1000), t3 = le(e, 3, 5, 1000), t7 = le(e, 7, 5, 1000);
     EXPECT_TRUE(same_bits(t1.moments, t2.moments));
@@ -39,7 +39,7 @@ TEST(Reproducibility, PdmpIdenticalForAnyThreadCount) {
 }
 
 TEST(Reproducibility, InclusionIdenticalForAnyThreadCount) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 2e-3;
     const auto t1 = le(e, 1, 9, 300), t2 = le(e, 2, 9, 300), t5 = le(e, 5, 9, 300);
     EXPECT_TRUE(same_bits(t1.moments, t2.moments));
@@ -48,7 +48,7 @@ TEST(Reproducibility, InclusionIdenticalForAnyThreadCount) {
 
 TEST(Reproducibility, WhiteNoiseAndBruteForceIdenticalForAnyThreadCount) {
     const ss::ModelParams p{.tau = 0};
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     ss::RunControl c1, c2;
     c1.threads = 1;
@@ -60,7 +60,7 @@ TEST(Reproducibility, WhiteNoiseAndBruteForceIdenticalForAnyThreadCount) {
 }
 
 TEST(Reproducibility, SeedChangesResult) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     EXPECT_FALSE(same_bits(le(e, 2, 1, 500).moments, le(e, 2, 2, 500).moments));
 }
@@ -70,7 +70,7 @@ TEST(Reproducibility, SampleIndexIsTheStream) {
     // over [0, 64) and [64, 128), their sums added in either order, reproduce
     // the run over [0, 128) bit for bit (the basis of splitting a run across
     // processes, and of resuming it).
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     ss::RunControl c;
     c.seed = 3;

@@ -38,20 +38,20 @@ void expect_twins(const ss::EngineSettings& phys, std::uint64_t n) {
 }
 
 TEST(Units, PdmpPhysicalRunEqualsNondimensionalTwin) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     expect_twins(e, 4000);
 }
 
 TEST(Units, InclusionPhysicalRunEqualsNondimensionalTwin) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     expect_twins(e, 2000);
 }
 
 TEST(Symmetry, ZeroBiasGivesZeroMobility) {
     const ss::ModelParams p{.bias = 0.0};
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     const auto r = run_le(p, e, 20000, 4);
     const auto c = compare(r.estimates.mobility.value, r.estimates.mobility.std_error, 0.0, 0.0);
@@ -76,13 +76,13 @@ void expect_mirror(const ss::EngineSettings& e, std::uint64_t n) {
 }
 
 TEST(Symmetry, BiasSignFlipsMobilityKeepsDiffusivityPdmp) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     expect_mirror(e, 20000);
 }
 
 TEST(Symmetry, BiasSignFlipsMobilityKeepsDiffusivityInclusion) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     expect_mirror(e, 3000);
 }

@@ -18,7 +18,7 @@ const double inf = std::numeric_limits<double>::infinity();
 
 TEST(WhiteNoise, PureDryFrictionGivesFiveQuarters) {
     const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 0, .relaxation = inf, .bias = 0};
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     const auto r = run_le(p, e, 100000, 2024);
     EXPECT_EQ(r.resolved.stop_rule, "velocity-levels");
@@ -34,7 +34,7 @@ TEST(WhiteNoise, RelaxationAndBiasMatchQuadrature) {
     const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 0, .relaxation = 0.2, .bias = 0.3};
     // M0 carries a sqrt(dt) bias here: +2.3% at dt' = 1e-2, about +1% at
     // 3e-3 over seven seeds (docs/validation.md); dt' = 1e-3 keeps it < 1%.
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     const auto ref = ss::white_noise_reference(p);
     const auto r = run_le(p, e, 200000, 77);
@@ -50,7 +50,7 @@ TEST(WhiteNoise, PhysicalUnitsScaleLikeGammaCubedOverDeltaFourth) {
     const ss::ModelParams p{.friction = 3.84, .noise = 2.0, .tau = 0, .relaxation = inf, .bias = 0};
     const double ref = 1.25 * std::pow(p.noise, 3) / std::pow(p.friction, 4);
     EXPECT_NEAR(ss::white_noise_reference(p).diffusivity, ref, 1e-10 * ref);
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3 * ss::scales_of(p).time;
     const auto r = run_le(p, e, 50000, 5);
     const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref, 0.0, 0.015 * ref);
@@ -61,7 +61,7 @@ TEST(WhiteNoise, ColoredNoiseWithTinyTauConverges) {
     // tau' = 1e-4 with dt' = 1e-3 (dt > tau: the stuck rule). Measured on
     // 1e5 excursions: D' = 1.231 +- 0.008 (-1.5%); allowance 3%.
     const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 1e-4, .relaxation = inf, .bias = 0};
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     const auto r = run_le(p, e, 3000, 31);
     EXPECT_EQ(r.resolved.stop_rule, "stuck");

@@ -35,7 +35,7 @@ ss::ModelParams dry_params(double tau) {
 }
 
 ss::EventConstants constants(const ss::ModelParams& p, double dt, std::uint64_t max_work = 200'000'000) {
-    ss::EngineSettings s;
+    ss::EngineSettings s = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     s.scheme = ss::Scheme::Event;
     s.dt = dt;
     s.max_work_per_excursion = max_work;

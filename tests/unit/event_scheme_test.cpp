@@ -19,7 +19,7 @@ namespace ss = stickslip;
 namespace {
 
 ss::EngineSettings event(double dt) {
-    ss::EngineSettings e;
+    ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.scheme = ss::Scheme::Event;
     e.dt = dt;
     return e;

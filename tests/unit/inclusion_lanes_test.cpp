@@ -70,7 +70,7 @@ int mismatches(const ss::InclusionConstants& c, std::uint64_t first, std::uint64
 
 ss::InclusionConstants constants(const ss::ModelParams& p, double dt, ss::StopRule rule,
                                  std::uint64_t max_steps = 200'000'000) {
-    ss::EngineSettings s;
+    ss::EngineSettings s = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     s.engine = ss::Engine::Inclusion;
     s.dt = dt;
     s.stop_rule = rule;

@@ -21,7 +21,7 @@ const double kInf = std::numeric_limits<double>::infinity();
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 ss::EngineSettings with_dt(double dt) {
-    ss::EngineSettings s;
+    ss::EngineSettings s = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     s.dt = dt;
     return s;
 }

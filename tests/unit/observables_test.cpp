@@ -61,6 +61,7 @@ TEST(RatioMoments, MergeEqualsSequentialAndMatchesDirectFormulas) {
 
 ss::StationaryDensityRequest small_density(ss::Engine engine) {
     ss::StationaryDensityRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.engine.engine = engine;
     r.engine.dt = 1e-3;
     r.excursions = 200;
@@ -92,6 +93,8 @@ TEST(StationaryDensity, SameExcursionsAsDiffusivityAndThreadInvariant) {
         EXPECT_EQ(one.variance.value, two.variance.value);
 
         ss::DiffusivityRequest d;
+
+        d.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         d.engine = r.engine;
         d.excursions = r.excursions;
         d.control.seed = r.control.seed;
@@ -106,6 +109,7 @@ TEST(Correlation, LagZeroIsTheSecondMomentOfTheSameExcursions) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
         const auto dens = ss::compute_stationary_density(small_density(engine));
         ss::CorrelationRequest c;
+        c.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         c.engine = dens.request.engine;
         c.excursions = dens.request.excursions;
         c.control.seed = dens.request.control.seed;
@@ -127,6 +131,7 @@ TEST(Correlation, LagZeroIsTheSecondMomentOfTheSameExcursions) {
 TEST(Transient, TimeZeroIsTheStartAndThreadsDoNotMatter) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
         ss::TransientRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.engine.engine = engine;
         r.engine.dt = 1e-3;
         r.v0 = 0.25;
@@ -156,6 +161,7 @@ TEST(Transient, TimeZeroIsTheStartAndThreadsDoNotMatter) {
 TEST(Trajectory, ExcursionModeIsTheDiffusivityExcursion) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
         ss::TrajectoryRequest t;
+        t.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         t.engine.engine = engine;
         t.engine.dt = 1e-3;
         t.index = 5;
@@ -185,6 +191,7 @@ TEST(Trajectory, ExcursionModeIsTheDiffusivityExcursion) {
 TEST(Trajectory, PathModeRecordsTheGrid) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
         ss::TrajectoryRequest t;
+        t.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         t.engine.engine = engine;
         t.engine.dt = 1e-3;
         t.paths = 3;
@@ -223,39 +230,46 @@ TEST(Observables, InvalidRequestsThrowNamingTheParameter) {
     }, "range");
     expect([] {
         ss::CorrelationRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.lags = 0;
         ss::validate(r);
     }, "lags");
     expect([] {
         ss::CorrelationRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.max_lag = -1;
         ss::validate(r);
     }, "max-lag");
     expect([] {
         ss::TransientRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.times = {1, -0.5};
         ss::validate(r);
     }, "times");
     expect([] {
         ss::TransientRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.times = {1};
         r.v0 = inf;
         ss::validate(r);
     }, "v0");
     expect([] {
         ss::TrajectoryRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.paths = 2;
         r.horizon = 0;
         ss::validate(r);
     }, "time");
     expect([] {
         ss::SweepRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.noises = {1, -2};
         r.taus = {0.5};
         ss::validate(r);
     }, "noise");
     expect([] {
         ss::SweepRequest r;
+        r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.noises = {1};
         r.taus.clear();
         ss::validate(r);
@@ -267,6 +281,7 @@ TEST(Observables, InvalidRequestsThrowNamingTheParameter) {
 
 TEST(Sweep, PointsHaveIndependentStreamsAndSortedGrid) {
     ss::SweepRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.engine.dt = 1e-3;
     r.noises = {6, 4};
     r.taus = {0.5};
@@ -279,6 +294,7 @@ TEST(Sweep, PointsHaveIndependentStreamsAndSortedGrid) {
     EXPECT_EQ(res.points[1].noise, 6.0);
     // Point 1 is `diffusivity` at noise 6 with sample indices from 2^40.
     ss::DiffusivityRequest d;
+    d.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     d.engine = r.engine;
     d.params.noise = 6;
     d.excursions = 100;

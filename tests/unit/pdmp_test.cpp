@@ -33,7 +33,7 @@ ss::ModelParams dry() {
 }
 
 ss::EngineSettings grid(double g) {
-    ss::EngineSettings s;
+    ss::EngineSettings s = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     s.engine = ss::Engine::Pdmp;
     s.grid = g;
     return s;

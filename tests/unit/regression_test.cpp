@@ -12,7 +12,7 @@ namespace ss = stickslip;
 namespace {
 
 void expect_consistent_band(const ss::ModelParams& p, double grid) {
-    ss::EngineSettings s;
+    ss::EngineSettings s = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     s.engine = ss::Engine::Pdmp;
     s.grid = grid;
     const auto c = ss::make_pdmp_constants(p, s);
@@ -26,6 +26,7 @@ void expect_consistent_band(const ss::ModelParams& p, double grid) {
 
 ss::DiffusivityResult pdmp_run(const ss::ModelParams& p, double grid, std::uint64_t n) {
     ss::DiffusivityRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = p;
     r.engine.engine = ss::Engine::Pdmp;
     r.engine.grid = grid;
@@ -66,6 +67,7 @@ TEST(Regression, PdmpRoundingGivesWrongSignAtTheStartState) {
 TEST(Regression, BruteForceUsesTheSimulatedHorizon) {
     // t = 0.105 s with dt = 0.01 s simulates 10 steps = 0.1 s.
     ss::BruteForceRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.engine.dt = 0.01;
     r.params.relaxation = 0.067;
     r.horizon = 0.105;

@@ -59,6 +59,7 @@ TEST(ExcursionBound, BelowTheMeasuredMeanDurationOfFig2) {
 // long run worth a note, 64 are not.
 TEST(CostNote, SaysALongRunIsLongBeforeItStarts) {
     DiffusivityRequest req;
+    req.engine = fixed_step_settings(Scheme::Resolvent, 1e-4);
     req.params.noise = 1.0;
     const PreparedEngine e = prepare(req);
     std::vector<std::string> notes;
@@ -106,17 +107,53 @@ TEST(AutoStep, FollowsTheMeasuredLawsAndTheTimeScales) {
 
 TEST(AutoStep, ResolvedOnlyWhenAskedAndForTheInclusionEngine) {
     const ModelParams fig2;
-    EngineSettings s;
-    EXPECT_EQ(resolve_time_step(fig2, s).dt, 1e-4); // a given step is kept
+    EngineSettings s = fixed_step_settings(Scheme::Resolvent, 1e-4);
+    EXPECT_EQ(resolve_engine_settings(fig2, s).dt, 1e-4); // a given step is kept
     s.dt_auto = true;
     s.scheme = Scheme::Event;
-    const EngineSettings r = resolve_time_step(fig2, s);
+    const EngineSettings r = resolve_engine_settings(fig2, s);
     EXPECT_DOUBLE_EQ(r.dt, fig2.relaxation / 4);
     EXPECT_TRUE(r.dt_auto); // so that reports can say so
-    EXPECT_EQ(resolve_time_step(fig2, r).dt, r.dt); // idempotent
+    EXPECT_EQ(resolve_engine_settings(fig2, r).dt, r.dt); // idempotent
     EXPECT_EQ(prepare_engine(fig2, s).settings.dt, r.dt);
     s.engine = Engine::Pdmp; // no time step to choose
-    EXPECT_EQ(resolve_time_step(fig2, s).dt, 1e-4);
+    EXPECT_EQ(resolve_engine_settings(fig2, s).dt, 1e-4);
+}
+
+TEST(Defaults, TheEventSchemeAtItsAutomaticStepWhereverItServes) {
+    const ModelParams fig2;
+    const EngineSettings d; // the defaults: scheme auto, dt auto
+    EXPECT_EQ(d.scheme, Scheme::Auto);
+    EXPECT_TRUE(d.dt_auto);
+    const EngineSettings r = resolve_engine_settings(fig2, d);
+    EXPECT_EQ(r.scheme, Scheme::Event);
+    EXPECT_DOUBLE_EQ(r.dt, auto_time_step(fig2, Scheme::Event));
+    EXPECT_EQ(resolve_engine_settings(fig2, d, PathUse::GridSamples).scheme, Scheme::Event);
+    ModelParams white = fig2;
+    white.tau = 0;
+    // The event scheme cannot sample white-noise paths on a grid: density and
+    // correlation get the resolvent at its own automatic step.
+    EXPECT_EQ(resolve_engine_settings(white, d).scheme, Scheme::Event);
+    const EngineSettings grid = resolve_engine_settings(white, d, PathUse::GridSamples);
+    EXPECT_EQ(grid.scheme, Scheme::Resolvent);
+    EXPECT_DOUBLE_EQ(grid.dt, auto_time_step(white, Scheme::Resolvent));
+    // A scheme given is kept, auto or not; resolving twice changes nothing.
+    EngineSettings given = d;
+    given.scheme = Scheme::Event;
+    EXPECT_EQ(resolve_engine_settings(white, given, PathUse::GridSamples).scheme, Scheme::Event);
+    EXPECT_EQ(resolve_engine_settings(white, grid).scheme, Scheme::Resolvent);
+    // Near-white coloured noise: the resolvent's white-noise step is the longer.
+    ModelParams near_white = fig2;
+    near_white.tau = 1e-5 * scales_of(fig2).time;
+    EXPECT_GT(auto_time_step(near_white, Scheme::Resolvent), auto_time_step(near_white, Scheme::Event));
+    EXPECT_EQ(resolve_engine_settings(near_white, d).scheme, Scheme::Resolvent);
+    near_white.tau = 1e-3 * scales_of(fig2).time;
+    EXPECT_EQ(resolve_engine_settings(near_white, d).scheme, Scheme::Event);
+    EngineSettings pdmp = d;
+    pdmp.engine = Engine::Pdmp;
+    EXPECT_EQ(resolve_engine_settings(fig2, pdmp).scheme, Scheme::Auto);
+    EXPECT_EQ(to_string(Scheme::Auto), "auto");
+    EXPECT_EQ(parse_scheme("auto"), Scheme::Auto);
 }
 
 } // namespace
