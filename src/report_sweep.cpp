@@ -12,6 +12,16 @@ using namespace detail;
 
 // ---- sweep ------------------------------------------------------------------------------------
 
+namespace {
+
+/// --dt auto on the inclusion engine: every point has its own step (SweepPoint::dt).
+bool dt_per_point(const EngineSettings& s) { return s.dt_auto && s.engine == Engine::Inclusion; }
+
+/// --scheme auto on the inclusion engine: every point has its own scheme (SweepPoint::scheme).
+bool scheme_per_point(const EngineSettings& s) { return s.scheme == Scheme::Auto && s.engine == Engine::Inclusion; }
+
+} // namespace
+
 std::string to_json(const SweepResult& r, int indent) {
     const auto& q = r.request;
     const std::string estimator = to_string(q.estimator);
@@ -19,9 +29,8 @@ std::string to_json(const SweepResult& r, int indent) {
     auto params = params_json(q);
     params.erase("noise");
     params.erase("tau");
-    const bool dt_per_point = q.engine.dt_auto && q.engine.engine == Engine::Inclusion;
-    if (dt_per_point) params.erase("dt"); // each point's own: points[k].dt
-    const bool scheme_per_point = q.engine.scheme == Scheme::Auto && q.engine.engine == Engine::Inclusion;
+    const bool own_dt = dt_per_point(q.engine), own_scheme = scheme_per_point(q.engine);
+    if (own_dt) params.erase("dt"); // each point's own: points[k].dt
     params["noises"] = q.noises;
     params["taus"] = q.taus;
     params["excursions"] = q.excursions;
@@ -37,8 +46,8 @@ std::string to_json(const SweepResult& r, int indent) {
         o["noise"] = p.noise;
         o["tau"] = p.tau;
         o["stop_rule"] = p.stop_rule;
-        if (dt_per_point) o["dt"] = p.dt; // --dt auto: the point's own step
-        if (scheme_per_point) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
+        if (own_dt) o["dt"] = p.dt; // --dt auto: the point's own step
+        if (own_scheme) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
         append_members(o, long_excursion_json(p.estimates));
         o["slope"] = {{"value", json_number(p.slope.value)}, {"stderr", json_number(p.slope.std_error)}};
         o["nondimensional"] = {{"tau", p.tau / sc.time},
@@ -85,8 +94,8 @@ std::string to_table(const SweepResult& r) {
                       estimate_cell(p.estimates.diffusivity).c_str(), estimate_cell(p.estimates.mobility).c_str(),
                       p.estimates.mean_duration.value, p.estimates.mean_duration.std_error, slope);
         os << buf;
-        if (q.engine.dt_auto && q.engine.engine == Engine::Inclusion) os << "  dt " << format_number(p.dt) << " s";
-        if (q.engine.scheme == Scheme::Auto && q.engine.engine == Engine::Inclusion) os << "  " << to_string(p.scheme);
+        if (dt_per_point(q.engine)) os << "  dt " << format_number(p.dt) << " s";
+        if (scheme_per_point(q.engine)) os << "  " << to_string(p.scheme);
         os << "\n";
     }
     if (!r.exponents.empty()) {
@@ -107,8 +116,7 @@ std::string to_csv(const SweepResult& r) {
     std::ostringstream os;
     os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
        << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"
-       << (r.request.engine.dt_auto && r.request.engine.engine == Engine::Inclusion ? ",dt" : "")
-       << (r.request.engine.scheme == Scheme::Auto && r.request.engine.engine == Engine::Inclusion ? ",scheme" : "")
+       << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
        << "\n";
     for (const auto& p : r.points) {
         ModelParams mp = r.request.params;
@@ -121,9 +129,8 @@ std::string to_csv(const SweepResult& r) {
            << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time) << ","
            << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << ","
            << p.estimates.excursions;
-        if (r.request.engine.dt_auto && r.request.engine.engine == Engine::Inclusion) os << "," << csv_number(p.dt);
-        if (r.request.engine.scheme == Scheme::Auto && r.request.engine.engine == Engine::Inclusion)
-            os << "," << to_string(p.scheme);
+        if (dt_per_point(r.request.engine)) os << "," << csv_number(p.dt);
+        if (scheme_per_point(r.request.engine)) os << "," << to_string(p.scheme);
         os << "\n";
     }
     return os.str();
