@@ -119,9 +119,9 @@ struct PdmpState {
 template <class Rng>
 STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time,
                                     double& disp, double horizon) {
-    double u0, u1;
-    rng.uniform2(u0, u1);
-    const double wait = -std::log(u0) / c.rate;
+    double e, u1; // the wait in units of the mean wait, and the jump direction's uniform
+    rng.exponential_uniform(e, u1);
+    const double wait = e / c.rate;
     const double t_hit = pdmp_hitting_time(c, s.i, s.y, s.v);
     const bool hits = t_hit <= wait;
     const double dt = hits ? t_hit : wait;

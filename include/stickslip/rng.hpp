@@ -23,7 +23,9 @@
 // test) takes it from the side block of its draw, counter {j lo, 2^30 | j hi,
 // index, purpose}, so every colored-noise step consumes exactly one block of
 // the main stream (a white-noise step uses one normal, half a block) and
-// excursions can advance in lockstep (inclusion_lanes.hpp). This needs
+// excursions can advance in lockstep (inclusion_lanes.hpp). The PDMP engine
+// takes an exponential (the exponential ziggurat, rejected words resolved from
+// the same retry substream as a normal's first word) and a uniform per draw. This needs
 // j < 2^47 draws per stream (max_draws); the engines cap their work far below.
 #pragma once
 
@@ -117,6 +119,26 @@ public:
         return ziggurat_resolve(word, more);
     }
 
+    /// The unit exponential of word 0 of draw j of the stream whose key and
+    /// counter words 2, 3 are given: the exponential ziggurat, a rejected word
+    /// resolved from the retry substream of (draw j, half 0), as a normal's
+    /// would be (a stream takes normals or exponentials from a draw, never both).
+    STICKSLIP_HD static double exponential_of_word(const Philox::key_type& key, std::uint32_t c2, std::uint32_t c3,
+                                                   std::uint64_t j, std::uint64_t word) {
+        double x;
+        if (exponential_ziggurat_fast(word, x)) [[likely]] return x;
+        return exponential_rejected(key, c2, c3, j, word);
+    }
+
+    /// exponential_of_word's slow path, out of line.
+    STICKSLIP_HD STICKSLIP_PM_NOINLINE static double exponential_rejected(const Philox::key_type& key, std::uint32_t c2,
+                                                                          std::uint32_t c3, std::uint64_t j,
+                                                                          std::uint64_t word) {
+        RetryWords more{key, {{static_cast<std::uint32_t>(j), 0u, c2, c3}}, {}, static_cast<std::uint32_t>(j >> 32),
+                        0u, 0u, 4};
+        return exponential_ziggurat_resolve(word, more);
+    }
+
     /// The normal of word `word` of draw j, half `half` of this stream.
     STICKSLIP_HD double normal_of_word(std::uint64_t word, std::uint64_t j, unsigned half) const {
         double x;
@@ -141,6 +163,17 @@ public:
         const std::uint64_t j = draws();
         const Philox::ctr_type b = next_block();
         return {normal_of_word(join(b.v[0], b.v[1]), j, 0), normal_of_word(join(b.v[2], b.v[3]), j, 1)};
+    }
+
+    /// An exponential of mean 1 and an independent uniform in (0, 1] from one
+    /// draw: the exponential of its first 64-bit word (exponential_of_word),
+    /// the uniform of its second (as uniform2's second). The PDMP engine's
+    /// waiting time and jump direction.
+    STICKSLIP_HD void exponential_uniform(double& e, double& u) {
+        const std::uint64_t j = draws();
+        const Philox::ctr_type b = next_block();
+        e = exponential_of_word(key_, ctr_.v[2], ctr_.v[3], j, join(b.v[0], b.v[1]));
+        u = r123::u01<double>(join(b.v[2], b.v[3]));
     }
 
     /// The side uniform of draw j, in (0, 1]: independent of the draw's own block.

@@ -114,6 +114,15 @@ public:
         u1 = r123::u01<double>(CounterRng::join(b.v[2], b.v[3]));
     }
 
+    /// An exponential of mean 1 and a uniform in (0, 1]; the same as
+    /// CounterRng::exponential_uniform.
+    void exponential_uniform(double& e, double& u) {
+        const std::uint64_t j = draws();
+        const Philox::ctr_type b = next_block();
+        e = CounterRng::exponential_of_word(key_, ctr_.v[2], ctr_.v[3], j, CounterRng::join(b.v[0], b.v[1]));
+        u = r123::u01<double>(CounterRng::join(b.v[2], b.v[3]));
+    }
+
     /// One uniform in (0, 1]; the same as CounterRng::uniform.
     double uniform() {
         const Philox::ctr_type b = next_block();
@@ -162,7 +171,7 @@ private:
 
 /// The inclusion engine's stream: CounterRng's numbers, normals batched.
 using BatchedCounterRng = BatchedStream<true>;
-/// The PDMP engine's stream: CounterRng's uniforms, batched.
+/// The PDMP engine's stream: CounterRng's uniforms and exponentials, batched.
 using BatchedUniformRng = BatchedStream<false>;
 
 extern template class BatchedStream<true>;

@@ -333,8 +333,9 @@ namespace {
 struct ScriptedRng {
     std::vector<std::pair<double, double>> script;
     std::size_t next = 0;
-    void uniform2(double& u0, double& u1) {
-        u0 = script.at(next).first;
+    /// The script's pair (u0, u1) as the draw (exponential -log u0, uniform u1).
+    void exponential_uniform(double& e, double& u1) {
+        e = -std::log(script.at(next).first);
         u1 = script.at(next).second;
         ++next;
     }

@@ -597,3 +597,133 @@ TEST(Ziggurat, ResolveTail) {
     EXPECT_EQ(ss::ziggurat_resolve(zig_word(0, 0, zd::zig_k[0]), src2), zd::zig_r + xx);
     EXPECT_EQ(src2.used, 2u);
 }
+
+// ---------------------------------------------------------------------------
+// The exponential ziggurat (the PDMP engine's waiting times).
+// Tables (definition: scripts/dev/make_ziggurat_tables.py --exponential):
+//   x_i = zige_w[i] 2^53 (i >= 1), x_255 = zige_r, f_i = zige_f[i] = exp(-x_i),
+//   f_0 = 1; every layer has the area V = r e^-r + e^-r (layer 0: the strip of
+//   width q = zige_w[0] 2^53 and height f(r), the bottom rectangle plus the
+//   tail); zige_k[i] = floor(2^53 x_(i-1) / x_i), zige_k[0] = floor(2^53 r / q).
+
+namespace {
+constexpr double two53 = 9007199254740992.0; // 2^53
+
+/// Word of the exponential layout: bits 0-7 layer, bits 8-60 position, 61-63 unused.
+std::uint64_t exp_word(unsigned idx, std::uint64_t pos, unsigned top = 0) {
+    return std::uint64_t{idx & 0xffu} | ((pos & ss::exponential_ziggurat_position_mask) << 8) |
+           (std::uint64_t{top & 7u} << 61);
+}
+} // namespace
+
+TEST(ExponentialZigguratTables, MonotoneAnchoredAndOfEqualAreas) {
+    EXPECT_EQ(zd::zige_k[1], 0u);
+    EXPECT_EQ(zd::zige_f[0], 1.0);
+    for (int i = 2; i < 256; ++i) EXPECT_LT(zd::zige_w[i - 1], zd::zige_w[i]) << i;
+    for (int i = 0; i < 256; ++i) EXPECT_LE(zd::zige_k[i], ss::exponential_ziggurat_position_mask) << i;
+    EXPECT_EQ(zd::zige_w[255] * two53, zd::zige_r);
+    const double r = zd::zige_r, V = r * std::exp(-r) + std::exp(-r);
+    for (int i = 1; i < 256; ++i) {
+        const double x = zd::zige_w[i] * two53;
+        EXPECT_NEAR(zd::zige_f[i], std::exp(-x), 4e-15 * std::exp(-x)) << "layer " << i;
+        EXPECT_NEAR(x * (zd::zige_f[i - 1] - zd::zige_f[i]), V, 1e-12 * V) << "layer " << i;
+    }
+    EXPECT_NEAR(zd::zige_w[0] * two53 * zd::zige_f[255], V, 1e-12 * V); // base strip = rectangle + tail
+    const double x1 = zd::zige_w[1] * two53;
+    EXPECT_NEAR(x1 * (1 - std::exp(-x1)), V, 1e-12 * V); // the top layer closes
+    EXPECT_GT(256 * V, 1.0);                              // the density's area, plus the wedges
+    EXPECT_LT(256 * V, 1.02);
+    for (int i = 2; i < 256; ++i) {
+        EXPECT_LE(std::fabs(static_cast<double>(zd::zige_k[i]) - zd::zige_w[i - 1] / zd::zige_w[i] * two53), 4.0) << i;
+        // Fast-accepted positions stay inside the rectangle (with 53-bit positions
+        // the largest may round onto its edge x_(i-1)).
+        EXPECT_LE(static_cast<double>(zd::zige_k[i] - 1) * zd::zige_w[i], zd::zige_w[i - 1] * two53) << i;
+    }
+    EXPECT_LT(static_cast<double>(zd::zige_k[0] - 1) * zd::zige_w[0], zd::zige_r);
+    EXPECT_GE(static_cast<double>(zd::zige_k[0]) * zd::zige_w[0], zd::zige_r * (1 - 1e-15));
+}
+
+TEST(ExponentialZiggurat, ReadsTheWordAsDocumentedAndAcceptsInsideTheRectangle) {
+    double x = -1.0;
+    EXPECT_TRUE(ss::exponential_ziggurat_fast(exp_word(5, 0), x));
+    EXPECT_EQ(bits_of(x), bits_of(0.0));
+    for (unsigned idx : {0u, 2u, 7u, 100u, 255u})
+        for (unsigned top : {0u, 7u}) {
+            EXPECT_TRUE(ss::exponential_ziggurat_fast(exp_word(idx, 123456789, top), x));
+            EXPECT_EQ(x, 123456789.0 * zd::zige_w[idx]);
+        }
+    EXPECT_TRUE(ss::exponential_ziggurat_fast(0x0000000000000107ull, x)); // idx 7, pos 1
+    EXPECT_EQ(x, zd::zige_w[7]);
+    for (std::uint64_t p : {std::uint64_t{0}, std::uint64_t{1} << 40, ss::exponential_ziggurat_position_mask})
+        EXPECT_FALSE(ss::exponential_ziggurat_fast(exp_word(1, p), x)) << p; // the top layer has no rectangle
+    for (unsigned idx = 0; idx < 256; ++idx) {
+        if (idx == 1) continue;
+        const std::uint64_t k = zd::zige_k[idx];
+        EXPECT_TRUE(ss::exponential_ziggurat_fast(exp_word(idx, k - 1), x)) << idx;
+        EXPECT_EQ(x, static_cast<double>(k - 1) * zd::zige_w[idx]) << idx;
+        EXPECT_FALSE(ss::exponential_ziggurat_fast(exp_word(idx, k), x)) << idx;
+    }
+}
+
+TEST(ExponentialZiggurat, ResolvesWedgesAndTheTail) {
+    double x;
+    // An accepted word draws nothing.
+    ScriptedWords none{{}};
+    ASSERT_TRUE(ss::exponential_ziggurat_fast(exp_word(42, 987654321), x));
+    EXPECT_EQ(bits_of(ss::exponential_ziggurat_resolve(exp_word(42, 987654321), none)), bits_of(x));
+    EXPECT_EQ(none.used, 0u);
+    // Just right of layer 100's rectangle, a tiny uniform lies under the curve: accept.
+    const std::uint64_t edge = exp_word(100, zd::zige_k[100]);
+    ASSERT_FALSE(ss::exponential_ziggurat_fast(edge, x));
+    ScriptedWords low{{0ull}};
+    EXPECT_EQ(bits_of(ss::exponential_ziggurat_resolve(edge, low)), bits_of(x));
+    EXPECT_EQ(low.used, 1u);
+    // At the layer's right edge a uniform of 1 lies above it: reject, take the next word.
+    const std::uint64_t next = exp_word(7, 12345);
+    double x_next;
+    ASSERT_TRUE(ss::exponential_ziggurat_fast(next, x_next));
+    ScriptedWords high{{~0ull, next}};
+    EXPECT_EQ(bits_of(ss::exponential_ziggurat_resolve(exp_word(100, ss::exponential_ziggurat_position_mask), high)),
+              bits_of(x_next));
+    EXPECT_EQ(high.used, 2u);
+    // The tail: r - log(u), one word.
+    const std::uint64_t half_word = std::uint64_t{1} << 63;
+    ScriptedWords tail{{half_word}};
+    const double t = ss::exponential_ziggurat_resolve(exp_word(0, ss::exponential_ziggurat_position_mask), tail);
+    EXPECT_EQ(t, zd::zige_r - std::log(r123::u01<double>(half_word)));
+    EXPECT_EQ(tail.used, 1u);
+}
+
+TEST(BatchedUniformRng, ExponentialUniformBitwiseEqualToCounterRngAndReachesTheSlowPath) {
+    int slow = 0, tail = 0;
+    for (const StreamId& s : many_streams()) {
+        ss::CounterRng ref(s.seed, s.purpose, s.index), raw(s.seed, s.purpose, s.index);
+        ss::BatchedUniformRng bat(s.seed, s.purpose, s.index);
+        for (int k = 0; k < 2000; ++k) {
+            const std::string at = where(s) + ", draw " + std::to_string(k);
+            double e0, u0, e1, u1;
+            ref.exponential_uniform(e0, u0);
+            bat.exponential_uniform(e1, u1);
+            ASSERT_EQ(bits_of(e0), bits_of(e1)) << at;
+            ASSERT_EQ(bits_of(u0), bits_of(u1)) << at;
+            ASSERT_EQ(ref.draws(), bat.draws()) << at;
+            // The block's words: the exponential of the first, the uniform of the second.
+            const auto b = raw.next_block();
+            const std::uint64_t w0 = ss::CounterRng::join(b.v[0], b.v[1]);
+            double x;
+            if (!ss::exponential_ziggurat_fast(w0, x)) {
+                ++slow;
+                tail += (w0 & 0xffu) == 0 ? 1 : 0;
+            } else {
+                ASSERT_EQ(bits_of(e0), bits_of(x)) << at;
+            }
+            ASSERT_EQ(bits_of(u0), bits_of(r123::u01<double>(ss::CounterRng::join(b.v[2], b.v[3])))) << at;
+            ASSERT_GE(e0, 0.0) << at;
+        }
+    }
+    // 128000 words: 2.2% take the slow path (1 - the rectangles' share), ~1/40 of those the base layer.
+    EXPECT_GT(slow, 500);
+    EXPECT_GT(tail, 0);
+    std::cout << "[measured] exponential ziggurat: " << slow << " of 128000 words on the slow path, " << tail
+              << " in the base layer" << std::endl;
+}

@@ -5,7 +5,7 @@
 // __device__ copy made from the host array at compile time (an element-wise
 // constexpr copy: the same bits by construction, no second list of numbers to
 // keep in step). The copies are const, hence of internal linkage: each CUDA
-// translation unit holds its own 6 KB, and no relocatable device code is
+// translation unit holds its own 12 KB, and no relocatable device code is
 // needed. They live in global memory and are read through the read-only data
 // cache; __constant__ memory would serialise the divergent lookups of a warp.
 #pragma once
@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "exponential_ziggurat_tables.hpp"
 #include "ziggurat_tables.hpp"
 
 namespace stickslip::detail {
@@ -40,6 +41,9 @@ constexpr ZigguratTable<T, N> ziggurat_table_copy(const T (&a)[N]) {
 __device__ const ZigguratTable<std::uint64_t, 256> zig_k_device = ziggurat_table_copy(zig_k);
 __device__ const ZigguratTable<double, 256> zig_w_device = ziggurat_table_copy(zig_w);
 __device__ const ZigguratTable<double, 256> zig_f_device = ziggurat_table_copy(zig_f);
+__device__ const ZigguratTable<std::uint64_t, 256> zige_k_device = ziggurat_table_copy(zige_k);
+__device__ const ZigguratTable<double, 256> zige_w_device = ziggurat_table_copy(zige_w);
+__device__ const ZigguratTable<double, 256> zige_f_device = ziggurat_table_copy(zige_f);
 #endif
 
 } // namespace stickslip::detail
