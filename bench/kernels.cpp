@@ -7,9 +7,11 @@
 //                                 pair: this is the random-number limit of
 //                                 steps/s on this core.
 //   BM_NormalPairsScalar          the same numbers from CounterRng, one call at a time.
-//   BM_UniformPairs               BatchedUniformRng::uniform2; one PDMP event draws
-//                                 one pair: the PDMP engine's limit of events/s.
-//   BM_UniformPairsScalar         the same from CounterRng.
+//   BM_PdmpDraws                  BatchedUniformRng::exponential_uniform; one PDMP
+//                                 event takes one draw (an exponential wait and a
+//                                 uniform direction): the PDMP engine's limit of
+//                                 events/s.
+//   BM_PdmpDrawsScalar            the same from CounterRng.
 //   BM_InclusionSteps/<case>      inclusion_long_excursion, one excursion per
 //                                 iteration (BatchedCounterRng); items = steps.
 //   BM_InclusionLanes/<case>      inclusion_long_excursions, the kernel the runner
@@ -84,15 +86,15 @@ constexpr auto normal_pair = [](auto& rng) {
     const auto z = rng.normal2();
     return z.x + z.y;
 };
-constexpr auto uniform_pair = [](auto& rng) { // one PDMP event draws one pair
-    double a, b;
-    rng.uniform2(a, b);
-    return a + b;
+constexpr auto pdmp_draw = [](auto& rng) { // one PDMP event takes one draw
+    double e, u;
+    rng.exponential_uniform(e, u);
+    return e + u;
 };
 void BM_NormalPairs(benchmark::State& state) { pairs<BatchedCounterRng>(state, normal_pair); }
 void BM_NormalPairsScalar(benchmark::State& state) { pairs<CounterRng>(state, normal_pair); }
-void BM_UniformPairs(benchmark::State& state) { pairs<BatchedUniformRng>(state, uniform_pair); }
-void BM_UniformPairsScalar(benchmark::State& state) { pairs<CounterRng>(state, uniform_pair); }
+void BM_PdmpDraws(benchmark::State& state) { pairs<BatchedUniformRng>(state, pdmp_draw); }
+void BM_PdmpDrawsScalar(benchmark::State& state) { pairs<CounterRng>(state, pdmp_draw); }
 
 // Items = steps (inclusion) or events (pdmp); `sink` keeps the kernel from
 // being optimised away.
@@ -221,8 +223,8 @@ void BM_PdmpEvents_dry(benchmark::State& st) { run_pdmp(st, dry_params(), 0.125)
 
 BENCHMARK(BM_NormalPairs)->Name("BM_NormalPairs")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NormalPairsScalar)->Name("BM_NormalPairsScalar")->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_UniformPairs)->Name("BM_UniformPairs")->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_UniformPairsScalar)->Name("BM_UniformPairsScalar")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PdmpDraws)->Name("BM_PdmpDraws")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PdmpDrawsScalar)->Name("BM_PdmpDrawsScalar")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionSteps_fig2)->Name("BM_InclusionSteps/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionSteps_dry)->Name("BM_InclusionSteps/dry_dt1e-3")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionLanes_fig2)->Name("BM_InclusionLanes/fig2_dt1e-4")->Unit(benchmark::kMillisecond);

@@ -56,8 +56,8 @@ def main():
 
     normal_limit, _ = kernel("BM_NormalPairs")
     normal_scalar, _ = kernel("BM_NormalPairsScalar")
-    uniform_limit, _ = kernel("BM_UniformPairs")
-    uniform_scalar, _ = kernel("BM_UniformPairsScalar")
+    pdmp_draw_limit, _ = kernel("BM_PdmpDraws")
+    pdmp_draw_scalar, _ = kernel("BM_PdmpDrawsScalar")
 
     ctx = kj.get("context", {})
     print()
@@ -86,11 +86,11 @@ def main():
         row("inclusion steps, 8 lanes (runner), " + label, r, normal_limit, per)
         r, per = kernel("BM_InclusionSteps/" + case)
         row("inclusion steps, one excursion, " + label, r, normal_limit, per)
-    row("uniform pairs, batched Philox (PDMP LIMIT)", uniform_limit, None, None)
-    row("uniform pairs, one Philox call at a time", uniform_scalar, uniform_limit, None)
+    row("PDMP draws (exponential + uniform), batched Philox (PDMP LIMIT)", pdmp_draw_limit, None, None)
+    row("PDMP draws, one Philox call at a time", pdmp_draw_scalar, pdmp_draw_limit, None)
     for case, label in (("fig2_grid0.125", "Fig. 2, grid 0.125"), ("dry_grid0.125", "pure dry, grid 0.125")):
         r, per = kernel("BM_PdmpEvents/" + case)
-        row("PDMP events, " + label, r, uniform_limit, per)
+        row("PDMP events, " + label, r, pdmp_draw_limit, per)
     for case, label in (("fig2_dt1e-4", "Fig. 2, dt 1e-4"), ("fig2_dt0.01675", "Fig. 2, dt 0.01675 (auto)"),
                         ("white_dry_dt1e-2", "white, pure dry, dt 1e-2"),
                         ("white_dry_dt0.0625", "white, pure dry, dt 0.0625 (auto)")):
@@ -103,7 +103,7 @@ def main():
     if "BM_InclusionLanes/white_dry_dt1e-2" in bm:
         r, per = kernel("BM_InclusionLanes/white_dry_dt1e-2")
         row("inclusion steps, 8 lanes (runner), white, pure dry, dt 1e-2", r, normal_limit, per)
-    print("  (an inclusion step draws one normal pair, a PDMP event one uniform pair: the LIMIT rows are")
+    print("  (an inclusion step draws one normal pair, a PDMP event one exponential-uniform draw: the LIMIT rows are")
     print("   the random numbers alone, the practical ceiling of each engine on this core; exc/s compares")
     print("   the engines per long excursion)")
     print()
@@ -179,7 +179,7 @@ def main():
         ("stickslip / plain C++ -O3 -march=native (1 thread)",
          ss_rate / baseline_rates["plain_O3"] if "plain_O3" in baseline_rates else None, TARGET_PLAIN_O3),
         ("2 threads / 1 thread (whole run)", thread_speedup, TARGET_THREADS),
-        ("PDMP events/s (Fig. 2) / uniform-pair limit", fig2_pdmp / uniform_limit, None),
+        ("PDMP events/s (Fig. 2) / its draw limit", fig2_pdmp / pdmp_draw_limit, None),
     ]
     if "BM_EventLanes/fig2_dt1e-4" in bm:
         # Issue "event scheme", item 6: event-scheme steps/s per core at least 0.6 of the resolvent's

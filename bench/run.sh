@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # bench/run.sh -- stickslip's benchmark driver. Prints, from one run:
 #   A. the Google Benchmark kernels (one core): the random numbers alone
-#      (normal pairs, uniform pairs: the practical limits), inclusion steps/s
+#      (normal pairs, PDMP draws: the practical limits), inclusion steps/s
 #      (one excursion at a time and the 8-lane kernel) and PDMP events/s for
 #      the Fig. 2 and pure-dry cases, each as a ratio to its limit;
 #   B. whole runs of the Fig. 2 case at dt = 1e-3 s: `stickslip diffusivity`
