@@ -40,7 +40,8 @@ int main() {
                      "index lo, index hi 24 bits | purpose << 24}). For each (seed, purpose, index): the first "
                      "128-bit block of a fresh stream, the first three normal2() pairs of a fresh stream (ziggurat, 256 "
                      "layers, rejected words resolved from the retry substream) and the "
-                     "first three uniform2() pairs of a fresh stream. *_bits are the IEEE-754 bit patterns; the "
+                     "first three uniform2() pairs and the first three exponential_uniform() pairs (exponential ziggurat, "
+                     "256 layers, the PDMP's draw) of a fresh stream. *_bits are the IEEE-754 bit patterns; the "
                      "numbers are the same values in shortest round-trip decimal.")
                      .dump()
               << ",\n \"generator\": \"tests/data/make_rng_known_answers.cpp, stickslip 0.1.0, g++ -O2, x86-64 "
@@ -49,7 +50,7 @@ int main() {
     for (auto seed : seeds)
         for (auto [purpose, name] : purposes)
             for (auto index : indices) {
-                nlohmann::json block, normals, normal_bits, uniforms, uniform_bits;
+                nlohmann::json block, normals, normal_bits, uniforms, uniform_bits, expos, expo_bits;
                 {
                     CounterRng r(seed, purpose, index);
                     const auto b = r.next_block();
@@ -72,6 +73,15 @@ int main() {
                         uniform_bits.push_back({hex64(a), hex64(b)});
                     }
                 }
+                {
+                    CounterRng r(seed, purpose, index);
+                    for (int k = 0; k < 3; ++k) {
+                        double e, u;
+                        r.exponential_uniform(e, u);
+                        expos.push_back({e, u});
+                        expo_bits.push_back({hex64(e), hex64(u)});
+                    }
+                }
                 auto item = [](const char* key, const nlohmann::json& v, bool last = false) {
                     std::string s = "   \"" + std::string(key) + "\": " + v.dump(-1, ' ', false);
                     // nlohmann's compact dump has no spaces; add one after commas for readability.
@@ -86,7 +96,9 @@ int main() {
                           << item("seed", seed) << item("purpose", name)
                           << item("purpose_value", static_cast<std::uint32_t>(purpose)) << item("index", index)
                           << item("block0", block) << item("normal2", normals) << item("normal2_bits", normal_bits)
-                          << item("uniform2", uniforms) << item("uniform2_bits", uniform_bits, true) << "  }";
+                          << item("uniform2", uniforms) << item("uniform2_bits", uniform_bits)
+                          << item("exponential_uniform", expos) << item("exponential_uniform_bits", expo_bits, true)
+                          << "  }";
                 first = false;
             }
     std::cout << "\n ]\n}\n";

@@ -1,8 +1,9 @@
 // Counter-based streams (rng.hpp).
 //
 // Known answers: tests/data/rng_known_answers.json pins, for each (seed, purpose,
-// index), the first 128-bit block, the first three normal2() pairs and the first
-// three uniform2() pairs of a fresh stream. It was generated once (stickslip 0.1.0,
+// index), the first 128-bit block, the first three normal2() pairs, the first
+// three uniform2() pairs and the first three exponential_uniform() pairs (the
+// PDMP's draws, added with the exponential ziggurat) of a fresh stream. It was generated once (stickslip 0.1.0,
 // x86-64, glibc) by tests/data/make_rng_known_answers.cpp; any change of the
 // key/counter layout, of the Philox variant, of the 64-bit joining or of the
 // uniform/normal transforms changes them. Because
@@ -157,6 +158,25 @@ TEST(CounterRng, KnownAnswersFromFile) {
                     EXPECT_EQ(u[j], c.at("uniform2").at(k).at(j).get<double>()) << where;
                 }
             }
+        }
+        // exponential_uniform x 3 from a fresh stream: the exponential's slow path
+        // takes exp or log (as the normals' does), the uniform is exact.
+        {
+            ss::CounterRng rng(seed, purpose, index);
+            for (int k = 0; k < 3; ++k) {
+                double got[2];
+                rng.exponential_uniform(got[0], got[1]);
+                for (int j = 0; j < 2; ++j) {
+                    const double want = c.at("exponential_uniform").at(k).at(j).get<double>();
+                    const std::uint64_t want_bits =
+                        parse_hex(c.at("exponential_uniform_bits").at(k).at(j).get<std::string>());
+                    ASSERT_EQ(bits_of(want), want_bits) << "file inconsistent at " << where;
+                    EXPECT_LE(ulp_distance(got[j], want), j == 0 ? kNormalUlps : 0)
+                        << where << ", exponential_uniform #" << k << "[" << j << "]: got " << got[j] << ", want "
+                        << want;
+                }
+            }
+            EXPECT_EQ(rng.draws(), 3u);
         }
     }
     // The file covers what the brief asks for.
