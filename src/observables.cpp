@@ -145,17 +145,16 @@ struct EventGridSampler {
     double offset = 0.0;
     std::uint64_t stop_at = ~std::uint64_t{0};
 
-    /// dV/dt [m/s^2] in sliding phase y at noise x [s^-1/2] and velocity v [m/s].
-    double slope(int y, double x, double v) const {
-        return c.bias + c.amp * x - y * c.friction - v * c.inv_relaxation;
-    }
-    /// V at fraction q of a piece of length len [s]; never of the wrong sign.
+    /// V [m/s] at fraction q of a piece of length len [s]: the event scheme's
+    /// own cubic of the piece (detail::cubic_ends, the one its landing test
+    /// bounds), never of the wrong sign.
     double velocity(const EventPiece& p, double len, double q) const {
         if (p.phase == 0) return 0.0;
-        const double q2 = q * q, q3 = q2 * q;
-        const double v = (2 * q3 - 3 * q2 + 1) * p.v0 + (q3 - 2 * q2 + q) * len * slope(p.phase, p.x0, p.v0) +
-                         (3 * q2 - 2 * q3) * p.v1 + (q3 - q2) * len * slope(p.phase, p.x1, p.v1);
-        return p.phase * v < 0.0 ? 0.0 : v;
+        const double s = p.phase;
+        const double sv = detail::cubic_through(detail::cubic_ends(c.amp, c.inv_relaxation, len, p.x0, p.v0, p.x1,
+                                                                   p.v1, s, c.bias - s * c.friction))
+                              .at(q);
+        return sv > 0.0 ? s * sv : 0.0;
     }
 
     void operator()(const EventPiece& p) {

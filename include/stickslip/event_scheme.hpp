@@ -323,6 +323,22 @@ STICKSLIP_HD inline CubicEnds cubic_ends(double amp, double inv_relaxation, doub
             s * (amp * xb + cs - v_b * inv_relaxation) * len};
 }
 
+/// The cubic H(q) = va + ma q + c2 q^2 + c3 q^3 on q in [0, 1] that takes the
+/// values and slopes of a CubicEnds at q = 0 and q = 1 (the Hermite cubic).
+struct Cubic {
+    /// @{
+    /// The coefficients [m/s].
+    double va, ma, c2, c3;
+    /// @}
+    /// H(q) [m/s].
+    STICKSLIP_HD double at(double q) const { return va + q * (ma + q * (c2 + q * c3)); }
+};
+
+/// The Cubic through the ends e.
+STICKSLIP_HD inline Cubic cubic_through(const CubicEnds& e) {
+    return {e.va, e.ma, 3.0 * (e.vb - e.va) - 2.0 * e.ma - e.mb, 2.0 * (e.va - e.vb) + e.ma + e.mb};
+}
+
 /// The lowest value of s V [m/s] over a sliding piece of length len [s]
 /// between the states (xa, v_a) and (xb, v_b) of (X, V), with force amplitude amp, 1/tauL and
 /// the constant cs [m s^-2] of direction s (+1 or -1): given both ends, V's conditional
@@ -333,9 +349,8 @@ STICKSLIP_HD inline CubicEnds cubic_ends(double amp, double inv_relaxation, doub
 STICKSLIP_HD inline double cubic_low(double amp, double inv_relaxation, double len, double xa, double v_a,
                                      double xb, double v_b, double s, double cs) {
     const CubicEnds e = cubic_ends(amp, inv_relaxation, len, xa, v_a, xb, v_b, s, cs);
-    const double va = e.va, vb = e.vb, ma = e.ma, mb = e.mb;
-    // H(q) = va + ma q + c2 q^2 + c3 q^3 on q in [0, 1].
-    const double c2 = 3.0 * (vb - va) - 2.0 * ma - mb, c3 = 2.0 * (va - vb) + ma + mb;
+    const Cubic h = cubic_through(e);
+    const double va = e.va, vb = e.vb, ma = e.ma, c2 = h.c2, c3 = h.c3;
     double lowest = va < vb ? va : vb;
     // Roots of H'(q) = ma + 2 c2 q + 3 c3 q^2 inside (0, 1), written without
     // branches (selects only) so that the SIMD lanes of event_lanes.cpp run
@@ -353,8 +368,7 @@ STICKSLIP_HD inline double cubic_low(double amp, double inv_relaxation, double l
     const bool real_roots = disc >= 0.0, sloped = qb != 0.0;
     const bool has1 = (linear & sloped) | (!linear & real_roots);
     const bool has2 = !linear & real_roots;
-    const double h1 = va + q1 * (ma + q1 * (c2 + q1 * c3));
-    const double h2 = va + q2 * (ma + q2 * (c2 + q2 * c3));
+    const double h1 = h.at(q1), h2 = h.at(q2);
     lowest = (has1 & (q1 > 0.0) & (q1 < 1.0) & (h1 < lowest)) ? h1 : lowest;
     lowest = (has2 & (q2 > 0.0) & (q2 < 1.0) & (h2 < lowest)) ? h2 : lowest;
     return lowest;
