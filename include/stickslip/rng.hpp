@@ -114,8 +114,7 @@ public:
     /// stream whose key and counter words 2, 3 are given.
     STICKSLIP_HD static double resolve_rejected(const Philox::key_type& key, std::uint32_t c2, std::uint32_t c3,
                                                 std::uint64_t j, unsigned half, std::uint64_t word) {
-        RetryWords more{key, {{static_cast<std::uint32_t>(j), 0u, c2, c3}}, {}, static_cast<std::uint32_t>(j >> 32),
-                        half, 0u, 4};
+        RetryWords more = RetryWords::of(key, c2, c3, j, half, 0u);
         return ziggurat_resolve(word, more);
     }
 
@@ -134,8 +133,7 @@ public:
     STICKSLIP_HD STICKSLIP_PM_NOINLINE static double exponential_rejected(const Philox::key_type& key, std::uint32_t c2,
                                                                           std::uint32_t c3, std::uint64_t j,
                                                                           std::uint64_t word) {
-        RetryWords more{key, {{static_cast<std::uint32_t>(j), 0u, c2, c3}}, {}, static_cast<std::uint32_t>(j >> 32),
-                        0u, 0u, 4};
+        RetryWords more = RetryWords::of(key, c2, c3, j, 0u, 0u);
         return exponential_ziggurat_resolve(word, more);
     }
 
@@ -197,8 +195,7 @@ public:
         double x;
         const std::uint64_t word = join(b.v[0], b.v[1]);
         if (!ziggurat_fast(word, x)) {
-            RetryWords more{key, {{static_cast<std::uint32_t>(j), 0u, c2, c3}}, {}, static_cast<std::uint32_t>(j >> 32),
-                            0u, 0x4000u, 4};
+            RetryWords more = RetryWords::of(key, c2, c3, j, 0u, 0x4000u);
             x = ziggurat_resolve(word, more);
         }
         return {x, r123::u01<double>(join(b.v[2], b.v[3]))};
@@ -238,6 +235,13 @@ private:
         unsigned half;
         std::uint32_t attempt;
         int pos;
+        /// The retry substream of (draw j, half) of the stream whose key and
+        /// counter words 2, 3 are given, its attempts counted from `first` on.
+        STICKSLIP_HD static RetryWords of(const Philox::key_type& key, std::uint32_t c2, std::uint32_t c3,
+                                          std::uint64_t j, unsigned half, std::uint32_t first) {
+            return {key, {{static_cast<std::uint32_t>(j), 0u, c2, c3}}, {}, static_cast<std::uint32_t>(j >> 32), half,
+                    first, 4};
+        }
         STICKSLIP_HD std::uint64_t operator()() {
             if (pos == 4) {
                 attempt = (attempt + 1) & 0x7fffu; // wraps after 2^15 rejections in a row: probability < 1e-5000
