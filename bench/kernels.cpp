@@ -18,6 +18,10 @@
 //                                 uses (8 SIMD lanes with AVX-512), 64
 //                                 excursions per iteration; items = steps.
 //   BM_PdmpEvents/<case>          pdmp_long_excursion, grid 0.125
+//   BM_PdmpEventsLogWaits/fig2_grid0.125  the same with the waits drawn as
+//                                 -log(u) of a uniform pair's first half, the
+//                                 PDMP's draw before its exponential ziggurat:
+//                                 the two side by side in one run.
 //                                 (BatchedUniformRng); items = events.
 //   BM_EventSteps/<case>          event_long_excursion (the event scheme, one
 //                                 excursion at a time, no lanes); items =
@@ -38,6 +42,7 @@
 // Successive iterations use successive sample indices: independent excursions.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -162,13 +167,26 @@ void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double d
     });
 }
 
+/// The PDMP's draw as it was before the exponential ziggurat: the wait is
+/// -log(u0) of the pair (u0, u1) of one block, u1 the jump direction's uniform.
+struct LogWaitRng {
+    BatchedUniformRng inner;
+    LogWaitRng(std::uint64_t seed, StreamPurpose purpose, std::uint64_t index) : inner(seed, purpose, index) {}
+    void exponential_uniform(double& e, double& u) {
+        double u0;
+        inner.uniform2(u0, u);
+        e = -std::log(u0);
+    }
+};
+
+template <class Rng = BatchedUniformRng>
 void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
     EngineSettings s;
     s.engine = Engine::Pdmp;
     s.grid = grid;
     const PdmpConstants c = make_pdmp_constants(p, s);
     time_excursions(state, "events_per_excursion", [&c](std::uint64_t k) {
-        BatchedUniformRng rng(kSeed, StreamPurpose::LongExcursion, k);
+        Rng rng(kSeed, StreamPurpose::LongExcursion, k);
         return pdmp_long_excursion(c, rng);
     });
 }
@@ -218,6 +236,7 @@ void BM_InclusionLanes_fig2_auto(benchmark::State& st) { run_inclusion_lanes(st,
 void BM_InclusionLanes_dry(benchmark::State& st) { run_inclusion_lanes(st, dry_params(), 1e-3); }
 void BM_PdmpEvents_fig2(benchmark::State& st) { run_pdmp(st, fig2_params(), 0.125); }
 void BM_PdmpEvents_dry(benchmark::State& st) { run_pdmp(st, dry_params(), 0.125); }
+void BM_PdmpEventsLogWaits_fig2(benchmark::State& st) { run_pdmp<LogWaitRng>(st, fig2_params(), 0.125); }
 
 } // namespace
 
@@ -232,6 +251,9 @@ BENCHMARK(BM_InclusionLanes_fig2_auto)->Name("BM_InclusionLanes/fig2_dt6.7e-4")-
 BENCHMARK(BM_InclusionLanes_dry)->Name("BM_InclusionLanes/dry_dt1e-3")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_fig2)->Name("BM_PdmpEvents/fig2_grid0.125")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEvents_dry)->Name("BM_PdmpEvents/dry_grid0.125")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PdmpEventsLogWaits_fig2)
+    ->Name("BM_PdmpEventsLogWaits/fig2_grid0.125")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_fig2)->Name("BM_EventSteps/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_fig2_auto)->Name("BM_EventSteps/fig2_dt0.01675")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventLanes_fig2)->Name("BM_EventLanes/fig2_dt1e-4")->Unit(benchmark::kMillisecond);

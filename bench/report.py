@@ -91,6 +91,9 @@ def main():
     for case, label in (("fig2_grid0.125", "Fig. 2, grid 0.125"), ("dry_grid0.125", "pure dry, grid 0.125")):
         r, per = kernel("BM_PdmpEvents/" + case)
         row("PDMP events, " + label, r, pdmp_draw_limit, per)
+    if "BM_PdmpEventsLogWaits/fig2_grid0.125" in bm:
+        r, per = kernel("BM_PdmpEventsLogWaits/fig2_grid0.125")
+        row("PDMP events, Fig. 2, grid 0.125, waits by -log u (before)", r, pdmp_draw_limit, per)
     for case, label in (("fig2_dt1e-4", "Fig. 2, dt 1e-4"), ("fig2_dt0.01675", "Fig. 2, dt 0.01675 (auto)"),
                         ("white_dry_dt1e-2", "white, pure dry, dt 1e-2"),
                         ("white_dry_dt0.0625", "white, pure dry, dt 0.0625 (auto)")):
@@ -181,6 +184,9 @@ def main():
         ("2 threads / 1 thread (whole run)", thread_speedup, TARGET_THREADS),
         ("PDMP events/s (Fig. 2) / its draw limit", fig2_pdmp / pdmp_draw_limit, None),
     ]
+    if "BM_PdmpEventsLogWaits/fig2_grid0.125" in bm:
+        log_waits, _ = kernel("BM_PdmpEventsLogWaits/fig2_grid0.125")
+        targets.append(("PDMP events/s (Fig. 2): exponential ziggurat / -log u", fig2_pdmp / log_waits, None))
     if "BM_EventLanes/fig2_dt1e-4" in bm:
         # Issue "event scheme", item 6: event-scheme steps/s per core at least 0.6 of the resolvent's
         # (lanes) at the same step, each with the kernel the runner uses.
