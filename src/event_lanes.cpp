@@ -222,7 +222,7 @@ private:
             bool slide_quiet = false;
             if constexpr (AnySliding) {
                 const double cs = q.bias - s * q.friction;
-                apply(law, x0, v0, u0, cs, z1, z2, z3, xb, vb, ub);
+                apply(law, x0, v0, 0.0, cs, z1, z2, z3, xb, vb, ub); // U from the step's start, as there
                 slide_quiet =
                     detail::slide_step_is_quiet(q.amp, q.inv_relaxation, q.len, q.v_mid_sd, x0, v0, xb, vb, s, cs);
             }
@@ -231,7 +231,7 @@ private:
             std::int64_t flag = g_.steps[l] + g_.midpoints[l] >= q.max_work ? 1 : 0;
             flag |= (stuck ? stuck_quiet : slide_quiet) ? 0 : 1;
             g_.attention[l] = flag;
-            const double xn = stuck ? xs : xb, vn = stuck ? v0 : vb - s * floor, un = stuck ? u0 : ub + floor;
+            const double xn = stuck ? xs : xb, vn = stuck ? v0 : vb - s * floor, un = stuck ? u0 : u0 + (ub + floor);
             g_.x[l] = flag ? x0 : xn;
             g_.v[l] = flag ? v0 : vn;
             g_.u[l] = flag ? u0 : un;

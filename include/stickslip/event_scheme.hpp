@@ -509,7 +509,18 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     int top = 0;
     const EventLevel& L0 = c.lv[d0];
     const std::uint64_t t_end = t0 + L0.leaves;
-    Node cur{{w.x, w.v, w.u}, {0.0, 0.0, 0.0}, d0, t0};
+    // U within the refinement is counted from the step's start, and w.u is
+    // added only where a state leaves the step: the midpoint bridge weighs
+    // U_b - U_a by about 1 / (a len^2) (the displacement tells about the
+    // noise), so at a fine depth the rounding of an absolute displacement
+    // (|U| eps, 2e-15 m at U = 18 m) swamps the information it carries
+    // (a sd(X) len^2, 1e-21 m at len = 5e-9 s) and the bridge draws X
+    // arbitrarily far from its ends: measured, pure dry friction tau' = 1
+    // at dt = 3e-4 s, X jumped from 1.4 to -7.9 within one leaf and D came
+    // out 2e4 times too large (docs/validation.md, "The event scheme at
+    // fine steps").
+    const double u_start = w.u;
+    Node cur{{w.x, w.v, 0.0}, {0.0, 0.0, 0.0}, d0, t0};
     {
         const double n[3] = {z.x, z.y, side.x};
         apply(L0.slide, cur.a, cs, n, cur.b);
@@ -531,8 +542,8 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
         const std::uint64_t tb = piece.t + c.lv[piece.d].leaves;
         const double i_b = floor_leaves + floor_before * static_cast<double>(tb - piece.t);
         observe(EventPiece{piece.t, tb, s, piece.a[0], piece.a[1] - s * floor_before,
-                           piece.a[2] - s * c.leaf * floor_leaves, piece.b[0], piece.b[1] - s * floor_after,
-                           piece.b[2] - s * c.leaf * i_b});
+                           u_start + (piece.a[2] - s * c.leaf * floor_leaves), piece.b[0],
+                           piece.b[1] - s * floor_after, u_start + (piece.b[2] - s * c.leaf * i_b)});
         floor_leaves = i_b;
     };
     for (;;) {
@@ -576,7 +587,7 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
         cur = stack[--top];
     }
     if (!landed) {
-        const double v_end = whole.b[1] - s * floor, u_end = whole.b[2] + du;
+        const double v_end = whole.b[1] - s * floor, u_end = u_start + (whole.b[2] + du);
         w.x = whole.b[0];
         w.v = v_end;
         w.u = u_end;
@@ -585,7 +596,7 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     }
     // Stuck at the end of the piece: V = 0 there; the noise decides.
     const std::uint64_t te = cur.t + c.lv[cur.d].leaves;
-    const double u_e = cur.b[2] + du - s * (-floor) * c.leaf * static_cast<double>(t_end - te);
+    const double u_e = u_start + (cur.b[2] + du - s * (-floor) * c.leaf * static_cast<double>(t_end - te));
     w.x = cur.b[0];
     w.v = 0.0;
     w.u = u_e;
@@ -697,7 +708,10 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
     using Piece = detail::RefinedPiece<2>;
     Piece stack[event_depth + 1];
     int top = 0;
-    Piece cur{{v_start, u_start}, {0.0, 0.0}, d0, t0};
+    // U counted from the step's start within it, as in event_colored_step
+    // (the bridge weighs U_b - U_a by 1 / len: an absolute U's rounding would
+    // swamp it at fine depths).
+    Piece cur{{v_start, 0.0}, {0.0, 0.0}, d0, t0};
     {
         const double n[2] = {z.x, z.y};
         apply(L0.wslide, cur.a, cs, n, cur.b);
@@ -710,9 +724,9 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
         const double ez = s * cur.b[0] <= 0.0 ? 0.0 : cur.a[0] * cur.b[0] * rate;
         const double el = !level_here ? 1e300 : (s * (cur.b[0] - level) >= 0.0 ? 0.0 : (cur.a[0] - level) * (cur.b[0] - level) * rate);
         if (ez > kWhiteNoTouch && el > kWhiteNoTouch) {
-            observe(EventPiece{t0, t_end, s, 0.0, v_start, u_start, 0.0, whole_b[0], whole_b[1]});
+            observe(EventPiece{t0, t_end, s, 0.0, v_start, u_start, 0.0, whole_b[0], u_start + whole_b[1]});
             w.v = whole_b[0];
-            w.u = whole_b[1];
+            w.u = u_start + whole_b[1];
             w.t = t_end;
             w.phase = s;
             return EventStatus::Running;
@@ -757,22 +771,23 @@ STICKSLIP_HD inline EventStatus event_white_step(const EventConstants& c, EventW
         }
         if (hit >= 0.0) break;
         // No touch in this piece: the observer sees it with its exact ends.
-        observe(EventPiece{cur.t, cur.t + L.leaves, s, 0.0, cur.a[0], cur.a[1], 0.0, cur.b[0], cur.b[1]});
+        observe(EventPiece{cur.t, cur.t + L.leaves, s, 0.0, cur.a[0], u_start + cur.a[1], 0.0, cur.b[0],
+                           u_start + cur.b[1]});
         if (top == 0) break;
         cur = stack[--top];
         u = ref.uniform();
     }
     if (hit < 0.0) { // no event: the whole step
         w.v = whole_b[0];
-        w.u = whole_b[1];
+        w.u = u_start + whole_b[1];
         w.t = t_end;
         w.phase = s;
         return EventStatus::Running;
     }
     const std::uint64_t t_hit = cur.t + detail::leaves_of(c, hit, c.lv[cur.d].leaves);
     const double v_hit = hit_level ? level : 0.0;
-    const double u_hit = cur.a[1] + 0.5 * c.leaf * static_cast<double>(t_hit - cur.t) * (cur.a[0] + v_hit);
-    observe(EventPiece{cur.t, t_hit, s, 0.0, cur.a[0], cur.a[1], 0.0, v_hit, u_hit});
+    const double u_hit = u_start + (cur.a[1] + 0.5 * c.leaf * static_cast<double>(t_hit - cur.t) * (cur.a[0] + v_hit));
+    observe(EventPiece{cur.t, t_hit, s, 0.0, cur.a[0], u_start + cur.a[1], 0.0, v_hit, u_hit});
     w.v = v_hit;
     w.u = u_hit;
     w.t = t_hit;

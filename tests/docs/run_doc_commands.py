@@ -218,6 +218,7 @@ def console_commands(text):
 def normalise(line):
     s = NUMBER.sub("#", line)
     s = re.sub(r"\bthreads\b", "thread", s)  # "1 thread" or "2 threads": the machine's core count
+    s = re.sub(r"\[\s+", "[", s)  # an interval's padding follows its numbers' widths
     return " ".join(s.split())
 
 
