@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `stickslip` command: a thin layer over the library. It parses flags,
 // reports progress on a terminal, prints or writes the result, and maps errors
 // to exit codes: 2 bad input (one line on stderr, nothing on stdout), 3 a run

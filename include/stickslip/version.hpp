@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/version.hpp -- which stickslip this is: the release version and,
 // when the library was built from a git checkout, the source revision. Every
 // JSON report names both, so a result can be traced to the code that made it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End-to-end tests of runs that survive: thread counts leave no trace in any
 // merged result; a run killed (SIGKILL) at random points and resumed from its
 // checkpoint, with another thread count, prints the uninterrupted run's JSON

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End-to-end tests of the `stickslip` command: they run the built binary
 // (STICKSLIP_CLI_PATH) in a child process with stdin from /dev/null and stdout
 // and stderr captured in temporary files, and check the documented contract:

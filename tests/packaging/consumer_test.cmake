@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # cmake -P script run by the ctest packaging.find_package_consumer:
 # install the build tree into a scratch prefix, then configure, build and run
 # a consumer project that uses find_package(stickslip) with only
