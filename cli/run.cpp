@@ -81,7 +81,7 @@ int run_command(int argc, char** argv) {
                  "differential-inclusion engine),\nwith exact white-noise references."};
     app.footer(kConventions);
     app.require_subcommand(1);
-    app.set_version_flag("--version", stickslip::version());
+    app.set_version_flag("--version", stickslip::version_line());
     const auto actions = register_all(app);
 
     try {
