@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Builds the extension stickslip._core with CMake for `pip install .` (see pyproject.toml).
 
 The metadata lives in pyproject.toml; this file only adds the compiled module.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # bench/gpu_checks.sh -- the device checks of issue 14 (docs/gpu.md), in one
 # short run on a machine with an NVIDIA GPU (H100/H200 class; sm_90):
 #   1. builds gpu_check twice, each a minimal configuration (no CLI, tests,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // bench/kernels.cpp -- single-thread throughput of stickslip's kernels
 // (Google Benchmark). Every number is per core: one thread, no runner.
 //

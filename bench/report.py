@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Prints bench/run.sh's tables from the JSON files it left in a directory.
 
 Standard library only. Exit status 1 when a baseline's D disagrees with

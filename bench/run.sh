@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # bench/run.sh -- stickslip's benchmark driver. Prints, from one run:
 #   A. the Google Benchmark kernels (one core): the random numbers alone
 #      (normal pairs, PDMP draws: the practical limits), inclusion steps/s

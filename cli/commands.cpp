@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The subcommands of `stickslip`. Each is one library request: its flags are
 // the request's settings (setting_flags.hpp), and running it fills the
 // request, arms the process split and the progress line, computes and emits

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The subcommands of `stickslip` (commands.cpp): each registers its flags,
 // generated from its request's settings, and returns what to run when it is
 // the one chosen.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "distributed.hpp"
 
 #include "stickslip/exact_sum.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs across processes (MPI). Built in with -DSTICKSLIP_MPI=ON; MPI is
 // started only when the command is launched by mpirun/srun (so the same binary
 // runs alone without an MPI runtime). Every process parses and validates the

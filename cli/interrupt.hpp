@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ctrl-C keeps what was computed. While a run is in progress, the first
 // SIGINT or SIGTERM asks it to stop gracefully (RunControl::stop): no new
 // block is started, the blocks in flight finish, and the command writes the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `stickslip` command. Its logic is run_command() (run.cpp), so that the
 // fuzz targets (tests/fuzz/) can call it in-process; main() only brackets it
 // with the process split.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The output contract of every subcommand: --format table|json|csv, and
 // --output FILE. A regular file (or a new one) is written atomically: a
 // temporary file beside it, renamed into place when the run succeeds, so a run

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `stickslip` command: a thin layer over the library. It parses flags,
 // reports progress on a terminal, prints or writes the result, and maps errors
 // to exit codes: 2 bad input (one line on stderr, nothing on stdout), 3 a run
@@ -80,7 +81,7 @@ int run_command(int argc, char** argv) {
                  "differential-inclusion engine),\nwith exact white-noise references."};
     app.footer(kConventions);
     app.require_subcommand(1);
-    app.set_version_flag("--version", stickslip::version());
+    app.set_version_flag("--version", stickslip::version_line());
     const auto actions = register_all(app);
 
     try {

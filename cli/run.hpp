@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The whole `stickslip` command as a function (run.cpp): what main() calls,
 // and what the in-process fuzz targets (tests/fuzz/) call with argument
 // vectors of their own.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The settings of a request (setting.hpp) as command-line flags and as the
 // keys of a config file: one flag per setting, generated from the request's
 // visit_settings(), with the default that --help shows taken from a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Writes OUT (a header defining STICKSLIP_SOURCE_REVISION) from the git
 # checkout at SOURCE_DIR: the commit, with "-dirty" when there are uncommitted
 # changes to tracked files, or "" outside a checkout. The file is rewritten only

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Quick start of the stickslip Python module: the diffusivity D against the
 noise intensity Gamma for two correlation times, with the exact white-noise
 curve.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs missing dependencies, then configures (Release; Ninja when
 # available) and builds stickslip with all cores. Fast when already built.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Statistical efficiency of the long-excursion estimator against brute force (paper Sec. V C).
 
 Run through the wrapper `scripts/efficiency_study [--quick] [--jobs N] [--out DIR]`.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Regenerates the paper's Table I and Figs. 2 to 9 from the `stickslip` CLI.
 
 Run through the wrapper `bash scripts/figures [--quick] [--out DIR] [--only fig4,fig9]

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the Debian packages stickslip needs to build and test, and only the
 # missing ones. Idempotent: when everything is present it only checks and
 # exits (no apt-get update, no root needed).

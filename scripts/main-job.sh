@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job: installs what is missing, builds, and computes the diffusivity
 # D, the mobility M0 and the mean long-excursion duration E[t1], with 95%
 # confidence intervals, for the paper's Fig. 2 parameters (the CLI defaults:

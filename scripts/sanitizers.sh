@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The sanitizer checks, outside CI (they take too long for .ci/run on 2 cores;
 # docs/validation.md, "Fuzzing and sanitizers", has the timings and results).
 #

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // White-noise references (theory.md, section 8).
 //
 // Stationary part. Hayakawa's potential phi(v) = A v^2 + k+ v (v >= 0),

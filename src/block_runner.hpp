@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal: the parallel block driver behind every run.
 //
 // Samples [first_index, first_index + n) are cut into blocks of block_size

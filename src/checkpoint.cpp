@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/checkpoint.hpp"
 
 #include <cerrno>
@@ -87,12 +88,6 @@ bool decode_words(const std::string& s, std::vector<std::uint64_t>& w) {
     return true;
 }
 
-std::string program() {
-    std::string p = std::string("stickslip ") + version();
-    if (*source_revision()) p += std::string(" (") + source_revision() + ")";
-    return p;
-}
-
 [[noreturn]] void refuse(const std::string& file, const std::string& why) {
     throw InvalidParameter("resume", "cannot resume from '" + file + "': " + why);
 }
@@ -180,7 +175,7 @@ std::string RunJournal::serialise() const {
     json j;
     j["format"] = kFormat;
     j["format_version"] = kFormatVersion;
-    j["program"] = program();
+    j["program"] = version_line();
     j["command"] = command_;
     json s = json::object();
     for (const auto& [k, v] : settings_) s[k] = v;
@@ -223,7 +218,7 @@ void RunJournal::read(const std::string& file) {
             refuse(file, "checkpoint format version " + std::to_string(j.at("format_version").get<int>()) +
                              ", this program reads version " + std::to_string(kFormatVersion));
         const std::string prog = j.at("program").get<std::string>();
-        if (prog != program()) refuse(file, "written by " + prog + ", this is " + program());
+        if (prog != version_line()) refuse(file, "written by " + prog + ", this is " + version_line());
         const std::string cmd = j.at("command").get<std::string>();
         if (cmd != command_) refuse(file, "it is a checkpoint of `stickslip " + cmd + "`, not of `" + command_ + "`");
         const json& s = j.at("settings");

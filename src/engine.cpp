@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Engine settings: names of the engines and stop rules, and their checks.
 #include "stickslip/engine.hpp"
 

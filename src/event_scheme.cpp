@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Construction of the event scheme's per-run constants: the exact laws of a
 // step and of its midpoint at every refinement depth.
 #include "stickslip/event_scheme.hpp"

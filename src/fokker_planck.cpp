@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fokker-Planck solver for the white-noise velocity (fokker_planck.hpp).
 //
 // Everything below works in the nondimensional system (friction = noise = 1,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal: the one number formatter of the library's messages and reports.
 #pragma once
 

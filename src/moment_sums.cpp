@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/moment_sums.hpp"
 
 #include <boost/multiprecision/cpp_bin_float.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Velocity statistics from both engines (observables.hpp explains the
 // estimators). Every observable is a path functional accumulated by an observer
 // passed to the engines' own kernels, so the excursions are exactly those of

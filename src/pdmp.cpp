@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Construction and validation of the PDMP engine's per-run constants.
 #include "stickslip/pdmp.hpp"
 

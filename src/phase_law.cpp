@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact Gaussian step and midpoint-bridge laws within one phase (phase_law.hpp).
 //
 // Method, and why. The naive closed forms are sums of exponentials in the rates

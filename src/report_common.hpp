@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal: what every report shares, so all outputs agree: the JSON head
 // (quantity, engine, estimator, stop rule), the parameter and nondimensional
 // blocks, the tail (engine details, work, warnings, version and source

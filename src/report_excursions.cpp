@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reports of the long-excursion diffusivity run and the brute-force run
 // (report.hpp): JSON, aligned table, CSV.
 #include "report_common.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reports of the velocity statistics (report.hpp): the stationary density, the
 // transient moments, the autocorrelation and sample paths, as JSON (the
 // contract the Python module's to_dict() shares), aligned tables and CSV.

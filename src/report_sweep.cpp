@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reports of parameter sweeps (report.hpp): JSON, table, CSV.
 #include <cmath>
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reports of the exact white-noise references (report.hpp): JSON, table, CSV.
 #include <cmath>
 #include <cstdio>

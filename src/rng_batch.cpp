@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/rng_batch.hpp"
 
 #include <bit>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal: checks and warnings shared by every long-excursion computation
 // (diffusivity, stationary density, correlation), so they say the same thing.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal: what the numerics can honour, judged before a run from the
 // model's time scales (issue "numbers you can trust by default").
 //

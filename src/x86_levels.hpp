@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // x86_levels.hpp -- one source compiled per x86-64 level, chosen at run time.
 //
 // Why: the batched random numbers (rng_batch.cpp) and the SIMD lanes

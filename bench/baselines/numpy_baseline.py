@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """NumPy baseline: the Fig. 2 case, vectorised across excursions in flight.
 
 The way users write this computation today in Python. Inclusion scheme of

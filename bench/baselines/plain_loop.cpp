@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // bench/baselines/plain_loop.cpp -- the computation "the way users write it
 // today": one thread, std::mt19937_64 + std::normal_distribution, no library.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/analytic.hpp -- exact white-noise references (theory.md, section 8).
 //
 // For white noise (tau = 0) the velocity is a one-dimensional diffusion

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/bruteforce.hpp -- the brute-force run (the paper's eq. 13):
 // D_t = var U(t)/t from independent trajectories on [0, t], biased against D by
 // O(1/t); there for comparison with the long-excursion estimator

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/checkpoint.hpp -- a run's completed work, kept so that a killed
 // run can be resumed and its result is the uninterrupted run's, bit for bit.
 //

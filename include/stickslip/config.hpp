@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/config.hpp -- portability macros shared by every public header.
 //
 // The per-step and per-event kernels (inclusion.hpp, pdmp.hpp, noise.hpp,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/device_excursions.hpp -- the per-thread loop of the CUDA backend,
 // written once for the device and the host.
 //

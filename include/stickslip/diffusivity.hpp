@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/diffusivity.hpp -- the long-excursion diffusivity run: D, M0 and
 // E[t1] with their intervals, and everything a report needs (resolved
 // settings, work, warnings). The CLI and the Python module are thin layers

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/engine.hpp -- the numerical settings of the two engines.
 //
 // Two engines sample long excursions (theory.md, sections 4 to 6): `pdmp`, an

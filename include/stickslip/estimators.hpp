@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/estimators.hpp -- renewal-reward estimators with delta-method
 // confidence intervals (theory.md, section 7).
 //

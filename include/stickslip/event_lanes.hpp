@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/event_lanes.hpp -- eight long excursions of the event scheme in
 // SIMD lanes.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/event_scheme.hpp -- the event scheme of the inclusion engine: exact
 // Gaussian steps within a phase, events at their times (theory.md, section 10).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/exact_sum.hpp -- an exact, order-free sum of doubles.
 //
 // Why: a floating-point sum depends on the order of its terms, so results used

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/excursion.hpp -- the outcome of one long excursion.
 //
 // A long excursion (theory.md, section 6) is a +HLE followed by a -HLE, each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/fokker_planck.hpp -- numerical transient law of the white-noise
 // velocity diffusion, for any drift b (theory.md, sections 1, 2 and 8).
 //

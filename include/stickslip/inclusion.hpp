@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/inclusion.hpp -- the differential-inclusion (time-stepping) engine.
 //
 // One step of length h (theory.md, section 5): draw the exact OU pair

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/inclusion_lanes.hpp -- eight long excursions in SIMD lanes.
 //
 // Why: a colored-noise step is a short chain of dependent floating-point

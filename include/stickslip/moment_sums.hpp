@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/moment_sums.hpp -- the statistics of a run as exact, order-free
 // sums.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/noise.hpp -- the exact one-step law of the Ornstein-Uhlenbeck noise.
 //
 // The paper's X solves tau dX = -X dt + sqrt(2) dW (stationary variance 1/tau).

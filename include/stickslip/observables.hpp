@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/observables.hpp -- velocity statistics from both engines, with
 // error bars (theory.md, section 1, "quantities of interest").
 //

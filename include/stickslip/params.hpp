@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/params.hpp -- the physical model's parameters, their validation and
 // the nondimensional system of theory.md, section 3.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/pdmp.hpp -- the exact, event-driven PDMP engine (theory.md, section 4).
 //
 // The OU noise X is replaced by a jump process on the lattice delta*Z cap [-L, L]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/phase_law.hpp -- exact Gaussian laws of one step, and of its midpoint
 // bridge, within one phase (theory.md, section 10: within a phase the dynamics is linear).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/portable_math.hpp -- exp, log and log1p of the project's own, so
 // that a CUDA device computes the kernels' transcendental functions to the
 // same bits as the CPU.

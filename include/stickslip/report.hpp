@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/report.hpp -- machine- and human-readable reports of results.
 //
 // The JSON schema is a contract that users script against (documented in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/rng.hpp -- counter-based random streams.
 //
 // Why counter-based: every excursion (or brute-force trajectory) k owns the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/rng_batch.hpp -- CounterRng's draws, generated 32 at a time.
 //
 // Why: a scalar Philox call and a scalar ziggurat leave most of a core idle; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/run.hpp -- what every run shares: the model, the engine, the run
 // control and the confidence level (RunSettings), the number of excursions
 // (ExcursionSettings), and the engine constants a run is prepared with.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/runner.hpp -- parallel, reproducible Monte Carlo runs.
 //
 // Sample k (a long excursion or a brute-force trajectory) draws only from the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/setting.hpp -- one user setting: its name, unit and help, and its
 // text form.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/sweep.hpp -- D, M0 and E[t1] over a grid of noise intensities and
 // correlation times (the paper's Figs. 4 and 9), with the local log-log slope
 // d log D / d log Gamma and, per tau, the fitted exponent of D ~ Gamma^alpha.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/white_noise.hpp -- every exact white-noise reference for one
 // parameter set, in one call (what `stickslip analytic` prints).
 //

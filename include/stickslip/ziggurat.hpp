@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/ziggurat.hpp -- standard normals and unit exponentials from
 // 64-bit words: the ziggurat.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact white-noise references from Python (analytic.hpp, fokker_planck.hpp,
 // white_noise.hpp). The functions here take flat float64 arrays of equal
 // length; broadcasting and shapes are handled by stickslip/analytic.py.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal header of the `stickslip` Python module (pybind11): the pieces the
 // translation units share. The module is a thin layer over the library: every
 // computation goes through the same request/compute/report functions as the

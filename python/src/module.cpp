@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `stickslip._core` extension module: exceptions, parameters, estimates
 // (here), the request structures and their run entry point (requests.cpp),
 // the result classes (results.cpp) and the closed forms (analytic.cpp). The

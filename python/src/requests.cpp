@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The library's request structures, bound as they are, and the one entry
 // point that runs any of them.
 //

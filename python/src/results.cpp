@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The result classes of the simulations (what stickslip.run returns for each
 // request, requests.cpp): attributes as NumPy arrays and Estimates, and the
 // CLI's renderings (to_dict() is the CLI's JSON).

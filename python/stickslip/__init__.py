@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """stickslip: diffusivity and velocity statistics of an object with dry friction
 under white or coloured (Ornstein-Uhlenbeck) noise.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The keyword functions of the package (stickslip.diffusivity, ...), made
 from the library's request structures: one function per request, whose
 keywords, defaults, units and help all come from the request's own settings

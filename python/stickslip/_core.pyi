@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Type stubs of the compiled part of stickslip. Units are SI (m, s); see the
 # docstrings (help(stickslip.Params), ...) for the model and conventions.
 from typing import Any, Dict, List, Optional, Tuple

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Exact white-noise references (no simulation), vectorised over NumPy arrays.
 
 For white noise (tau = 0) the velocity is the diffusion

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Type stubs of stickslip.analytic: exact white-noise references, SI units.
 # Array arguments broadcast; all-scalar arguments give a float.
 from typing import Optional, Sequence, Union, overload

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Shared helpers of the Python tests (unittest; pytest runs them too).
 
 The tests import the module from PYTHONPATH (ctest sets it to the build tree's

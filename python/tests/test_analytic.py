@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """stickslip.analytic: vectorised closed forms against known values and the CLI."""
 import math
 import unittest

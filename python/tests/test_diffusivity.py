@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """diffusivity() and bruteforce(): attributes, the CLI's JSON, thread independence."""
 import contextlib
 import io

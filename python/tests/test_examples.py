@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """examples/quickstart.py runs (smoke size) and writes its PNG."""
 import os
 import subprocess

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Simulations release the GIL and stop cleanly on Ctrl-C (KeyboardInterrupt)."""
 import os
 import signal

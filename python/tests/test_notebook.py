@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """examples/quickstart.ipynb runs from top to bottom without an error, and is
 kept in git without outputs.
 

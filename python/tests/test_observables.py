@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """density(), correlation(), moments(), trajectory(), sweep(): documented shapes, the CLI's JSON."""
 import math
 import unittest

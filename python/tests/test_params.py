@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Params, Scales, Estimate; errors carry the CLI's messages."""
 import math
 import pickle

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Python and the command give the same numbers for the same settings: for every
 simulating subcommand, with only non-default arguments given on both sides,
 to_dict() equals the CLI's JSON less "work"."""

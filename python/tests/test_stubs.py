@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The package's type stubs (__init__.pyi) are generated from the request structures
 and must be up to date; every keyword function takes exactly its request's settings."""
 import inspect

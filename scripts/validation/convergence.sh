@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Reproduces the measured numbers of docs/validation.md (about 9 min on 2 cores):
 # discretisation convergence of D on the Fig. 2/4 case (dt for the inclusion
 # engine, grid for the PDMP), the white-noise dt convergence against the exact

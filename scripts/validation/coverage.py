@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Interval coverage study (docs/validation.md, "Interval coverage").
 
 For each case and each sample size N (excursions, or trajectories for brute

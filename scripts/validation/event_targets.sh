@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The event scheme's accuracy targets (docs/validation.md, "The event scheme
 # against its targets"), each against a reference the scheme did not produce:
 #  * pure dry friction, tau' = 0.1 and 1 (friction = noise = 1): the event

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The white-noise event scheme against the exact quadrature (docs/validation.md,
 # "The event scheme for white noise"): three models (friction = noise = 1;
 # pure dry friction, a bias of 0.3, a drag of relaxation 0.2 with that bias),

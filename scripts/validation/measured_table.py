@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Turns the `[measured]` lines printed by the statistical tests (ctest -L
 statistical -V) into the markdown table of docs/validation.md, section 1."""
 import re

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Soak test of exact, order-free merging at scale (not run by CI; about 25
 # minutes on a 2-core machine): 1e9 long excursions at the cheapest setting
 # (white noise, dt' = 0.1) once as one process and once as `mpirun -np 2`.

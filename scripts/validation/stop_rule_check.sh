@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Stop-rule check (docs/theory.md, section 6), outside the CI suite because it is slow:
 # pure dry friction, tau' = 0.1, dt' = 1e-3 (nondimensional: friction = noise = 1).
 # Compares the long-excursion D with the bridge rule (Q) and the stuck rule (P)

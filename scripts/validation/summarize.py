@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Prints the markdown tables of docs/validation.md from the JSON files written
 by convergence.sh (one `stickslip --format json` result per file)."""
 import json

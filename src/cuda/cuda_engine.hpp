@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal: the CUDA backend's host interface (src/cuda/long_excursions.cu).
 //
 // Built only with the CMake option STICKSLIP_CUDA (target stickslip_cuda).

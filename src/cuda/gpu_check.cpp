@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // gpu_check: the CUDA backend against the CPU engine, bit for bit, and the
 // speed of both (issue 14; docs/gpu.md). Built with STICKSLIP_CUDA only.
 //

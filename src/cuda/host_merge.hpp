@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Internal: per-excursion outcomes merged into a run's totals exactly as the
 // CPU engine merges them (src/block_runner.hpp): blocks of block_size
 // consecutive indices of the run, each accumulated in index order into a

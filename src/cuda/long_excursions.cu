@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The CUDA backend: long excursions of the inclusion engine, one per device
 // thread at a time, from the same header kernels as the CPU engine.
 //

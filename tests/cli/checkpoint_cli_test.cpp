@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End-to-end tests of runs that survive: thread counts leave no trace in any
 // merged result; a run killed (SIGKILL) at random points and resumed from its
 // checkpoint, with another thread count, prints the uninterrupted run's JSON
@@ -238,6 +239,8 @@ TEST(CliCheckpoint, RefusesCheckpointsThatDoNotMatch) {
     const std::string text = slurp(good);
     const ordered j = ordered::parse(text);
     ASSERT_EQ(j.at("checksum").get<std::string>(), checksum_of(j)) << "the test's checksum is not the program's";
+    EXPECT_EQ(j.at("program").get<std::string>() + "\n", run({"--version"}).out)
+        << "a checkpoint names its program as --version does";
     auto resume_from = [&](const std::string& name, const std::string& content, Args args = kSmall) {
         const std::string path = dir / name;
         write_file(path, content);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared helpers of the CLI end-to-end tests: run the built binary
 // (STICKSLIP_CLI_PATH) in a child process with stdin from /dev/null and stdout
 // and stderr captured in temporary files.

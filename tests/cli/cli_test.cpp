@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End-to-end tests of the `stickslip` command: they run the built binary
 // (STICKSLIP_CLI_PATH) in a child process with stdin from /dev/null and stdout
 // and stderr captured in temporary files, and check the documented contract:
@@ -7,6 +8,8 @@
 //   * bitwise reproducibility: the same JSON (less "work") for any --threads.
 // Every run uses small, fast settings; the whole suite takes a few seconds.
 #include <gtest/gtest.h>
+
+#include <regex>
 
 #include "cli_support.hpp"
 #include "stickslip/config.hpp" // STICKSLIP_VERSION_STRING
@@ -142,6 +145,21 @@ TEST(CliHelp, VersionMatchesLibrary) {
     const Result r = run({"--version"});
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find(STICKSLIP_VERSION_STRING), std::string::npos) << r.out;
+}
+
+// --version names the source revision as well, the same one the JSON reports
+// carry, or "unknown" for a build from outside a git checkout (whose reports
+// have no "revision"): a result and the binary that made it can be matched.
+TEST(CliHelp, VersionNamesTheRevision) {
+    const Result r = run({"--version"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(r.out, m, std::regex(R"(stickslip (\S+) \(git ([0-9a-f]{12}(-dirty)?|unknown)\)\n)")))
+        << r.out;
+    EXPECT_EQ(m[1].str(), STICKSLIP_VERSION_STRING);
+    const auto j = run_json(kPdmp);
+    ASSERT_TRUE(j);
+    EXPECT_EQ(m[2].str(), j->contains("revision") ? (*j)["revision"].get<std::string>() : "unknown");
 }
 
 // --- diffusivity: output ------------------------------------------------------

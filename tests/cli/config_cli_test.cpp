@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A run as a file: --print-config writes every setting of a subcommand (its
 // effective values, defaults included, with units), and --config of that
 // output reproduces the run bit for bit; flags override the file; bad files

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End-to-end tests of the velocity-statistics subcommands (density, moments,
 // correlation, trajectory, analytic, sweep) and the output contract every
 // subcommand shares: --format table|json|csv and --output FILE written

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End-to-end tests of what --output writes to when FILE is not a plain new
 // file: a FIFO, a device, /dev/stdout, a symlink chain, an existing file with
 // its own mode and owner, and a run ended by a signal or by an error. The rule

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Precision on demand: `diffusivity --rel-precision` runs batches until the
 // interval half-width of D is at most the target (or --max-excursions).
 #include <gtest/gtest.h>

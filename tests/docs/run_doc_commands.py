@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Runs every command and code block of README.md and docs/guide.md, so that
 the documentation cannot drift from the program (ctest label "docs").
 

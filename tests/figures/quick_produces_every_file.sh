@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # `scripts/figures --quick` must run and produce every file of the default run:
 # Table I (PNG and Markdown), Figs. 2 to 9 as non-empty PNG, and summary.json.
 #   bash quick_produces_every_file.sh REPO_ROOT OUT_DIR

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the command line of every subcommand.
 //
 // The input is an argument vector, one argument per line (the program name

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the config file (--config FILE), the one file the
 // program reads.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the checkpoint file that --resume FILE reads.
 //
 // The input is the file. It is read by the resumable subcommand it names

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "harness.hpp"
 
 #include <CLI/CLI.hpp>
@@ -240,7 +241,7 @@ DryCommand add_dry(CLI::App& app, Result (*)(const Request&)) {
 void configure_main(CLI::App& app) {
     app.footer(cli::kConventions);
     app.require_subcommand(1);
-    app.set_version_flag("--version", stickslip::version());
+    app.set_version_flag("--version", stickslip::version_line());
 }
 
 /// register_all(), dry: the subcommands in the same order with the same requests.

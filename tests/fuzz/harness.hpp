@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The shared part of the libFuzzer targets of `stickslip` (fuzz_cli.cpp,
 // fuzz_config.cpp): run an argument vector through the command without
 // running a simulation, and check what it does.

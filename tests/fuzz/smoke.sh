@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # A bounded libFuzzer run (ctest label "fuzz"): the corpus first, then
 # mutations, until RUNS inputs or SECONDS seconds.
 #

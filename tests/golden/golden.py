@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Golden outputs of the `stickslip` command (the refactoring safety net).
 
     golden.py STICKSLIP_BINARY            # compare every case of cases.txt

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The CUDA backend's per-thread loop (stickslip/device_excursions.hpp),
 // compiled as host code, against the CPU engine: every outcome bitwise the
 // same, and the run's exact sums too, for both schemes, coloured noise with

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Reference values for the gpu-host test of portable_math.hpp (issue 14).
 
 Writes portable_math_reference.txt: lines `function argument result`, both

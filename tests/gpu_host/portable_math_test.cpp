@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The transcendental functions of the device (stickslip/portable_math.hpp):
 // correctly rounded against 60-digit references (portable_math_reference.txt,
 // from make_portable_math_reference.py), including arguments where glibc is

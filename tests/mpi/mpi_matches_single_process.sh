@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs each case once alone and once as `mpirun --oversubscribe -np N` and
 # requires the same JSON apart from "work" (timings and thread counts).
 #   bash mpi_matches_single_process.sh path/to/stickslip path/to/mpirun

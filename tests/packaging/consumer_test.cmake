@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # cmake -P script run by the ctest packaging.find_package_consumer:
 # install the build tree into a scratch prefix, then configure, build and run
 # a consumer project that uses find_package(stickslip) with only
@@ -37,7 +38,7 @@ step("install into ${prefix}"
      ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --config ${CONFIG})
 # GNUInstallDirs may choose lib, lib64 or a multiarch libdir: search for the config.
 file(GLOB_RECURSE config_file ${prefix}/stickslipConfig.cmake)
-foreach(f include/stickslip/diffusivity.hpp bin/stickslip)
+foreach(f include/stickslip/diffusivity.hpp bin/stickslip share/doc/stickslip/LICENSE)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "installed tree lacks ${f}")
   endif()

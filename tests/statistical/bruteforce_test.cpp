@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The brute-force estimator D_t = var U(t)/t (paper eq. 13, no regeneration,
 // no stop rule) against the long-excursion estimator on the same engine, so
 // the two see exactly the same model. D_t is biased by O(1/t): measured in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Coverage of the 95% interval of D over many independent small runs
 // (docs/validation.md, "Interval coverage"). Each run has its own seed; the
 // reference is D of all runs pooled (their moments merged), so the check is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The exact PDMP engine and the differential-inclusion engine estimate the same
 // D on the paper's Fig. 4 case (tau 0.5 s, relaxation 0.067 s, friction 3.84,
 // noise 5, bias 0.342). Measured in docs/validation.md with 1e5 PDMP and 2e4

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The event scheme against references it did not produce: the PDMP engine on
 // the paper's Fig. 4 case (D, M0 and the stuck fraction at a step 200 times
 // the resolvent's default), and the mean exit time of the stuck noise against

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The exponentials of BatchedUniformRng::exponential_uniform (the PDMP
 // engine's waiting times; bitwise those of CounterRng, tests/unit/
 // rng_batch_test.cpp) are exponential of mean 1 and independent of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Velocity statistics (observables.hpp) against the white-noise closed forms of
 // theory.md, section 8, against Hayakawa's density, and between the two engines.
 // Every check uses the run's own standard errors and states its z-score.

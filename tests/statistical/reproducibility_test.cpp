@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Results are bitwise identical for any thread count (one Philox stream per
 // excursion, blocks merged in index order), and change with the seed.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared helpers for the statistical tests: every check compares a seeded
 // Monte Carlo estimate with a reference using a tolerance of a few standard
 // errors computed by the run itself, plus (where stated) a discretisation

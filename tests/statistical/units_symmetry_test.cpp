@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A physical run and its nondimensional twin describe the same trajectories
 // (same random streams, exactly scaled dynamics), so D, M0, E[t1] must agree
 // after scaling to far better than their standard errors. And the model's

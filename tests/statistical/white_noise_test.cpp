@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // White-noise limit against the exact quadrature of theory.md, section 8.
 // Discretisation allowances are measured in docs/validation.md: the inclusion
 // scheme with white noise converges like sqrt(dt) (relative bias about

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ziggurat normals of BatchedCounterRng (bitwise those of CounterRng,
 // tests/unit/rng_batch_test.cpp) are standard normal: 2e7 normals from eight
 // streams with fixed seeds, compared with exact values using standard errors

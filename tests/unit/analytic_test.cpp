@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact white-noise references (analytic.hpp, theory.md, section 8): the
 // closed forms for pure dry friction, the viscous limit, the normalisation of
 // Hayakawa's density, unit scaling, and an independent grid quadrature of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Renewal-reward estimators and their mergeable moments (estimators.hpp,
 // theory.md, section 7). References are computed directly from the stored samples
 // in long double (two-pass), never from the library's moment algebra.

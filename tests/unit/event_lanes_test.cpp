@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The event scheme's SIMD lanes (event_lanes.hpp) against its one-excursion
 // kernel: every outcome must be bitwise the same -- with refinements, stuck
 // and sliding lanes, relaxation finite and infinite, steps near tau and far

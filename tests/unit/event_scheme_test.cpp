@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The event scheme (event_scheme.hpp): time kept in whole leaves, results
 // bitwise the same for any thread count, paths that end exactly at their
 // times, the start of a walk from any state, the white-noise step (exact far

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact, order-free sums of doubles (exact_sum.hpp).
 //
 // Reference: the exact sum as a Boost.Multiprecision cpp_int in units of

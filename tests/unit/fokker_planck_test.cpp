@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The white-noise Fokker-Planck solver (fokker_planck.hpp) against every exact
 // reference that does not share its code path: Touchette et al.'s closed forms
 // for pure dry friction (first moment, autocorrelation, propagator), and for

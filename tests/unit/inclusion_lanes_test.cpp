@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The interleaved inclusion kernel (inclusion_lanes.hpp) against the
 // one-excursion kernel: every outcome must be bitwise the same, for both stop
 // rules, white noise, capped excursions, partial lane groups and any first

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Differential-inclusion engine (inclusion.hpp, theory.md, section 5): the
 // resolvent, the constants and their validation, one hand-computed step, and
 // the Brownian-bridge crossing probability of stop rule Q.

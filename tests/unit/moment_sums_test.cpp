@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact moment sums (moment_sums.hpp) against a 50-digit recomputation from
 // the samples themselves: nothing is lost to the final centring even when the
 // sample is nearly ballistic (U ~ M0 t, |mean| >> sd), and the order in which

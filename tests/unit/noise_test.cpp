@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact one-step law of the OU noise (noise.hpp, theory.md, sections 2 and 5).
 //
 // References, all independent of the library's formulas:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact properties of the observables and the sweep (observables.hpp,
 // sweep.hpp): the ratio accumulator, normalisation, thread invariance, and
 // that observables run exactly the excursions `diffusivity` runs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // PDMP engine constants and kernels (pdmp.hpp, theory.md, section 4) against
 // independent references: a classical RK4 solve of the between-jump ODE
 //   dV/dt = |y| (-V/tauL + bias + a x - y friction),  dU/dt = V,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact step and midpoint-bridge laws within one phase (phase_law.hpp).
 //
 // References, all independent of the library's path sums of divided differences:

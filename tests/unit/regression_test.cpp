@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Regression tests for bugs found in review.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Batched streams (rng_batch.hpp) and the ziggurat (ziggurat.hpp).
 //
 // BatchedCounterRng and BatchedUniformRng promise CounterRng's numbers bit for

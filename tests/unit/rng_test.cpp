@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Counter-based streams (rng.hpp).
 //
 // Known answers: tests/data/rng_known_answers.json pins, for each (seed, purpose,

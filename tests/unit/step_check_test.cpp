@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The closed forms behind the step checks (src/step_check.hpp): the mean
 // first-passage time of the OU noise, against its small- and large-threshold
 // expansions, and the bound on an excursion's length in the Fig. 2 case.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The white-noise references of analytic.hpp (theory.md section 8) are exact
 // for every input the model validates, or refused: checked against references
 // computed here independently of analytic.cpp.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // stickslip/detail/ziggurat_device_tables.hpp -- the ziggurat's tables as
 // device data, for CUDA builds (ziggurat.hpp includes it under __CUDACC__).
 //

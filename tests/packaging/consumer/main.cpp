@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Uses an installed stickslip through find_package(stickslip): the
 // nondimensional system (params.hpp), a closed form (analytic.hpp), a small
 // long-excursion run on two threads (diffusivity.hpp, compiled library code),
