@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The event scheme at every step a user may choose (docs/validation.md, "The
 # event scheme at fine steps"): from its automatic step down to dt/tau = 1e-5
 # (white noise: dt' = 1e-5), on drag-free and driven cases, against the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The event scheme at every step a user may choose, against schemes and
 // engines it does not share code with. Its tables once stopped at dt/tau =
 // 0.03, and below dt of about 1e-3 friction times it was wrong by 26% to
