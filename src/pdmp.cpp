@@ -59,6 +59,14 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
         n = std::fmax(n, std::fmax(kp + 5.0, -km + 5.0));
         n = std::fmin(n, n_allowed);
     }
+    if (s.lattice_bound > 0 && !(n >= 1))
+        throw InvalidParameter("lattice-bound", "lattice-bound L = " + detail::format_number(s.lattice_bound) +
+                                                    " s^-1/2 is shorter than one grid step (" +
+                                                    detail::format_number(s.grid) +
+                                                    " s^-1/2): it must reach the noise thresholds x* = " +
+                                                    detail::format_number(p.upper_threshold()) + ", x-* = " +
+                                                    detail::format_number(p.lower_threshold()) +
+                                                    " (s^-1/2) plus two grid steps, or be 0 (chosen)");
     if (!(n >= 1) || n > 1e8) throw too_many_points(2 * n + 1);
     const bool reaches = kp + 2 <= n && km - 2 >= -n;
     if (!reaches && s.lattice_bound > 0)

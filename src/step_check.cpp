@@ -36,6 +36,21 @@ constexpr double kAutoEventTau = 1.0 / 16, kAutoEventRelaxation = 1.0 / 4, kAuto
 /// relaxation/4.
 constexpr double kAutoEventWhiteRelaxation = 1.0 / 16;
 
+// The event scheme's measured reach (docs/validation.md, "The event scheme at
+// coarse steps"; 1e5 excursions per point against the automatic step, the
+// PDMP or the exact quadrature):
+//  * coloured noise: flat to dt = tau (E[t1] +1.7% at tau' = 0.1); beyond,
+//    E[t1] +3.7% at 3 tau and +25% at 10 tau (tau' = 0.1), M0 -2% at 6 tau
+//    and -33% at 20 tau (Fig. 2 case), D 100 times too large at 200 tau;
+//    the drag and the friction time set no limit of their own (Fig. 2: D
+//    within 1% at 45 relaxation times, 9 friction times);
+//  * white noise: D within 1% up to relaxation/4 (-2% at relaxation/2, -6%
+//    at 1, -10% at 2, -76% at 15) and M0 to T_f/2 (-1.1%; -2% at T_f, -3.6%
+//    at 2 T_f, no drag).
+constexpr double kEventTauNote = 1.0, kEventTauRefuse = 8.0;
+constexpr double kEventWhiteRelaxationNote = 0.25, kEventWhiteRelaxationRefuse = 2.0;
+constexpr double kEventWhiteFrictionNote = 0.5, kEventWhiteFrictionRefuse = 2.0;
+
 bool near_white(const ModelParams& p, const Scales& sc) { return p.white() || p.tau / sc.time < kNearWhite; }
 
 std::string rounded(double x) { return format_number(x, 2); }
@@ -104,6 +119,49 @@ double auto_step(const ModelParams& p, Scheme scheme) {
     return dt;
 }
 
+namespace {
+
+/// The event scheme's step against its measured reach (see the constants
+/// above): refused far beyond it, noted beyond it.
+void check_event_step(const ModelParams& p, double dt, std::vector<std::string>& notes) {
+    const Scales sc = scales_of(p);
+    const std::string at = "dt = " + format_number(dt) + " s is ";
+    const std::string where = " (measured: docs/validation.md, \"The event scheme at coarse steps\")";
+    std::string refuse, note, cure;
+    if (!p.white()) {
+        const double r = dt / p.tau;
+        cure = "use --dt " + rounded(p.tau) + " or smaller (--dt auto: " + rounded(auto_step(p, Scheme::Event)) +
+               "), or --engine pdmp";
+        const std::string what = at + format_number(r, 3) + " correlation times of the noise (tau = " + format_number(p.tau) + " s)";
+        if (r > kEventTauRefuse)
+            refuse = what + ": the event scheme's stuck phases and launches are not resolved there (M0 -33% at 20 tau, "
+                            "D 100 times too large at 200 tau)";
+        else if (r > kEventTauNote)
+            note = what + ": beyond the event scheme's validated steps (dt <= tau); E[t1] +3.7% at 3 tau, M0 -2% at "
+                          "6 tau";
+    } else {
+        const double rl = std::isfinite(p.relaxation) ? dt / p.relaxation : 0.0, rf = dt / sc.time;
+        const double fine = std::fmin(kEventWhiteFrictionNote * sc.time,
+                                      std::isfinite(p.relaxation) ? kEventWhiteRelaxationNote * p.relaxation : HUGE_VAL);
+        cure = "use --dt " + rounded(fine) + " or smaller (--dt auto: " + rounded(auto_step(p, Scheme::Event)) + ")";
+        const std::string in_relaxation = at + format_number(rl, 3) + " relaxation times (" + format_number(p.relaxation) + " s)";
+        const std::string in_friction =
+            at + format_number(rf, 3) + " friction times (noise/friction^2 = " + format_number(sc.time) + " s)";
+        if (rl > kEventWhiteRelaxationRefuse)
+            refuse = in_relaxation + ": the white-noise event scheme's D is 10% low at 2 and 76% low at 15";
+        else if (rf > kEventWhiteFrictionRefuse)
+            refuse = in_friction + ": beyond the white-noise event scheme's measured steps (M0 -3.6% at 2)";
+        else if (rl > kEventWhiteRelaxationNote)
+            note = in_relaxation + ": the white-noise event scheme's D is about -2% at 0.5 and -6% at 1";
+        else if (rf > kEventWhiteFrictionNote)
+            note = in_friction + ": the white-noise event scheme's M0 is about -1% at 0.5 and -2% at 1";
+    }
+    if (!refuse.empty()) throw InvalidParameter("dt", refuse + where + "; " + cure);
+    if (!note.empty()) notes.push_back(note + where + "; " + cure);
+}
+
+} // namespace
+
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes) {
     const ModelParams& p = e.params;
     const EngineSettings& s = e.settings;
@@ -135,6 +193,7 @@ void check_step(const PreparedEngine& e, std::vector<std::string>& notes) {
                             rounded(0.3 * p.relaxation) + " or smaller" +
                             (p.white() ? "" : ", or --scheme event or --engine pdmp"));
     }
+    if (s.engine == Engine::Inclusion && s.scheme == Scheme::Event) check_event_step(p, s.dt, notes);
 }
 
 void check_excursions_can_end(const PreparedEngine& e) {

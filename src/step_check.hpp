@@ -11,8 +11,12 @@
 //   (tau' >= 0.3, the paper's Fig. 2 case, drag included) like +0.35 dt'
 //   (+1.1% at dt' = 0.03, +3% at 0.09). A step whose predicted bias exceeds
 //   2% is warned about; one whose predicted bias exceeds 20%, or longer than
-//   the friction time, is refused. The event scheme and the PDMP are exact
-//   within phases and are not judged by this rule.
+//   the friction time, is refused. The event scheme is exact within phases
+//   but not across them: its step is judged against the reach its tables
+//   measured (coloured noise: a note beyond tau, a refusal beyond 8 tau;
+//   white noise: notes beyond relaxation/4 or half the friction time,
+//   refusals beyond 2 relaxation or 2 friction times; see step_check.cpp).
+//   The PDMP has no step.
 //
 // * Which step does --dt auto take? The largest at which the measured
 //   convergence shows the scheme's bias of D below 0.1%: for the resolvent
@@ -62,8 +66,9 @@ double resolvent_step_for_bias(const ModelParams& p, double bias);
 double auto_step(const ModelParams& p, Scheme scheme);
 
 /// Refuses (InvalidParameter "dt") a resolvent step whose predicted bias of D
-/// exceeds 20% or that is longer than the friction time; adds a note for one
-/// whose predicted bias exceeds 2%.
+/// exceeds 20% or that is longer than the friction time, and an event step far
+/// beyond its measured reach; adds a note for a resolvent step whose predicted
+/// bias exceeds 2% and an event step beyond its measured reach.
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
 
 /// Refuses (InvalidParameter "max-steps") a run of long excursions that

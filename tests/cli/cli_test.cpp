@@ -343,6 +343,17 @@ const BadInput kBadInputs[] = {
     {{"diffusivity", "--engine", "pdmp", "--tau", "0"}, "tau"},
     {{"diffusivity", "--engine", "pdmp", "--grid", "2"}, "grid"}, // tau*grid*L < 2 impossible
     {{"diffusivity", "--engine", "pdmp", "--lattice-bound", "-1"}, "lattice-bound"},
+    // Shorter than one grid step: it blamed --grid ("grid = 0.125 gives 1 lattice points").
+    {{"diffusivity", "--engine", "pdmp", "--lattice-bound", "0.1"}, "--lattice-bound: lattice-bound L = 0.1"},
+    // The event scheme far beyond its measured reach: at 200 tau (the Fig. 2 case)
+    // D was 100 times too large and M0 of the wrong sign, with exit 0.
+    {{"diffusivity", "--dt", "100"}, "--dt: dt = 100 s is 200 correlation times of the noise"},
+    {{"density", "--scheme", "event", "--dt", "5"}, "10 correlation times"},
+    // White noise at 15 relaxation times: D 76% low, exit 0.
+    {{"diffusivity", "--tau", "0", "--scheme", "event", "--dt", "1"}, "--dt: dt = 1 s is 14.9 relaxation times"},
+    {{"diffusivity", "--friction", "1", "--noise", "1", "--tau", "0", "--relaxation", "inf", "--scheme", "event",
+      "--dt", "3"},
+     "3 friction times"},
     {{"diffusivity", "--excursions", "1"}, "excursions"},
     {{"diffusivity", "--excursions", "abc"}, "excursions"},
     {{"diffusivity", "--excursions", "2.5"}, "excursions"},
@@ -537,6 +548,28 @@ TEST(CliStepNotes, AStepNearTheRelaxationTimeGetsItsOwnNote) {
     const Result fine = run({"diffusivity", "--scheme", "resolvent", "--dt", "0.03", "--excursions", "2000"});
     ASSERT_EQ(fine.code, 0) << fine.err;
     EXPECT_EQ(fine.out.find("relaxation times"), std::string::npos) << fine.out;
+}
+
+TEST(CliStepNotes, AnEventStepBeyondItsValidatedReachGetsANote) {
+    // docs/validation.md, "The event scheme at coarse steps": coloured noise is
+    // flat to dt = tau, white noise to relaxation/4 and half the friction time.
+    const Result coloured = run({"diffusivity", "--dt", "2", "--excursions", "2000"}); // 4 tau
+    ASSERT_EQ(coloured.code, 0) << coloured.err;
+    EXPECT_NE(coloured.out.find("dt = 2 s is 4 correlation times of the noise"), std::string::npos) << coloured.out;
+    const Result at_tau = run({"diffusivity", "--dt", "0.5", "--excursions", "2000"});
+    ASSERT_EQ(at_tau.code, 0) << at_tau.err;
+    EXPECT_EQ(at_tau.out.find("correlation times"), std::string::npos) << at_tau.out;
+    const Args white{"diffusivity", "--friction", "1", "--noise", "1", "--tau", "0", "--relaxation", "inf",
+                     "--scheme", "event", "--excursions", "2000"};
+    const Result coarse = run(with(white, {"--dt", "1.5"}));
+    ASSERT_EQ(coarse.code, 0) << coarse.err;
+    EXPECT_NE(coarse.out.find("dt = 1.5 s is 1.5 friction times"), std::string::npos) << coarse.out;
+    const Result fine = run(with(white, {"--dt", "0.5"}));
+    ASSERT_EQ(fine.code, 0) << fine.err;
+    EXPECT_EQ(fine.out.find("friction times"), std::string::npos) << fine.out;
+    const Result drag = run({"diffusivity", "--tau", "0", "--scheme", "event", "--dt", "0.05", "--excursions", "2000"});
+    ASSERT_EQ(drag.code, 0) << drag.err;
+    EXPECT_NE(drag.out.find("0.746 relaxation times"), std::string::npos) << drag.out;
 }
 
 TEST(CliAutoStep, TheJsonSaysTheStepWasChosenAndWhichOne) {
