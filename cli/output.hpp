@@ -14,6 +14,8 @@
 #include <sys/types.h>
 #include <vector>
 
+#include "stickslip/report.hpp"
+
 namespace stickslip::cli {
 
 /// --format, --output, --quiet.
@@ -70,6 +72,7 @@ void remove_output_temporary() noexcept;
 /// Picks the rendering for the format of `out` and commits it.
 template <class Result>
 void emit(Output& out, const Result& r) {
+    check_finite_result(to_json(r, -1)); // exit 3 rather than NaN, inf or null with exit 0
     if (out.format() == "json") out.commit(to_json(r), {});
     else if (out.format() == "csv") out.commit(to_csv(r), r.warnings);
     else out.commit(to_table(r), {});

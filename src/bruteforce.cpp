@@ -24,7 +24,7 @@ PreparedEngine prepare_request(const BruteForceRequest& req_in) {
     if (req.trajectories < 2)
         throw InvalidParameter("trajectories",
                                "trajectories must be >= 2 (got " + std::to_string(req.trajectories) + ")");
-    detail::check_start(req.x0, req.v0);
+    detail::check_start(req.params, req.x0, req.v0);
     if (req.engine.engine == Engine::Inclusion) bruteforce_steps(req.horizon, req.engine.dt);
     return engine;
 }

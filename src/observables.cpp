@@ -26,7 +26,6 @@ namespace {
 
 constexpr int kMaxBins = 100000;
 constexpr int kMaxLags = 2000;
-constexpr double kMaxMomentVelocity = 1e100; // |v0|: v0^4 stays within double's range
 constexpr std::uint64_t kMaxLagSamples = 4'000'000; // ring buffer (a power of two above): at most 32 MB per thread
 
 void check_bins(const VelocityBins& b) {
@@ -640,12 +639,7 @@ PreparedEngine prepare_request(const TransientRequest& req_in) {
     for (double t : req.times)
         if (!std::isfinite(t) || t < 0)
             throw InvalidParameter("times", "times must be finite and >= 0 (s), got " + detail::format_number(t));
-    detail::check_start(req.x0, std::isnan(req.v0) ? 0.0 : req.v0);
-    if (!std::isnan(req.v0) && (std::fabs(req.v0) > kMaxMomentVelocity ||
-                                std::fabs(req.v0) / scales_of(req.params).velocity > kMaxMomentVelocity))
-        throw InvalidParameter("v0", "v0 = " + detail::format_number(req.v0) +
-                                         " m/s: the moments would overflow double precision (E[V^2] ~ v0^2); |v0| "
-                                         "must be at most 1e100, in m/s and in units of noise/friction");
+    detail::check_start(req.params, req.x0, std::isnan(req.v0) ? 0.0 : req.v0);
     if (req.with_density) check_bins(req.bins);
     const std::vector<double> times = transient_times(req);
     if (req.with_density && static_cast<double>(times.size()) * (req.bins.count + 3) > 2e6)
@@ -824,11 +818,14 @@ PreparedEngine prepare_request(const TrajectoryRequest& req_in) {
         throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + detail::format_number(req.horizon));
     if (!std::isfinite(req.every) || req.every < 0)
         throw InvalidParameter("every", "every must be a finite number >= 0 (s), got " + detail::format_number(req.every));
-    detail::check_start(req.x0, req.v0);
+    detail::check_start(req.params, req.x0, req.v0);
     if (req.index > max_sample_index) throw InvalidParameter("index", "index must be < 2^56");
     if (req.max_points < 2)
         throw InvalidParameter("max-points", "max-points must be at least 2 (a path's start and end), got " +
                                                  std::to_string(req.max_points));
+    // One long excursion (the default) must be able to end, like those of
+    // `diffusivity`: `trajectory --dt 1e-308` ran for ever.
+    if (req.paths == 0) detail::check_excursions_can_end(engine);
     if (req.paths > 0) {
         const double every = req.every > 0 ? req.every : req.horizon / 1000;
         if (req.horizon / every > static_cast<double>(req.max_points))

@@ -62,6 +62,11 @@ void validate(const ModelParams& p) {
                                "relaxation must be > 0 (s) or inf (no viscous drag), got " + detail::format_number(p.relaxation));
     if (!std::isfinite(p.bias))
         throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + detail::format_number(p.bias));
+    // Found by the extreme-value sweep (tests/cli/extreme_values.py): a bias
+    // near 1e308 gave NaN moments and brute-force D with exit 0.
+    if (std::fabs(p.bias) > 1e100 * p.friction)
+        throw InvalidParameter("bias", "bias = " + detail::format_number(p.bias) + " m s^-2 is more than 1e100 times "
+                                       "the friction: the velocities it drives would overflow double precision");
     // Products that overflow would make every later formula meaningless.
     const Scales s = scales_of(p);
     if (!std::isfinite(s.diffusivity) || s.diffusivity <= 0 || !std::isfinite(s.time) || s.time <= 0) {

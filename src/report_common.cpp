@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "format.hpp"
+#include "stickslip/report.hpp"
 #include "stickslip/version.hpp"
 
 namespace stickslip::detail {
@@ -225,3 +226,42 @@ std::string csv_estimate(const Estimate& e) {
 }
 
 } // namespace stickslip::detail
+
+namespace stickslip {
+
+namespace {
+
+// The first null (a NaN or inf that nlohmann wrote as null) below `j`, as a
+// JSON path; empty when there is none.
+std::string first_null(const nlohmann::json& j, const std::string& path) {
+    if (j.is_null()) return path.empty() ? "." : path;
+    if (j.is_number_float() && !std::isfinite(j.get<double>())) return path;
+    if (j.is_object()) {
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            // The settings may say "not applicable" with null (x0 of white
+            // noise), and so may a sweep's fits, which need two (slope) or
+            // three (exponent's chi2_per_dof) points: their inputs, the
+            // points' D and M0, are checked.
+            if (path.empty() && (it.key() == "params" || it.key() == "nondimensional")) continue;
+            if (it.key() == "slope" || it.key() == "exponents") continue;
+            if (std::string bad = first_null(*it, path + "." + it.key()); !bad.empty()) return bad;
+        }
+    } else if (j.is_array()) {
+        for (std::size_t i = 0; i < j.size(); ++i)
+            if (std::string bad = first_null(j[i], path + "[" + std::to_string(i) + "]"); !bad.empty()) return bad;
+    }
+    return {};
+}
+
+} // namespace
+
+void check_finite_result(const std::string& json) {
+    const std::string bad = first_null(nlohmann::json::parse(json), "");
+    if (!bad.empty())
+        throw UntrustworthyResult("the result's " + bad.substr(bad[0] == '.' ? 1 : 0) +
+                                  " is not a finite number: the settings take this run beyond what double precision "
+                                  "or the samples can resolve (too few samples in a bin or lag, a step or value near "
+                                  "1e308); nothing was written");
+}
+
+} // namespace stickslip

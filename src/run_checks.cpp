@@ -89,9 +89,21 @@ void note_interruption(const RunTotals& totals, const char* samples, std::vector
                        " (whole blocks in index order, so unbiased; the intervals are wider)");
 }
 
-void check_start(double x0, double v0) {
+void check_start(const ModelParams& p, double x0, double v0) {
     if (!std::isfinite(v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
     if (std::isinf(x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+    // Found by the extreme-value sweep (tests/cli/extreme_values.py): a start
+    // near 1e308 gave NaN means with exit 0 (bruteforce, moments).
+    const double v_unit = scales_of(p).velocity;
+    if (std::fabs(v0) > max_start_magnitude || std::fabs(v0) / v_unit > max_start_magnitude)
+        throw InvalidParameter("v0", "v0 = " + format_number(v0) +
+                                         " m/s: its square (E[V^2], U^2) would overflow double precision; |v0| "
+                                         "must be at most 1e100, in m/s and in units of noise/friction");
+    const double sd = p.white() ? 1.0 : 1.0 / std::sqrt(p.tau);
+    if (std::isfinite(x0) && (std::fabs(x0) > max_start_magnitude || std::fabs(x0) / sd > max_start_magnitude))
+        throw InvalidParameter("x0", "x0 = " + format_number(x0) +
+                                         " s^-1/2: the velocities it drives would overflow double precision; |x0| "
+                                         "must be at most 1e100, in s^-1/2 and in standard deviations 1/sqrt(tau)");
 }
 
 double default_start_noise(const PreparedEngine& e) {

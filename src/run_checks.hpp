@@ -37,9 +37,16 @@ std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excu
 /// the warning that says the result is from a prefix of the run.
 void note_interruption(const RunTotals& totals, const char* samples, std::vector<std::string>& warnings);
 
-/// Checks a trajectory start: v0 [m/s] finite ("v0"); x0 [s^-1/2] finite or
-/// NaN, which means "the default start" ("x0").
-void check_start(double x0, double v0);
+/// Largest |v0| (in m/s and in velocity units noise/friction) and |x0| (in
+/// s^-1/2 and in standard deviations 1/sqrt(tau)) a trajectory may start
+/// from: the squares and fourth powers the estimators form stay within
+/// double's range.
+inline constexpr double max_start_magnitude = 1e100;
+
+/// Checks a trajectory start of model `p`: v0 [m/s] finite and at most
+/// max_start_magnitude ("v0"); x0 [s^-1/2] NaN, which means "the default
+/// start", or finite and at most max_start_magnitude ("x0").
+void check_start(const ModelParams& p, double x0, double v0);
 
 /// The default start of a trajectory's noise [s^-1/2] (x0 NaN): 0 for white
 /// noise, else the upper threshold x* (PDMP: the first lattice point above it).

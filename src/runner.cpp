@@ -106,7 +106,7 @@ RunTotals run_bruteforce(const ModelParams& p, const EngineSettings& s, double h
                          std::uint64_t trajectories, const RunControl& ctl) {
     if (!std::isfinite(horizon) || horizon <= 0)
         throw InvalidParameter("time", "time must be a finite number > 0 (s)");
-    detail::check_start(x0, v0);
+    detail::check_start(p, x0, v0);
     check_run_control(ctl);
     const PreparedEngine e = prepare_engine(p, s); // e.settings: --dt auto resolved
     if (s.engine == Engine::Inclusion) bruteforce_steps(horizon, e.settings.dt);

@@ -21,6 +21,14 @@
 
 namespace stickslip {
 
+/// Throws UntrustworthyResult when the JSON report `json` (what to_json
+/// writes) holds a number that is not finite (written as null) outside its
+/// "params" and "nondimensional" blocks and a sweep's fits (null where too
+/// few points define them), naming the first such quantity by
+/// its JSON path: no NaN or inf is ever reported as a result. The CLI checks
+/// every result this way before writing it, in every format.
+void check_finite_result(const std::string& json);
+
 /// One JSON object (pretty-printed with `indent` spaces; -1 for one line).
 std::string to_json(const DiffusivityResult& r, int indent = 2);
 /// The brute-force result as one JSON object (as for DiffusivityResult).
