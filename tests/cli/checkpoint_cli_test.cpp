@@ -365,13 +365,7 @@ TEST(CliStop, ASecondSignalAbortsAndLeavesNoFile) {
                     "--format", "json", "--output", dir / "out.json"};
     const pid_t pid = start(slow, "/dev/null", "/dev/null");
     ASSERT_GT(pid, 0);
-    const std::string temp = "out.json.tmp." + std::to_string(pid);
-    const auto end = clock_type::now() + std::chrono::seconds(30);
-    while (clock_type::now() < end) {
-        const auto names = list_dir(dir.path);
-        if (std::find(names.begin(), names.end(), temp) != names.end()) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    holds_file_in(pid, dir.path); // the output's temporary: the run has started
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     ASSERT_EQ(::kill(pid, SIGINT), 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
