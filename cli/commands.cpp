@@ -6,6 +6,7 @@
 #include "commands.hpp"
 
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <memory>
 #include <type_traits>
@@ -80,6 +81,27 @@ void add_checkpoint_flags(CLI::App* app, CheckpointOptions& o) {
     app->add_option("--resume", o.resume, CheckpointOptions::resume_help)->type_name("FILE");
 }
 
+/// The run's journal (make_journal) with the command's warning lines. Only
+/// the first process writes the checkpoint, so only it can find the path
+/// unwritable: every process learns whether all could start, so that they all
+/// stop, with exit 2, rather than wait for the one that stopped.
+template <class Request>
+std::unique_ptr<RunJournal> open_journal(Request& req, CheckpointOptions options) {
+    options.warn = [](const std::string& line) { std::fprintf(stderr, "stickslip: warning: --checkpoint: %s\n", line.c_str()); };
+    std::unique_ptr<RunJournal> journal;
+    std::exception_ptr failure;
+    try {
+        journal = make_journal(req, options);
+    } catch (...) {
+        failure = std::current_exception();
+    }
+    if (!all_ok(!failure)) {
+        if (failure) std::rethrow_exception(failure);
+        throw InvalidParameter("checkpoint", "another process of the run could not open its checkpoint or resume file");
+    }
+    return journal;
+}
+
 template <class Request>
 constexpr bool resumable() {
     if constexpr (requires { Request::resumable; }) return Request::resumable;
@@ -113,6 +135,7 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                     if (is_root()) std::cout << state->flags.config_text(command) << std::flush;
                     return;
                 }
+                if constexpr (resumable<Request>()) refuse_shared_paths(state->output, state->checkpoint);
                 Output out(state->output);
                 Request& req = state->request;
                 if constexpr (std::is_base_of_v<RunSettings, Request>) {
@@ -126,7 +149,7 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                 }
                 if constexpr (resumable<Request>()) {
                     req.control.stop = StopOnSignals::flag();
-                    const std::unique_ptr<RunJournal> journal = make_journal(req, state->checkpoint);
+                    const std::unique_ptr<RunJournal> journal = open_journal(req, state->checkpoint);
                     req.control.journal = journal.get();
                     if (customise) customise(req, state->output.quiet);
                     try {

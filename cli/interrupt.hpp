@@ -15,8 +15,8 @@ namespace stickslip::cli {
 
 /// Installs the handlers for its lifetime (only for signals at their default
 /// action: an ignored SIGINT, as in a background job, stays ignored). Install
-/// before the output is opened, so that the output's own cleanup handlers
-/// leave these two signals to it.
+/// before CleanupOnSignals (output.hpp), so that its handlers leave these two
+/// signals to it.
 class StopOnSignals {
 public:
     StopOnSignals();

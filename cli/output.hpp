@@ -1,19 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The output contract of every subcommand: --format table|json|csv, and
-// --output FILE. A regular file (or a new one) is written atomically: a
-// temporary file beside it, renamed into place when the run succeeds, so a run
-// that fails or is killed leaves an existing file untouched and nothing else
-// behind; the file keeps its mode and owner, and a symlink stays a link (its
-// target is what gets replaced). Anything else (a device such as /dev/null or
+// --output FILE. A regular file (or a new one) is written atomically
+// (stickslip/detail/atomic_file.hpp, the writer checkpoints use too): a
+// temporary file in its folder, unnamed where the system allows, renamed into
+// place when the run succeeds, so a run that fails or is killed, even by
+// SIGKILL, leaves an existing file untouched and nothing else behind; the
+// file keeps its mode and owner, and a symlink stays a link (its target is
+// what gets replaced). Anything else (a device such as /dev/null or
 // a terminal, a FIFO, a socket, /dev/stdout) is written through, as any other
 // program would write it: replacing it by a regular file would break it.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <memory>
 #include <string>
-#include <sys/types.h>
 #include <vector>
 
+#include "stickslip/checkpoint.hpp"
+#include "stickslip/detail/atomic_file.hpp"
 #include "stickslip/report.hpp"
 
 namespace stickslip::cli {
@@ -29,7 +33,7 @@ void add_output_flags(CLI::App* app, OutputFlags& o);
 
 /// Validates --format and --output before any work starts (so a bad path
 /// fails in a second, not after an hour); for a regular file it opens the
-/// temporary beside the target there. commit() writes the text: renames the
+/// temporary in the target's folder there. commit() writes the text: renames the
 /// temporary into place, or writes a device, FIFO or descriptor directly.
 /// A run that fails (any exception, or a terminating signal) leaves nothing
 /// behind.
@@ -48,26 +52,43 @@ public:
 private:
     enum class Sink {
         standard_output, ///< no --output
-        atomic,          ///< a regular or new file at target_, via temp_
+        atomic,          ///< a regular or new file at target_, via file_
         direct,          ///< a device, FIFO or socket at target_, opened at commit
         descriptor,      ///< /dev/stdout, /dev/fd/N...: this process's descriptor_
     };
-    void open_temporary(std::string& error);
     void write_all(int fd, const std::string& text) const;
     void commit_atomic(const std::string& text);
     void discard() noexcept;
 
-    std::string format_, path_, target_, temp_;
+    std::string format_, path_, target_;
     Sink sink_ = Sink::standard_output;
-    int fd_ = -1;
+    std::unique_ptr<detail::AtomicFile> file_;
     int descriptor_ = -1;
-    mode_t umask_ = 022;
     bool quiet_ = false;
 };
 
-/// Removes the temporary output file of this process, if any; async-signal-safe
-/// (for a signal handler that is about to end the process).
+/// Refuses (InvalidParameter "output", before any work) an --output that is
+/// the --checkpoint or the --resume file, however spelt (links, "./"): the
+/// result would replace the saved state of the run.
+void refuse_shared_paths(const OutputFlags& output, const CheckpointOptions& checkpoint);
+
+/// Removes the named temporary files of this process (the output's and a
+/// checkpoint's), if any; async-signal-safe (for a signal handler that is
+/// about to end the process).
 void remove_output_temporary() noexcept;
+
+/// For its lifetime, every terminating signal left at its default (those
+/// another handler took, such as StopOnSignals' SIGINT and SIGTERM, stay
+/// theirs) first removes the named temporaries in flight, then ends the
+/// process by that very signal as before. Only needed where no unnamed
+/// temporary could be had, or in the instant a temporary is being renamed.
+class CleanupOnSignals {
+public:
+    CleanupOnSignals();
+    ~CleanupOnSignals();
+    CleanupOnSignals(const CleanupOnSignals&) = delete;
+    CleanupOnSignals& operator=(const CleanupOnSignals&) = delete;
+};
 
 /// Picks the rendering for the format of `out` and commits it.
 template <class Result>

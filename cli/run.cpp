@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "distributed.hpp"
 #include "interrupt.hpp"
+#include "output.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/version.hpp"
 
@@ -111,7 +112,8 @@ int run_command(int argc, char** argv) {
     // comes before any work, the capped check after the gather), so each
     // process exits with the same code; anything else on one process of a
     // distributed run ends them all.
-    const StopOnSignals stop_on_signals; // before any output is opened (interrupt.hpp)
+    const StopOnSignals stop_on_signals; // before the clean-up handlers (interrupt.hpp)
+    const CleanupOnSignals cleanup_on_signals;
     try {
         for (const auto& a : actions)
             if (a.app->parsed()) a.run();

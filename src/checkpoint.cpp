@@ -10,8 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <unistd.h>
 
+#include "stickslip/detail/atomic_file.hpp"
 #include "stickslip/version.hpp"
 
 namespace stickslip {
@@ -92,32 +94,18 @@ bool decode_words(const std::string& s, std::vector<std::uint64_t>& w) {
     throw InvalidParameter("resume", "cannot resume from '" + file + "': " + why);
 }
 
-/// Writes `text` to `path` through a temporary beside it, synced and renamed
-/// into place, so that a kill at any moment leaves the old checkpoint or the
-/// new one, never a mix.
-void write_atomically(const std::string& path, const std::string& text) {
-    const std::string temp = path + ".tmp" + std::to_string(::getpid());
-    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw std::runtime_error("cannot write checkpoint '" + temp + "': " + std::strerror(errno));
-    std::size_t off = 0;
-    while (off < text.size()) {
-        const ssize_t k = ::write(fd, text.data() + off, text.size() - off);
-        if (k < 0 && errno == EINTR) continue;
-        if (k <= 0) {
-            const int e = errno;
-            ::close(fd);
-            ::unlink(temp.c_str());
-            throw std::runtime_error("cannot write checkpoint '" + temp + "': " + std::strerror(e));
-        }
-        off += static_cast<std::size_t>(k);
-    }
-    const bool ok = ::fsync(fd) == 0;
-    ::close(fd);
-    if (!ok || ::rename(temp.c_str(), path.c_str()) != 0) {
-        const int e = errno;
-        ::unlink(temp.c_str());
-        throw std::runtime_error("cannot write checkpoint '" + path + "': " + std::strerror(e));
-    }
+std::string cannot_write(const std::string& path, int err) {
+    return "cannot write '" + path + "': " + std::strerror(err);
+}
+
+[[noreturn]] void refuse_path(const std::string& why) { throw InvalidParameter("checkpoint", why); }
+
+/// The start of every checkpoint (json::dump(1) of an object whose first
+/// member is the format), looked for before reading a whole file that may be
+/// anything, a large data file included.
+const std::string& format_marker() {
+    static const std::string marker = std::string("\"format\": \"") + kFormat + "\"";
+    return marker;
 }
 
 } // namespace
@@ -131,14 +119,63 @@ RunJournal::RunJournal(std::string command, std::vector<std::pair<std::string, s
                        CheckpointOptions options, unsigned rank)
     : command_(std::move(command)), settings_(std::move(settings)), options_(std::move(options)), rank_(rank) {
     validate(options_);
-    // --checkpoint F --resume F with no F yet: the first run of a job that is
-    // restarted with the same command line.
-    if (!options_.resume.empty() && options_.resume == options_.path && ::access(options_.path.c_str(), F_OK) != 0 &&
-        errno == ENOENT)
-        options_.resume.clear();
+    if (!options_.path.empty()) check_path();
     if (!options_.resume.empty()) read(options_.resume);
     last_write_ = std::chrono::steady_clock::now();
-    if (writes()) write();
+    if (!writes()) return;
+    // At once, so that a path that cannot be written fails before any work.
+    try {
+        store();
+    } catch (const std::system_error& e) {
+        refuse_path(cannot_write(options_.path, e.code().value()));
+    }
+}
+
+void RunJournal::check_path() {
+    using Kind = detail::FileTarget::Kind;
+    const std::string& p = options_.path;
+    const detail::FileTarget t = detail::resolve_target(p);
+    if (t.error) refuse_path(cannot_write(p, t.error));
+    if (t.kind == Kind::directory) refuse_path("'" + p + "' is a directory");
+    // A checkpoint is replaced whole at every write: renaming a file over a
+    // device, a FIFO or a socket would destroy it (as root, /dev/null for
+    // every program), and writing through one would keep nothing to resume.
+    if (t.kind != Kind::regular && t.kind != Kind::missing)
+        refuse_path("'" + p + "' is " + detail::describe(t.kind) + ", not a regular file; a checkpoint must be one");
+    // Replacing a file one may not write would bypass its permissions.
+    if (t.exists() && ::faccessat(AT_FDCWD, t.path.c_str(), W_OK, AT_EACCESS) != 0)
+        refuse_path(cannot_write(p, errno));
+    target_ = t.path; // a link stays a link: its target is what gets replaced
+    if (!options_.resume.empty()) {
+        const detail::FileTarget r = detail::resolve_target(options_.resume);
+        if (!r.error && detail::same_file(t, r)) {
+            // --checkpoint F --resume F with no F yet: the first run of a job
+            // that is restarted with the same command line.
+            if (!t.exists()) options_.resume.clear();
+            return;
+        }
+    }
+    if (!t.exists() || t.size == 0) return; // nothing in it to lose
+    // Whatever is there would be overwritten at the first write: refused
+    // unless it is a checkpoint of this very run, whose loss costs only time.
+    std::ifstream in(t.path, std::ios::binary);
+    std::string head(4096, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    const std::string keep = "; refusing to overwrite it: remove it or choose another path";
+    if (head.find(format_marker()) == std::string::npos)
+        refuse_path("'" + p + "' exists and is not a stickslip checkpoint" + keep);
+    std::deque<Call> calls;
+    const std::string why = load(t.path, calls);
+    if (!why.empty()) refuse_path("'" + p + "' holds a checkpoint that is not this run's (" + why + ")" + keep);
+    if (options_.resume.empty() && writes())
+        warn("'" + p + "' holds a checkpoint of this same run, which now starts afresh and overwrites it (--resume " +
+             p + " would continue it)");
+}
+
+void RunJournal::warn(const std::string& line) const {
+    if (options_.warn) options_.warn(line);
+    else std::fprintf(stderr, "stickslip: warning: checkpoint: %s\n", line.c_str());
 }
 
 RunJournal::Call& RunJournal::begin_call(std::uint64_t samples, std::uint64_t first_index, std::size_t words) {
@@ -167,9 +204,22 @@ void RunJournal::updated() {
 
 void RunJournal::write() {
     if (!writes()) return;
-    write_atomically(options_.path, serialise());
+    // A checkpoint is insurance, not the result: a write that fails (a full
+    // disk, a folder gone) is said once, and the run goes on to its result.
+    try {
+        store();
+        if (failing_) warn("'" + options_.path + "' written again");
+        failing_ = false;
+    } catch (const std::system_error& e) {
+        if (!failing_)
+            warn(cannot_write(options_.path, e.code().value()) +
+                 "; the run goes on (its result is unaffected) without checkpoints until a write succeeds");
+        failing_ = true;
+    }
     last_write_ = std::chrono::steady_clock::now();
 }
+
+void RunJournal::store() { detail::write_file_atomically(target_, serialise()); }
 
 std::string RunJournal::serialise() const {
     json j;
@@ -197,39 +247,44 @@ std::string RunJournal::serialise() const {
 }
 
 void RunJournal::read(const std::string& file) {
+    const std::string why = load(file, calls_);
+    if (!why.empty()) refuse(file, why);
+}
+
+std::string RunJournal::load(const std::string& file, std::deque<Call>& calls) const {
     std::ifstream in(file, std::ios::binary);
-    if (!in) refuse(file, std::strerror(errno));
+    if (!in) return std::strerror(errno);
     std::stringstream buf;
     buf << in.rdbuf();
     const std::string text = buf.str();
-    if (text.find(std::string("\"format\": \"") + kFormat + "\"") == std::string::npos)
-        refuse(file, text.empty() ? "the file is empty" : "not a stickslip checkpoint");
+    if (text.find(format_marker()) == std::string::npos)
+        return text.empty() ? "the file is empty" : "not a stickslip checkpoint";
     json j;
     try {
         j = json::parse(text);
     } catch (const json::exception&) {
-        refuse(file, "the file is truncated or corrupted (not valid JSON)");
+        return "the file is truncated or corrupted (not valid JSON)";
     }
     try {
         const std::string sum = j.at("checksum").get<std::string>();
         j.erase("checksum");
-        if (sum != hex64(fnv1a(j.dump()))) refuse(file, "the file is corrupted (checksum mismatch)");
+        if (sum != hex64(fnv1a(j.dump()))) return "the file is corrupted (checksum mismatch)";
         if (j.at("format_version").get<int>() != kFormatVersion)
-            refuse(file, "checkpoint format version " + std::to_string(j.at("format_version").get<int>()) +
-                             ", this program reads version " + std::to_string(kFormatVersion));
+            return "checkpoint format version " + std::to_string(j.at("format_version").get<int>()) +
+                   ", this program reads version " + std::to_string(kFormatVersion);
         const std::string prog = j.at("program").get<std::string>();
-        if (prog != version_line()) refuse(file, "written by " + prog + ", this is " + version_line());
+        if (prog != version_line()) return "written by " + prog + ", this is " + version_line();
         const std::string cmd = j.at("command").get<std::string>();
-        if (cmd != command_) refuse(file, "it is a checkpoint of `stickslip " + cmd + "`, not of `" + command_ + "`");
+        if (cmd != command_) return "it is a checkpoint of `stickslip " + cmd + "`, not of `" + command_ + "`";
         const json& s = j.at("settings");
         for (const auto& [k, v] : settings_) {
-            if (!s.contains(k)) refuse(file, "it has no setting " + k);
+            if (!s.contains(k)) return "it has no setting " + k;
             const std::string there = s.at(k).get<std::string>();
             if (there != v)
-                refuse(file, "written with " + k + " = " + (there.empty() ? "(unset)" : there) + ", this run has " +
-                                 k + " = " + (v.empty() ? "(unset)" : v));
+                return "written with " + k + " = " + (there.empty() ? "(unset)" : there) + ", this run has " + k +
+                       " = " + (v.empty() ? "(unset)" : v);
         }
-        if (s.size() != settings_.size()) refuse(file, "it has settings this program does not know");
+        if (s.size() != settings_.size()) return "it has settings this program does not know";
         for (const json& e : j.at("calls")) {
             Call c;
             c.samples = e.at("samples").get<std::uint64_t>();
@@ -238,12 +293,13 @@ void RunJournal::read(const std::string& file) {
             c.complete = e.at("complete").get<bool>();
             c.counts = e.at("counts").get<std::vector<std::uint64_t>>();
             if (!decode_words(e.at("words").get<std::string>(), c.words))
-                refuse(file, "the file is corrupted (bad sums)");
-            calls_.push_back(std::move(c));
+                return "the file is corrupted (bad sums)";
+            calls.push_back(std::move(c));
         }
     } catch (const json::exception&) {
-        refuse(file, "the file is corrupted (a field is missing or of the wrong type)");
+        return "the file is corrupted (a field is missing or of the wrong type)";
     }
+    return "";
 }
 
 } // namespace stickslip

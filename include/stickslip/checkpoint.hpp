@@ -21,8 +21,16 @@
 // a checksum covers the rest. --resume refuses, with one line saying what
 // differs, a file that is not a checkpoint, is truncated or corrupted, comes
 // from another format or program version, or from other settings. It is
-// written atomically (a temporary file renamed over it), by the first process
-// of a distributed run only.
+// written atomically (detail/atomic_file.hpp: a temporary in its folder,
+// unnamed where the system allows, renamed over it), by the first process of
+// a distributed run only.
+//
+// Nothing at the path is destroyed: a link's target is what gets written, a
+// device, FIFO, socket or directory is refused, and so is an existing file
+// that is not a checkpoint of this very run (another run's saved work), unless
+// it is the file --resume continues. A write that fails during the run (a full
+// disk) is a warning, not the end of the run: the checkpoint is insurance, the
+// result is what was asked for.
 #pragma once
 
 /// \file
@@ -33,6 +41,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -48,11 +57,19 @@ struct CheckpointOptions {
     std::string path;    ///< write the run's state here ("" = no checkpoints)
     double every = 60.0; ///< seconds between writes (and one at the end)
     std::string resume;  ///< continue the run whose state is in this file ("" = start afresh)
+    /// Called with one line (naming the path, not the front end's option)
+    /// when a write fails during the run (once, until a write succeeds again,
+    /// which is said too) and when a run starts afresh over a checkpoint of
+    /// its own; empty: the line goes to stderr as "stickslip: warning:
+    /// checkpoint: LINE".
+    std::function<void(const std::string&)> warn;
 
     /// Help text of the `path` option (--checkpoint FILE, checkpoint=).
     static constexpr const char* path_help =
         "write the run's state to FILE (atomically) every --checkpoint-every seconds and at the end, so that "
-        "--resume FILE can continue it after a kill; the resumed result is identical to an uninterrupted run's";
+        "--resume FILE can continue it after a kill; the resumed result is identical to an uninterrupted run's. "
+        "FILE must be a regular file or a new one (a symlink's target is written), and an existing FILE must be "
+        "a checkpoint of this same run or the --resume file; a write that fails during the run is a warning";
     /// Help text of the `every` option (--checkpoint-every).
     static constexpr const char* every_help = "seconds between checkpoint writes (> 0)";
     /// Help text of the `resume` option (--resume FILE, resume=).
@@ -91,10 +108,13 @@ public:
 
     /// A journal for `command` with these settings; `options.path` empty: keep
     /// the state in memory only (nothing is written). Validates the options
-    /// (InvalidParameter "checkpoint-every"), reads `options.resume` when given
-    /// (InvalidParameter "resume" with one line when it cannot be used), and
-    /// writes a first checkpoint at once, so that a path that cannot be written
-    /// fails before any work (std::runtime_error).
+    /// (InvalidParameter "checkpoint-every"), checks `options.path`
+    /// (InvalidParameter "checkpoint": a directory, a device, FIFO or socket,
+    /// a file that is neither a checkpoint of this run nor the resume file),
+    /// reads `options.resume` when given (InvalidParameter "resume" with one
+    /// line when it cannot be used), and writes a first checkpoint at once, so
+    /// that a path that cannot be written fails before any work
+    /// (InvalidParameter "checkpoint").
     RunJournal(std::string command, std::vector<std::pair<std::string, std::string>> settings,
                CheckpointOptions options, unsigned rank = 0);
 
@@ -103,7 +123,9 @@ public:
     Call& begin_call(std::uint64_t samples, std::uint64_t first_index, std::size_t words);
     /// After a round: the call's state changed; writes the file when due.
     void updated();
-    /// Writes the file now (at the end of a run, or when interrupted).
+    /// Writes the file now (at the end of a run, or when interrupted). A
+    /// failure does not throw: it is a warning (CheckpointOptions::warn) and
+    /// the run goes on.
     void write();
 
     /// Seconds between writes (the block driver's rounds are no longer).
@@ -118,12 +140,19 @@ public:
     std::string serialise() const;
 
 private:
+    void check_path();
     void read(const std::string& file);
+    /// Reads `file` into `calls`; "" or why it cannot continue this run.
+    std::string load(const std::string& file, std::deque<Call>& calls) const;
+    void store();
+    void warn(const std::string& line) const;
 
     std::string command_;
     std::vector<std::pair<std::string, std::string>> settings_;
     CheckpointOptions options_;
+    std::string target_; ///< options_.path with its links followed
     unsigned rank_;
+    bool failing_ = false; ///< the last write failed
     std::deque<Call> calls_;
     std::size_t next_ = 0;
     std::chrono::steady_clock::time_point last_write_;

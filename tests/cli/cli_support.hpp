@@ -85,6 +85,31 @@ struct Scratch {
     Scratch& operator=(const Scratch&) = delete;
 };
 
+/// True once process `pid` holds a file open in `dir` (its output's or a
+/// checkpoint's temporary, which has no name where the system allows:
+/// /proc/PID/fd shows it as "DIR/#INODE (deleted)"); false if the process
+/// ended first or nothing appeared within `seconds`.
+inline bool holds_file_in(pid_t pid, const std::string& dir, double seconds = 30) {
+    char* real = ::realpath(dir.c_str(), nullptr);
+    const std::string prefix = std::string(real ? real : dir.c_str()) + "/";
+    std::free(real);
+    const std::string fds = "/proc/" + std::to_string(pid) + "/fd";
+    for (int waited_ms = 0; waited_ms < seconds * 1000; waited_ms += 5) {
+        for (const auto& fd : list_dir(fds)) {
+            char buf[4096];
+            const ssize_t n = ::readlink((fds + "/" + fd).c_str(), buf, sizeof buf);
+            if (n > 0 && std::string(buf, static_cast<std::size_t>(n)).compare(0, prefix.size(), prefix) == 0)
+                return true;
+        }
+        // Ended (a zombie, left for the caller to reap) or gone.
+        const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
+        const auto paren = stat.rfind(')');
+        if (paren == std::string::npos || paren + 2 >= stat.size() || stat[paren + 2] == 'Z') return false;
+        ::usleep(5000);
+    }
+    return false;
+}
+
 inline std::string temp_file(const char* tag) {
     std::string dir = ::testing::TempDir();
     if (dir.empty()) dir = "/tmp/";

@@ -2,9 +2,9 @@
 // End-to-end tests of what --output writes to when FILE is not a plain new
 // file: a FIFO, a device, /dev/stdout, a symlink chain, an existing file with
 // its own mode and owner, and a run ended by a signal or by an error. The rule
-// they check: a regular file is replaced atomically (the temporary beside the
-// real target, its mode and owner kept, nothing left behind whatever ends the
-// run); anything else is written through and stays what it was.
+// they check: a regular file is replaced atomically (the temporary in the
+// real target's folder, its mode and owner kept, nothing left behind whatever
+// ends the run); anything else is written through and stays what it was.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -413,18 +413,9 @@ std::optional<int> wait_for_exit(pid_t pid, double seconds) {
     return std::nullopt;
 }
 
-/// Waits until the run has opened DIR/out.json.tmp.PID (it does so before any
-/// work), or the process has ended.
-bool wait_for_temporary(const std::string& dir, pid_t pid) {
-    const std::string temp = "out.json.tmp." + std::to_string(pid);
-    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while (std::chrono::steady_clock::now() < end) {
-        const auto names = list_dir(dir);
-        if (std::find(names.begin(), names.end(), temp) != names.end()) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
-}
+/// Waits until the run has opened its temporary in DIR (it does so before
+/// any work), or the process has ended.
+bool wait_for_temporary(const std::string& dir, pid_t pid) { return holds_file_in(pid, dir); }
 
 struct Sig {
     int number;
@@ -442,8 +433,9 @@ void PrintTo(const Sig& s, std::ostream* os) { *os << "SIG" << s.name; }
 class CliOutputSignal : public ::testing::TestWithParam<Sig> {};
 
 // Guards each catchable terminating signal (the old handler knew only SIGINT
-// and SIGTERM): the temporary is removed, and the process still dies by that
-// very signal, as a parent (a shell, a batch system) expects.
+// and SIGTERM): the temporary is removed (or never had a name), and the
+// process still dies by that very signal, as a parent (a shell, a batch
+// system) expects.
 TEST_P(CliOutputSignal, LeavesNoTemporaryAndDiesByTheSignal) {
     const int sig = GetParam().number;
     const Scratch scratch("signal");

@@ -217,14 +217,17 @@ DryCommand add_dry(CLI::App& app, Result (*)(const Request&)) {
                     return o;
                 }
                 try {
+                    if constexpr (resumable<Request>()) cli::refuse_shared_paths(state->output, state->checkpoint);
                     cli::Output out(state->output); // opens (and, leaving, removes) the temporary
                     if constexpr (resumable<Request>()) {
                         try {
-                            const std::unique_ptr<RunJournal> journal = make_journal(state->request, state->checkpoint);
+                            CheckpointOptions quiet = state->checkpoint;
+                            quiet.warn = [](const std::string&) {}; // the real run's stderr is the one checked
+                            const std::unique_ptr<RunJournal> journal = make_journal(state->request, quiet);
                         } catch (const InvalidParameter&) {
-                            throw;
+                            throw; // an unwritable checkpoint path included: exit 2
                         } catch (const std::runtime_error&) {
-                            o.expect = Expect::io_error; // a checkpoint that cannot be written: exit 1
+                            o.expect = Expect::io_error;
                             return o;
                         }
                     }
