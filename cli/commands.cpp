@@ -42,7 +42,7 @@ cannot be created included), 3 untrustworthy run (runaway excursions, or every
 excursion shorter than one step),
 130/143 stopped by SIGINT/SIGTERM: the first signal lets the blocks in flight
 finish and writes the result so far (marked "interrupted") and the checkpoint;
-a second aborts. --checkpoint FILE saves a run every --checkpoint-every
+a second one, a second or more later, aborts. --checkpoint FILE saves a run every --checkpoint-every
 seconds; --resume FILE continues it, with a result identical to an
 uninterrupted run's.
 

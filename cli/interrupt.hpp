@@ -4,7 +4,9 @@
 // block is started, the blocks in flight finish, and the command writes the
 // result of the prefix of blocks completed, marked "interrupted", and the
 // checkpoint if one was asked for; it then exits 128 + the signal (130 for
-// SIGINT, 143 for SIGTERM). A second signal aborts at once: the temporary
+// SIGINT, 143 for SIGTERM). A second signal at least a second after the
+// first aborts at once (one within the second is the same request delivered
+// again, to the process and to its group, as GNU timeout does): the temporary
 // output file is removed and the process dies by that signal, leaving no
 // partial file.
 #pragma once
