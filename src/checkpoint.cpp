@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include "stickslip/number_text.hpp"
 #include "stickslip/version.hpp"
 
 namespace stickslip {
@@ -33,11 +34,7 @@ std::uint64_t fnv1a(const std::string& s) {
     return h;
 }
 
-std::string hex64(std::uint64_t x) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
-    return buf;
-}
+std::string hex64(std::uint64_t x) { return number_text::hex(x, 16); }
 
 // The exact sums are mostly zero words: a run of k zero words is written
 // "zK.", any other word as 16 hex digits.

@@ -3,6 +3,7 @@
 #include "stickslip/params.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace stickslip {
 
@@ -60,6 +61,13 @@ void validate(const ModelParams& p) {
     if (std::isnan(p.relaxation) || p.relaxation <= 0)
         throw InvalidParameter("relaxation",
                                "relaxation must be > 0 (s) or inf (no viscous drag), got " + detail::format_number(p.relaxation));
+    // A subnormal relaxation time makes 1/relaxation infinite and the
+    // automatic step zero: refused here, by name, rather than blamed on --dt.
+    if (p.relaxation < std::numeric_limits<double>::min())
+        throw InvalidParameter("relaxation", "relaxation must be at least " +
+                                                 detail::format_number(std::numeric_limits<double>::min()) +
+                                                 " s (the smallest normal double) or inf, got " +
+                                                 detail::format_number(p.relaxation));
     if (!std::isfinite(p.bias))
         throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + detail::format_number(p.bias));
     // Products that overflow would make every later formula meaningless.
