@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <iostream>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -17,6 +18,8 @@
 #include <unistd.h>
 
 #include "distributed.hpp"
+#include "setting_flags.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/setting.hpp"
 
 namespace stickslip::cli {
@@ -30,8 +33,10 @@ void add_output_flags(CLI::App* app, OutputFlags& o) {
                     "renamed into place: nothing left behind on failure, mode and owner kept, a symlink's target "
                     "replaced), a device, FIFO or /dev/stdout written directly")
         ->type_name("FILE");
-    app->add_flag("--quiet", o.quiet, "no progress line on stderr");
+    o.quiet_flag = app->add_flag("--quiet")->description("no progress line on stderr");
 }
+
+void read_output_flags(OutputFlags& o) { o.quiet = o.quiet_flag && flag_value(*o.quiet_flag, "quiet"); }
 
 namespace {
 
@@ -110,8 +115,9 @@ int descriptor_alias(const std::string& p) {
           "/proc/" + std::to_string(::getpid()) + "/fd/"}) {
         if (p.compare(0, prefix.size(), prefix) != 0) continue;
         const std::string n = p.substr(prefix.size());
-        if (n.empty() || n.size() > 9 || n.find_first_not_of("0123456789") != std::string::npos) return -1;
-        return std::stoi(n);
+        const std::optional<std::uint64_t> fd = number_text::read_unsigned(n);
+        if (!fd || *fd > 999'999'999) return -1;
+        return static_cast<int>(*fd);
     }
     return -1;
 }

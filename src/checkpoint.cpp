@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "stickslip/number_text.hpp"
@@ -194,6 +195,10 @@ std::string RunJournal::serialise() const {
 }
 
 void RunJournal::read(const std::string& file) {
+    // A directory opens, and reads as an empty file.
+    struct stat st {};
+    if (::stat(file.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+        refuse(file, "it is a directory, not a checkpoint file");
     std::ifstream in(file, std::ios::binary);
     if (!in) refuse(file, std::strerror(errno));
     std::stringstream buf;

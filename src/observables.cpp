@@ -646,7 +646,9 @@ PreparedEngine prepare_request(const TransientRequest& req_in) {
         throw InvalidParameter("v0", "v0 = " + detail::format_number(req.v0) +
                                          " m/s: the moments would overflow double precision (E[V^2] ~ v0^2); |v0| "
                                          "must be at most 1e100, in m/s and in units of noise/friction");
-    if (req.with_density) check_bins(req.bins);
+    // Checked without --density too: a setting given is checked whether or
+    // not this run uses it, as every other setting is.
+    check_bins(req.bins);
     const std::vector<double> times = transient_times(req);
     if (req.with_density && static_cast<double>(times.size()) * (req.bins.count + 3) > 2e6)
         throw InvalidParameter("bins", "times x bins must be at most 2e6 for --density (use fewer times or bins)");
@@ -820,7 +822,7 @@ PreparedEngine prepare_request(const TrajectoryRequest& req_in) {
     PreparedEngine engine = prepare_engine(req.params, req.engine);
     check_run_control(req.control);
     if (req.paths > 1000) throw InvalidParameter("paths", "paths must be at most 1000");
-    if (req.paths > 0 && (!std::isfinite(req.horizon) || req.horizon <= 0))
+    if (!std::isfinite(req.horizon) || req.horizon <= 0) // in excursion mode too (unused, but checked)
         throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + detail::format_number(req.horizon));
     if (!std::isfinite(req.every) || req.every < 0)
         throw InvalidParameter("every", "every must be a finite number >= 0 (s), got " + detail::format_number(req.every));

@@ -65,7 +65,7 @@ void validate(const ModelParams& p) {
     // automatic step zero: refused here, by name, rather than blamed on --dt.
     if (p.relaxation < std::numeric_limits<double>::min())
         throw InvalidParameter("relaxation", "relaxation must be at least " +
-                                                 detail::format_number(std::numeric_limits<double>::min()) +
+                                                 format_setting(std::numeric_limits<double>::min()) +
                                                  " s (the smallest normal double) or inf, got " +
                                                  detail::format_number(p.relaxation));
     if (!std::isfinite(p.bias))

@@ -3,12 +3,12 @@
 // request, requests.cpp): attributes as NumPy arrays and Estimates, and the
 // CLI's renderings (to_dict() is the CLI's JSON).
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "bindings.hpp"
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
 #include "stickslip/sweep.hpp"
@@ -74,11 +74,7 @@ void add_long_excursion(Cls& cls, Get get) {
 
 EstimateSeries series(const std::vector<Estimate>& v, double level) { return EstimateSeries{v, level}; }
 
-std::string g4(double x) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.4g", x);
-    return buf;
-}
+std::string g4(double x) { return number_text::general(x, 4); }
 
 std::string estimate_short(const Estimate& e) { return g4(e.value) + " +- " + g4(e.std_error); }
 
