@@ -114,6 +114,7 @@ ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
     work[s.engine == Engine::Pdmp ? "events" : "steps"] = t.work;
     work["seconds"] = t.seconds;
     work["threads"] = t.threads;
+    if (!t.threads_from.empty()) work["threads_from"] = t.threads_from; // docs/guide.md, "Threads"
     if (t.resumed) work["resumed_samples"] = t.resumed; // restored from a checkpoint
     return work;
 }
