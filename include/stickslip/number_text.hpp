@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 
+/// Locale-independent reading and writing of numbers (number_text.hpp).
 namespace stickslip::number_text {
 
 /// @name Reading
