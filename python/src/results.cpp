@@ -50,6 +50,10 @@ void add_totals(Cls& cls) {
         .def_property_readonly(
             "threads", [](const R& r) { return r.totals.threads; }, "worker threads used")
         .def_property_readonly(
+            "threads_from", [](const R& r) { return r.totals.threads_from; },
+            "how the thread count was chosen: 'option' (threads=N), else 'hardware', 'affinity', 'cpu-quota' or "
+            "'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the blocks were fewer")
+        .def_property_readonly(
             "interrupted", [](const R& r) { return r.totals.interrupted; },
             "True when the run was stopped early (Ctrl-C): the result is of the blocks completed, in index order")
         .def_property_readonly(
