@@ -19,6 +19,7 @@
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/checkpoint.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
 #include "stickslip/sweep.hpp"
@@ -69,16 +70,27 @@ struct ProgressLabel {
     bool with_estimate = false;
 };
 
-/// A subcommand for `Request`: the flags of its settings, --format/--output/
-/// --quiet, and the run. `customise(request, quiet)`, when given, is called
-/// just before computing (the sweep sets its per-point progress there).
 /// --checkpoint, --checkpoint-every, --resume (help texts from the library).
-void add_checkpoint_flags(CLI::App* app, CheckpointOptions& o) {
-    app->add_option("--checkpoint", o.path, CheckpointOptions::path_help)->type_name("FILE");
+struct CheckpointFlags {
+    CheckpointOptions options;
+    std::string every; ///< as given: read like every other number (CLI11 would take hexadecimal)
+};
+
+void add_checkpoint_flags(CLI::App* app, CheckpointFlags& o) {
+    app->add_option("--checkpoint", o.options.path, CheckpointOptions::path_help)->type_name("FILE");
     app->add_option("--checkpoint-every", o.every, CheckpointOptions::every_help)
         ->type_name("SECONDS")
-        ->capture_default_str();
-    app->add_option("--resume", o.resume, CheckpointOptions::resume_help)->type_name("FILE");
+        ->default_str(format_setting(o.options.every));
+    app->add_option("--resume", o.options.resume, CheckpointOptions::resume_help)->type_name("FILE");
+}
+
+/// The checkpoint options, --checkpoint-every read and every option checked
+/// (whether or not a checkpoint is asked for).
+const CheckpointOptions& read_checkpoint_flags(CheckpointFlags& o) {
+    if (!o.every.empty())
+        parse_setting(SettingInfo{"checkpoint-every", "s", CheckpointOptions::every_help}, o.every, o.options.every);
+    validate(o.options);
+    return o.options;
 }
 
 /// The run's journal (make_journal) with the command's warning lines. Only
@@ -120,7 +132,7 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
         Request request;
         SettingFlags flags;
         OutputFlags output;
-        CheckpointOptions checkpoint;
+        CheckpointFlags checkpoint;
     };
     auto state = std::make_shared<State>();
     const std::string command = Request::command;
@@ -131,13 +143,19 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
     sub->footer(kConventions);
     return {sub, [state, compute, progress, customise, command] {
                 state->flags.apply();
+                read_output_flags(state->output);
+                Request& req = state->request;
+                if constexpr (resumable<Request>()) read_checkpoint_flags(state->checkpoint);
                 if (state->flags.print_config()) {
-                    if (is_root()) std::cout << state->flags.config_text(command) << std::flush;
+                    // Checked as the run would check them: a config file
+                    // that cannot run is refused now, not when it is used.
+                    validate(static_cast<const Request&>(req));
+                    Output out(state->output);
+                    out.commit(state->flags.config_text(command), {});
                     return;
                 }
-                if constexpr (resumable<Request>()) refuse_shared_paths(state->output, state->checkpoint);
+                if constexpr (resumable<Request>()) refuse_shared_paths(state->output, state->checkpoint.options);
                 Output out(state->output);
-                Request& req = state->request;
                 if constexpr (std::is_base_of_v<RunSettings, Request>) {
                     distribute(req.control);
                     if (progress.samples)
@@ -149,7 +167,7 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                 }
                 if constexpr (resumable<Request>()) {
                     req.control.stop = StopOnSignals::flag();
-                    const std::unique_ptr<RunJournal> journal = open_journal(req, state->checkpoint);
+                    const std::unique_ptr<RunJournal> journal = open_journal(req, state->checkpoint.options);
                     req.control.journal = journal.get();
                     if (customise) customise(req, state->output.quiet);
                     try {
@@ -169,9 +187,9 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
 
 void sweep_progress(SweepRequest& req, bool quiet) {
     req.point_progress = [quiet](std::size_t k, std::size_t n, double noise, double tau) {
-        char what[160];
-        std::snprintf(what, sizeof what, "excursions (point %zu/%zu: noise %g, tau %g)", k + 1, n, noise, tau);
-        return progress_line(quiet, what);
+        return progress_line(quiet, "excursions (point " + std::to_string(k + 1) + "/" + std::to_string(n) +
+                                        ": noise " + number_text::general(noise) + ", tau " +
+                                        number_text::general(tau) + ")");
     };
 }
 

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "distributed.hpp"
+#include "setting_flags.hpp"
 #include "stickslip/detail/atomic_file.hpp"
 #include "stickslip/setting.hpp"
 
@@ -33,8 +34,10 @@ void add_output_flags(CLI::App* app, OutputFlags& o) {
                     "renamed into place: nothing left behind on failure or kill, mode and owner kept, a symlink's "
                     "target replaced), a device, FIFO or /dev/stdout written directly")
         ->type_name("FILE");
-    app->add_flag("--quiet", o.quiet, "no progress line on stderr");
+    o.quiet_flag = app->add_flag("--quiet")->description("no progress line on stderr");
 }
+
+void read_output_flags(OutputFlags& o) { o.quiet = o.quiet_flag && flag_value(*o.quiet_flag, "quiet"); }
 
 namespace {
 

@@ -26,10 +26,14 @@ namespace stickslip::cli {
 struct OutputFlags {
     std::string format = "table";
     std::string output;
-    bool quiet = false;
+    bool quiet = false;                 ///< known after read_output_flags()
+    CLI::Option* quiet_flag = nullptr; ///< --quiet, read as every boolean flag (setting_flags.hpp)
 };
 
 void add_output_flags(CLI::App* app, OutputFlags& o);
+/// After parsing: sets `quiet` from --quiet (InvalidParameter "quiet" for a
+/// value that is not a boolean's).
+void read_output_flags(OutputFlags& o);
 
 /// Validates --format and --output before any work starts (so a bad path
 /// fails in a second, not after an hour); for a regular file it opens the

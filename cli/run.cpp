@@ -99,13 +99,14 @@ int run_command(int argc, char** argv) {
             std::string names;
             for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
                 names += (names.empty() ? "" : ", ") + sub->get_name();
-            return report(kExitBadInput, "error: unknown subcommand '" + std::string(argv[1]) + "'; one of: " +
+            return report(kExitBadInput, "error: unknown subcommand '" + printable_text(argv[1]) + "'; one of: " +
                                              names + " (see --help)");
         }
         std::string msg = e.what();
         for (auto& ch : msg)
             if (ch == '\n') ch = ' ';
-        return report(kExitBadInput, "error: " + msg + flag_suggestion(app, argc, argv) + " (see --help)");
+        return report(kExitBadInput,
+                      "error: " + printable_text(msg) + flag_suggestion(app, argc, argv) + " (see --help)");
     }
 
     // Bad input and capped runs are found by every process alike (validation

@@ -4,11 +4,67 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
 #include <sys/stat.h>
 
+#include "stickslip/number_text.hpp"
 #include "stickslip/version.hpp"
 
 namespace stickslip::cli {
+
+bool flag_value(const CLI::Option& option, const char* name) {
+    if (option.count() == 0) return false;
+    // CLI11 keeps what followed '=' as given ("true" for the flag alone); read
+    // it as any other boolean setting rather than let any value turn it on.
+    const std::vector<std::string>& given = option.results();
+    bool value = true;
+    parse_setting(SettingInfo{name, "", ""}, given.empty() ? std::string("true") : given.back(), value);
+    return value;
+}
+
+namespace {
+
+/// Line and column (from 1) of byte `at` of `text`.
+std::string place(const std::string& text, std::size_t at) {
+    std::size_t line = 1, column = 1;
+    for (std::size_t k = 0; k < at; ++k) {
+        if (text[k] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+/// Refuses what is not a plain UTF-8 text file, with a message that names the
+/// problem and its place and quotes none of the bytes: CLI11's TOML reader
+/// would otherwise pass a BOM into the first key's name, stop at a NUL, or echo
+/// binary garbage into the error line.
+void check_text(const std::string& path, const std::string& text) {
+    if (text.rfind("\xEF\xBB\xBF", 0) == 0)
+        throw InvalidParameter("config", "'" + path +
+                                             "' starts with a byte-order mark (BOM); save it as UTF-8 without one");
+    for (std::size_t k = 0; k < text.size();) {
+        const auto c = static_cast<unsigned char>(text[k]);
+        if (c == 0)
+            throw InvalidParameter("config", "'" + path + "' contains a NUL byte (" + place(text, k) +
+                                                 "): not a text settings file");
+        if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f)
+            throw InvalidParameter("config", "'" + path + "' is not a text settings file: control byte 0x" +
+                                                 number_text::hex(c, 2) + " at " + place(text, k));
+        const std::size_t n = utf8_sequence_length(std::string_view(text).substr(k));
+        if (n == 0)
+            throw InvalidParameter("config", "'" + path + "' is not a text settings file: invalid UTF-8 at " +
+                                                 place(text, k));
+        k += n;
+    }
+}
+
+} // namespace
 
 void SettingFlags::register_options(CLI::App* app) {
     for (Setting& s : settings_) {
@@ -16,7 +72,8 @@ void SettingFlags::register_options(CLI::App* app) {
         if (*s.info.unit) help += " [" + std::string(s.info.unit) + "]";
         const std::string flag = "--" + std::string(s.info.name);
         if (s.kind == Kind::Flag) {
-            s.option = app->add_flag(flag)->description(help);
+            s.option = app->add_flag(flag)->description(help + " (also --" + std::string(s.info.name) +
+                                                         "=true|false)");
         } else {
             s.option = app->add_option(flag, s.text, help)->type_name(s.form);
             if (!s.default_text.empty()) s.option->default_str(s.default_text);
@@ -26,9 +83,11 @@ void SettingFlags::register_options(CLI::App* app) {
                               "read the settings from FILE (TOML: one `key = value` per line, keys spelled as the "
                               "flags without '--'; what --print-config writes); flags given here override it")
                   ->type_name("FILE");
-    app->add_flag("--print-config", print_config_,
-                  "print the effective settings of this command (every setting, defaults included, with units) in "
-                  "--config form, and exit");
+    print_config_option_ =
+        app->add_flag("--print-config")
+            ->description("print the effective settings of this command (every setting, defaults included, with "
+                          "units) in --config form, to stdout or --output, after checking them as a run would, and "
+                          "exit");
 }
 
 SettingFlags::Setting* SettingFlags::find(const std::string& key) {
@@ -43,41 +102,55 @@ SettingFlags::Setting* SettingFlags::find(const std::string& key) {
 void SettingFlags::apply() {
     if (config_ && config_->count() > 0) {
         const std::string& path = config_path_;
-        std::ifstream in(path);
-        if (!in) throw InvalidParameter("config", "cannot read '" + path + "': " + std::strerror(errno));
+        std::ifstream file(path, std::ios::binary);
+        if (!file) throw InvalidParameter("config", "cannot read '" + path + "': " + std::strerror(errno));
         // A folder opens, and reads as an empty file: refuse it rather than
         // run the defaults (found by tests/fuzz/).
         struct stat st {};
         if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
             throw InvalidParameter("config", "cannot read '" + path + "': " + std::strerror(EISDIR));
+        const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+        check_text(path, text);
+        std::istringstream in(text);
         std::vector<CLI::ConfigItem> items;
         try {
             items = CLI::ConfigTOML().from_config(in);
         } catch (const CLI::Error& e) {
-            throw InvalidParameter("config", "'" + path + "' is not a settings file: " + e.what());
+            throw InvalidParameter("config", "'" + path + "' is not a settings file: " + printable_text(e.what()));
         }
+        std::set<std::string> seen;
         for (const CLI::ConfigItem& item : items) {
             if (item.name == "++" || item.name == "--") continue; // section markers
             if (!item.parents.empty())
-                throw InvalidParameter("config", "'" + path + "': sections ([" + item.parents.front() +
+                throw InvalidParameter("config", "'" + path + "': sections ([" + printable_text(item.parents.front()) +
                                                      "]) are not read; write one `key = value` per line");
             Setting* s = find(item.name);
-            if (!s) throw InvalidParameter("config", "'" + path + "': unknown setting '" + item.name + "'");
+            if (!s)
+                throw InvalidParameter("config", "'" + path + "': unknown setting '" + printable_text(item.name) + "'");
+            // Two lines for one setting: which one the user meant is unknowable
+            // (TOML itself forbids it).
+            if (!seen.insert(s->info.name).second)
+                throw InvalidParameter("config", "'" + path + "': setting '" + std::string(s->info.name) +
+                                                     "' is given more than once; keep one line for it");
             if (s->option->count() > 0) continue; // the command line overrides the file
-            std::string text;
+            std::string value;
             for (std::size_t k = 0; k < item.inputs.size(); ++k) {
-                if (k) text += ',';
-                text += item.inputs[k];
+                if (k) value += ',';
+                value += item.inputs[k];
             }
             try {
-                s->parse(text);
+                s->parse(value);
             } catch (const InvalidParameter& e) {
                 throw InvalidParameter(e.parameter(), std::string(e.what()) + " (in '" + path + "')");
             }
         }
     }
-    for (Setting& s : settings_)
-        if (s.option->count() > 0) s.parse(s.kind == Kind::Flag ? "true" : s.text);
+    for (Setting& s : settings_) {
+        if (s.option->count() == 0) continue;
+        if (s.kind == Kind::Flag) s.parse(flag_value(*s.option, s.info.name) ? "true" : "false");
+        else s.parse(s.text);
+    }
+    print_config_ = flag_value(*print_config_option_, "print-config");
 }
 
 std::string SettingFlags::config_text(const std::string& command) const {

@@ -18,6 +18,12 @@
 
 namespace stickslip::cli {
 
+/// The value of a boolean flag: false when absent, else the last value given
+/// (`--flag` alone is true; `--flag=false`, `=0`, `=no`, `=off` are false).
+/// Every boolean flag goes through here and parse_setting(bool), so they all
+/// take the same forms and refuse the same others (InvalidParameter `name`).
+bool flag_value(const CLI::Option& option, const char* name);
+
 /// The flags of one subcommand's request. add_to() registers them; after
 /// parsing, apply() fills the request: its defaults, then the config file,
 /// then the command line.
@@ -46,7 +52,8 @@ public:
     /// InvalidParameter names the setting, or "config" for the file itself.
     void apply();
 
-    /// True when --print-config was given.
+    /// True when --print-config was given (with no value, or a true one);
+    /// known after apply().
     bool print_config() const { return print_config_; }
     /// The effective settings as a config file: one `key = value  # [unit] help`
     /// line per setting, under a comment naming the command.
@@ -88,6 +95,7 @@ private:
     std::vector<Setting> settings_;
     std::function<std::vector<std::string>()> current_; ///< the request's settings as text, in order
     CLI::Option* config_ = nullptr;
+    CLI::Option* print_config_option_ = nullptr;
     std::string config_path_;
     bool print_config_ = false;
 };

@@ -43,7 +43,7 @@ def main():
     ap.add_argument("--engine", default="pdmp", choices=["pdmp", "inclusion"],
                     help="pdmp (exact, lattice noise; default) or inclusion (time stepping: the event scheme at its automatic step)")
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--threads", type=int, default=0, help="worker threads (0: all cores)")
+    ap.add_argument("--threads", type=int, default=0, help="worker threads (0: the CPUs this process may use)")
     args = ap.parse_args()
 
     fig2 = stickslip.Params()                  # friction 3.84, relaxation 0.067, bias 0.342 (SI)

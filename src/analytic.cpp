@@ -61,12 +61,12 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "format.hpp"
+#include "stickslip/number_text.hpp"
 
 namespace stickslip {
 
@@ -102,11 +102,7 @@ Real value(Exact x) { return static_cast<Real>(x.hi) + x.lo; }
 /// v - x, to the 64 bits of Real whatever |v| and |x| are.
 Real minus(double v, Exact x) { return (static_cast<Real>(v) - x.hi) - x.lo; }
 
-std::string text(Real x) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6Lg", x);
-    return buf;
-}
+std::string text(Real x) { return number_text::general(static_cast<long double>(x), 6); }
 
 void check(const ModelParams& p) {
     validate(p);

@@ -38,6 +38,7 @@
 #include "stickslip/params.hpp"
 #include "stickslip/rng.hpp"
 #include "stickslip/runner.hpp"
+#include "stickslip/threads.hpp"
 
 namespace stickslip::detail {
 
@@ -119,13 +120,15 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeBlock make_bloc
         throw InvalidParameter("excursions", "sample indices exceed 2^56");
     const std::uint64_t blocks = block_count(n);
     const unsigned ranks = ctl.ranks > 1 ? ctl.ranks : 1, rank = ranks > 1 ? ctl.rank : 0;
-    unsigned threads = ctl.threads ? ctl.threads : std::thread::hardware_concurrency();
+    const ThreadChoice chosen = ctl.threads ? ThreadChoice{ctl.threads, "option"} : default_threads();
     const std::uint64_t local_blocks = blocks > rank ? (blocks - rank + ranks - 1) / ranks : 0;
-    threads = static_cast<unsigned>(std::clamp<std::uint64_t>(local_blocks, 1, std::max(threads, 1u)));
+    const unsigned threads =
+        static_cast<unsigned>(std::clamp<std::uint64_t>(local_blocks, 1, std::max(chosen.threads, 1u)));
 
     RunTotals totals;
     totals.requested = n;
     totals.threads = threads;
+    totals.threads_from = chosen.from + (threads < chosen.threads ? "+blocks" : "");
     const Total empty = total;
     RoundSums<Total> done{{}, empty}; // the prefix [0, b0) of blocks, over every process
     std::uint64_t b0 = 0;

@@ -10,10 +10,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <system_error>
 #include <unistd.h>
 
 #include "stickslip/detail/atomic_file.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/version.hpp"
 
 namespace stickslip {
@@ -35,11 +37,7 @@ std::uint64_t fnv1a(const std::string& s) {
     return h;
 }
 
-std::string hex64(std::uint64_t x) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
-    return buf;
-}
+std::string hex64(std::uint64_t x) { return number_text::hex(x, 16); }
 
 // The exact sums are mostly zero words: a run of k zero words is written
 // "zK.", any other word as 16 hex digits.
@@ -252,6 +250,9 @@ void RunJournal::read(const std::string& file) {
 }
 
 std::string RunJournal::load(const std::string& file, std::deque<Call>& calls) const {
+    // A directory opens, and reads as an empty file.
+    struct stat st {};
+    if (::stat(file.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return "it is a directory, not a checkpoint file";
     std::ifstream in(file, std::ios::binary);
     if (!in) return std::strerror(errno);
     std::stringstream buf;

@@ -137,6 +137,7 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
         total.work += t.work;
         total.seconds += t.seconds;
         total.threads = t.threads;
+        total.threads_from = t.threads_from;
         total.resumed += t.resumed;
         total.interrupted = t.interrupted;
         ++outcome.batches;

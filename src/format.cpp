@@ -1,14 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "format.hpp"
 
-#include <cstdio>
+#include "stickslip/number_text.hpp"
 
 namespace stickslip::detail {
 
-std::string format_number(double x, int precision) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", precision, x);
-    return buf;
-}
+std::string format_number(double x, int precision) { return number_text::general(x, precision); }
 
 } // namespace stickslip::detail

@@ -6,8 +6,9 @@
 
 namespace stickslip::detail {
 
-/// x with `precision` significant digits, as printf's %g writes it ("0.0001",
-/// "2.5e+08", "inf", "nan").
+/// x with `precision` significant digits, as printf's %g writes it in the C
+/// locale ("0.0001", "2.5e+08", "inf", "nan"), whatever the process's locale:
+/// number_text::general under the name the reports have always used.
 std::string format_number(double x, int precision = 6);
 
 } // namespace stickslip::detail

@@ -640,7 +640,9 @@ PreparedEngine prepare_request(const TransientRequest& req_in) {
         if (!std::isfinite(t) || t < 0)
             throw InvalidParameter("times", "times must be finite and >= 0 (s), got " + detail::format_number(t));
     detail::check_start(req.params, req.x0, std::isnan(req.v0) ? 0.0 : req.v0);
-    if (req.with_density) check_bins(req.bins);
+    // Checked without --density too: a setting given is checked whether or
+    // not this run uses it, as every other setting is.
+    check_bins(req.bins);
     const std::vector<double> times = transient_times(req);
     if (req.with_density && static_cast<double>(times.size()) * (req.bins.count + 3) > 2e6)
         throw InvalidParameter("bins", "times x bins must be at most 2e6 for --density (use fewer times or bins)");
@@ -814,7 +816,7 @@ PreparedEngine prepare_request(const TrajectoryRequest& req_in) {
     PreparedEngine engine = prepare_engine(req.params, req.engine);
     check_run_control(req.control);
     if (req.paths > 1000) throw InvalidParameter("paths", "paths must be at most 1000");
-    if (req.paths > 0 && (!std::isfinite(req.horizon) || req.horizon <= 0))
+    if (!std::isfinite(req.horizon) || req.horizon <= 0) // in excursion mode too (unused, but checked)
         throw InvalidParameter("time", "time must be a finite number > 0 (s), got " + detail::format_number(req.horizon));
     if (!std::isfinite(req.every) || req.every < 0)
         throw InvalidParameter("every", "every must be a finite number >= 0 (s), got " + detail::format_number(req.every));

@@ -57,6 +57,8 @@
 #include <string>
 #include <utility>
 
+#include "stickslip/number_text.hpp"
+
 namespace stickslip {
 namespace {
 
@@ -404,12 +406,12 @@ Chain<T, 2> white_chain(double relaxation, double noise) {
 void require_positive(double x, const char* name) {
     if (!(std::isfinite(x) && x > 0))
         throw std::invalid_argument(std::string("phase law: ") + name + " must be positive and finite, got " +
-                                    std::to_string(x));
+                                    number_text::general(x));
 }
 
 void require_relaxation(double x) {
     if (!(x > 0)) // NaN fails too; +inf (no drag) passes
-        throw std::invalid_argument("phase law: relaxation must be positive or +inf, got " + std::to_string(x));
+        throw std::invalid_argument("phase law: relaxation must be positive or +inf, got " + number_text::general(x));
 }
 
 template <class T, int N>

@@ -2,10 +2,11 @@
 #include "report_common.hpp"
 
 #include <cmath>
-#include <cstdio>
+#include <locale>
 
 #include "format.hpp"
 #include "stickslip/report.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/version.hpp"
 
 namespace stickslip::detail {
@@ -114,6 +115,7 @@ ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
     work[s.engine == Engine::Pdmp ? "events" : "steps"] = t.work;
     work["seconds"] = t.seconds;
     work["threads"] = t.threads;
+    if (!t.threads_from.empty()) work["threads_from"] = t.threads_from; // docs/guide.md, "Threads"
     if (t.resumed) work["resumed_samples"] = t.resumed; // restored from a checkpoint
     return work;
 }
@@ -135,12 +137,18 @@ std::string dump(const ordered_json& j, int indent) { return j.dump(indent) + "\
 
 // ---- tables -------------------------------------------------------------------
 
+std::ostringstream report_stream() {
+    std::ostringstream os;
+    os.imbue(std::locale::classic()); // a host's global C++ locale must not group "10000" into "10.000"
+    return os;
+}
+
 std::string relaxation_text(double relaxation) {
     return std::isinf(relaxation) ? std::string("inf") : format_number(relaxation) + " s";
 }
 
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
        << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : (s.dt_auto && std::isnan(s.dt) ? std::string("dt auto, per point") : "dt " + format_number(s.dt) + " s" + (s.dt_auto ? " (auto)" : "")))
        << (s.engine != Engine::Inclusion ? std::string()
@@ -151,7 +159,7 @@ std::string engine_line(const char* what, const EngineSettings& s, const std::st
 }
 
 std::string param_line(const ModelParams& p, const EngineSettings& s) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "friction " << format_number(p.friction) << " m/s^2, noise " << format_number(p.noise) << " m^2/s^3, tau "
        << format_number(p.tau) << " s, relaxation " << relaxation_text(p.relaxation) << ", bias "
        << format_number(p.bias) << " m/s^2\n";
@@ -168,7 +176,7 @@ std::string param_line(const ModelParams& p, const EngineSettings& s) {
 
 std::string work_line(std::uint64_t samples, const char* what, std::uint64_t seed, const EngineSettings& s,
                       const RunTotals& t, const std::string& extra) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << samples << " " << what << " (seed " << seed << "), " << t.work
        << (s.engine == Engine::Pdmp ? " events" : " steps") << ", " << format_number(t.seconds, 3) << " s on "
        << t.threads << " thread" << (t.threads > 1 ? "s" : "") << extra << "\n";
@@ -183,30 +191,25 @@ std::string notes(const std::vector<std::string>& warnings) {
 
 std::string table_head(double level) {
     // Built with append: GCC 12 warns (-Wrestrict, a false positive) on " " + std::string.
-    std::string interval = "  ";
+    using number_text::pad;
+    std::string interval = " ";
     interval.append(format_number(100 * level, 3)).append("% interval");
-    char head[200];
-    std::snprintf(head, sizeof head, "%-14s %13s  %-13s %-25s  %-7s %11s\n", "quantity", "value", "+- stderr",
-                  interval.c_str() + 1, "unit", "nondim");
-    return head;
+    return pad("quantity", -14) + " " + pad("value", 13) + "  " + pad("+- stderr", -13) + " " + pad(interval, -25) +
+           "  " + pad("unit", -7) + " " + pad("nondim", 11) + "\n";
 }
 
 void table_row(std::ostringstream& os, const std::string& name, const Estimate& e, double unit,
                const std::string& units, bool ci) {
-    char buf[256];
-    if (ci)
-        std::snprintf(buf, sizeof buf, "%-14s %13.6g  +- %-10.3g [%11.6g, %11.6g]  %-7s %11.6g\n", name.c_str(),
-                      e.value, e.std_error, e.lo, e.hi, units.c_str(), e.value / unit);
-    else
-        std::snprintf(buf, sizeof buf, "%-14s %13.6g  +- %-10.3g %27s  %-7s %11.6g\n", name.c_str(), e.value,
-                      e.std_error, "", units.c_str(), e.value / unit);
-    os << buf;
+    using number_text::pad;
+    std::string interval = pad("", 27);
+    if (ci) // appended: GCC 12 warns (-Wrestrict, a false positive) on "[" + std::string
+        interval = std::string("[").append(pad(format_number(e.lo), 11)).append(", ").append(pad(format_number(e.hi), 11)).append("]");
+    os << pad(name, -14) << " " << pad(format_number(e.value), 13) << "  +- " << pad(format_number(e.std_error, 3), -10)
+       << " " << interval << "  " << pad(units, -7) << " " << pad(format_number(e.value / unit), 11) << "\n";
 }
 
 std::string estimate_cell(const Estimate& e) {
-    char buf[80];
-    std::snprintf(buf, sizeof buf, "%12.6g +- %-10.3g", e.value, e.std_error);
-    return buf;
+    return number_text::pad(format_number(e.value), 12) + " +- " + number_text::pad(format_number(e.std_error, 3), -10);
 }
 
 // ---- CSV --------------------------------------------------------------------------

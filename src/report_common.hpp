@@ -54,6 +54,11 @@ std::string dump(const ordered_json& j, int indent);
 
 // ---- tables -------------------------------------------------------------------
 
+/// The stream every text report is written into: the classic locale, whatever
+/// the global C++ locale of the host program (numbers themselves are written
+/// by stickslip/number_text.hpp).
+std::ostringstream report_stream();
+
 /// "stickslip WHAT: ENGINE engine, dt X s" + extra + "\n".
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra);
 /// The physical and nondimensional parameter lines.

@@ -71,7 +71,7 @@ std::string to_table(const DiffusivityResult& r) {
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
     const Estimate& d = r.estimates.diffusivity;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << engine_line("diffusivity", q.engine,
                       ", stop rule " + r.resolved.stop_rule + ", estimator " + to_string(q.estimator));
     os << param_line(q.params, q.engine);
@@ -97,7 +97,7 @@ std::string to_table(const DiffusivityResult& r) {
 std::string to_csv(const DiffusivityResult& r) {
     const auto& q = r.request;
     const auto& p = q.params;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "engine,friction,noise,tau,relaxation,bias,excursions,seed," << csv_estimate_header("diffusivity") << ","
        << csv_estimate_header("mobility") << ",mean_duration,mean_duration_stderr"
        << (r.discretisation ? ",check_dt,diffusivity_difference,diffusivity_difference_stderr,mobility_difference,"
@@ -148,7 +148,7 @@ std::string to_json(const BruteForceResult& r, int indent) {
 std::string to_table(const BruteForceResult& r) {
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << engine_line("bruteforce", q.engine,
                       ", horizon t = " + format_number(q.horizon) + " s, start x0 = " + format_number(r.start_noise) +
                           " s^-1/2, v0 = " + format_number(q.v0) + " m/s");
@@ -165,7 +165,7 @@ std::string to_table(const BruteForceResult& r) {
 std::string to_csv(const BruteForceResult& r) {
     const auto& q = r.request;
     const auto& p = q.params;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "engine,friction,noise,tau,relaxation,bias,time,trajectories,seed," << csv_estimate_header("diffusivity")
        << "," << csv_estimate_header("mobility") << "\n";
     os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","

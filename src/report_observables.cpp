@@ -3,10 +3,10 @@
 // transient moments, the autocorrelation and sample paths, as JSON (the
 // contract the Python module's to_dict() shares), aligned tables and CSV.
 #include <cmath>
-#include <cstdio>
 
 #include "format.hpp"
 #include "report_common.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 
 namespace stickslip {
@@ -61,17 +61,14 @@ std::string to_json(const StationaryDensityResult& r, int indent) {
 
 std::string to_table(const StationaryDensityResult& r) {
     const auto& q = r.request;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << engine_line("density", q.engine, ", stationary velocity density by long excursions (renewal-reward)");
     os << param_line(q.params, q.engine) << "\n";
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "%13s %13s  %-25s\n", "v_lo [m/s]", "v_hi [m/s]", "density [s/m] +- stderr");
-    os << buf;
-    for (std::size_t k = 0; k < r.histogram.density.size(); ++k) {
-        std::snprintf(buf, sizeof buf, "%13.6g %13.6g  %s\n", r.histogram.edges[k], r.histogram.edges[k + 1],
-                      estimate_cell(r.histogram.density[k]).c_str());
-        os << buf;
-    }
+    using number_text::pad;
+    os << pad("v_lo [m/s]", 13) << " " << pad("v_hi [m/s]", 13) << "  " << pad("density [s/m] +- stderr", -25) << "\n";
+    for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
+        os << pad(format_number(r.histogram.edges[k]), 13) << " " << pad(format_number(r.histogram.edges[k + 1]), 13)
+           << "  " << estimate_cell(r.histogram.density[k]) << "\n";
     os << "\nP(V = 0) (stuck)   " << estimate_cell(r.histogram.stuck) << "\n";
     os << "P(outside range)   " << format_number(r.histogram.below.value + r.histogram.above.value) << "\n";
     os << "mean E[V]          " << estimate_cell(r.mean) << " m/s\n";
@@ -82,7 +79,7 @@ std::string to_table(const StationaryDensityResult& r) {
 }
 
 std::string to_csv(const StationaryDensityResult& r) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "kind,v_lo,v_hi,value,stderr,lo,hi\n";
     for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
         os << "density," << csv_number(r.histogram.edges[k]) << "," << csv_number(r.histogram.edges[k + 1]) << ","
@@ -132,21 +129,18 @@ std::string to_json(const TransientResult& r, int indent) {
 
 std::string to_table(const TransientResult& r) {
     const auto& q = r.request;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << engine_line("moments", q.engine,
                       ", from v0 = " + format_number(q.v0) + " m/s, X(0) " +
                           (q.params.white() ? std::string("n/a (white noise)")
                                             : std::isnan(q.x0) ? std::string("~ N(0, 1/tau)") : "= " + format_number(q.x0)));
     os << param_line(q.params, q.engine) << "\n";
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "%12s %-25s %-25s %-25s\n", "t [s]", "E[V(t)] [m/s]", "E[V(t)^2] [m^2/s^2]",
-                  "P(V(t) = 0)");
-    os << buf;
-    for (std::size_t k = 0; k < r.time.size(); ++k) {
-        std::snprintf(buf, sizeof buf, "%12.6g %s %s %s\n", r.time[k], estimate_cell(r.first_moment[k]).c_str(),
-                      estimate_cell(r.second_moment[k]).c_str(), estimate_cell(r.stuck[k]).c_str());
-        os << buf;
-    }
+    using number_text::pad;
+    os << pad("t [s]", 12) << " " << pad("E[V(t)] [m/s]", -25) << " " << pad("E[V(t)^2] [m^2/s^2]", -25) << " "
+       << pad("P(V(t) = 0)", -25) << "\n";
+    for (std::size_t k = 0; k < r.time.size(); ++k)
+        os << pad(format_number(r.time[k]), 12) << " " << estimate_cell(r.first_moment[k]) << " "
+           << estimate_cell(r.second_moment[k]) << " " << estimate_cell(r.stuck[k]) << "\n";
     if (!r.density.empty())
         os << "(the transient density, " << r.density.size() << " times x " << q.bins.count
            << " bins, is in --format json; --format csv gives it alone)\n";
@@ -156,7 +150,7 @@ std::string to_table(const TransientResult& r) {
 }
 
 std::string to_csv(const TransientResult& r) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     if (r.density.empty()) {
         os << "time," << csv_estimate_header("first_moment") << "," << csv_estimate_header("second_moment") << ","
            << csv_estimate_header("stuck") << "\n";
@@ -208,18 +202,15 @@ std::string to_json(const CorrelationResult& r, int indent) {
 
 std::string to_table(const CorrelationResult& r) {
     const auto& q = r.request;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << engine_line("correlation", q.engine, ", stationary autocorrelation by long excursions (renewal-reward)");
     os << param_line(q.params, q.engine) << "\n";
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "%12s %-25s %-25s %-25s\n", "lag r [s]", "<V(0)V(r)> [m^2/s^2]",
-                  "h(r) [m^2/s^2]", "h(r)/h(0)");
-    os << buf;
-    for (std::size_t k = 0; k < r.lag.size(); ++k) {
-        std::snprintf(buf, sizeof buf, "%12.6g %s %s %s\n", r.lag[k], estimate_cell(r.autocorrelation[k]).c_str(),
-                      estimate_cell(r.covariance[k]).c_str(), estimate_cell(r.normalised[k]).c_str());
-        os << buf;
-    }
+    using number_text::pad;
+    os << pad("lag r [s]", 12) << " " << pad("<V(0)V(r)> [m^2/s^2]", -25) << " " << pad("h(r) [m^2/s^2]", -25) << " "
+       << pad("h(r)/h(0)", -25) << "\n";
+    for (std::size_t k = 0; k < r.lag.size(); ++k)
+        os << pad(format_number(r.lag[k]), 12) << " " << estimate_cell(r.autocorrelation[k]) << " "
+           << estimate_cell(r.covariance[k]) << " " << estimate_cell(r.normalised[k]) << "\n";
     os << "\nmean E[V]          " << estimate_cell(r.mean) << " m/s\n";
     os << "diffusivity D      " << estimate_cell(r.estimates.diffusivity) << " m^2/s (same excursions)\n\n";
     os << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals) << notes(r.warnings);
@@ -227,7 +218,7 @@ std::string to_table(const CorrelationResult& r) {
 }
 
 std::string to_csv(const CorrelationResult& r) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "lag," << csv_estimate_header("autocorrelation") << "," << csv_estimate_header("covariance") << ","
        << csv_estimate_header("normalised") << "\n";
     for (std::size_t k = 0; k < r.lag.size(); ++k)
@@ -274,7 +265,7 @@ std::string to_json(const TrajectoryResult& r, int indent) {
 }
 
 std::string to_csv(const TrajectoryResult& r) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "path,t,x,mode,v,u\n";
     for (std::size_t k = 0; k < r.paths.size(); ++k) {
         const auto& p = r.paths[k];
@@ -287,7 +278,7 @@ std::string to_csv(const TrajectoryResult& r) {
 
 std::string to_table(const TrajectoryResult& r) {
     const auto& q = r.request;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     if (q.paths == 0)
         os << engine_line("trajectory", q.engine,
                           ", long excursion " + std::to_string(q.index) + ": U = " +
@@ -297,17 +288,15 @@ std::string to_table(const TrajectoryResult& r) {
         os << engine_line("trajectory", q.engine,
                           ", " + std::to_string(q.paths) + " paths on [0, " + format_number(q.horizon) + "] s");
     os << param_line(q.params, q.engine) << "\n";
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "%5s %13s %13s %5s %13s %13s\n", "path", "t [s]", "X [s^-1/2]", "mode", "V [m/s]",
-                  "U [m]");
-    os << buf;
+    using number_text::pad;
+    os << pad("path", 5) << " " << pad("t [s]", 13) << " " << pad("X [s^-1/2]", 13) << " " << pad("mode", 5) << " "
+       << pad("V [m/s]", 13) << " " << pad("U [m]", 13) << "\n";
     for (std::size_t k = 0; k < r.paths.size(); ++k) {
         const auto& p = r.paths[k];
-        for (std::size_t i = 0; i < p.t.size(); ++i) {
-            std::snprintf(buf, sizeof buf, "%5zu %13.6g %13.6g %5d %13.6g %13.6g\n", k, p.t[i], p.x[i], p.mode[i],
-                          p.v[i], p.u[i]);
-            os << buf;
-        }
+        for (std::size_t i = 0; i < p.t.size(); ++i)
+            os << pad(std::to_string(k), 5) << " " << pad(format_number(p.t[i]), 13) << " "
+               << pad(format_number(p.x[i]), 13) << " " << pad(std::to_string(p.mode[i]), 5) << " "
+               << pad(format_number(p.v[i]), 13) << " " << pad(format_number(p.u[i]), 13) << "\n";
     }
     os << notes(r.warnings);
     return os.str();

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Reports of parameter sweeps (report.hpp): JSON, table, CSV.
 #include <cmath>
-#include <cstdio>
 
 #include "format.hpp"
 #include "report_common.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 
 namespace stickslip {
@@ -77,24 +77,24 @@ std::string to_json(const SweepResult& r, int indent) {
 
 std::string to_table(const SweepResult& r) {
     const auto& q = r.request;
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << engine_line("sweep", q.engine,
                       ", " + std::to_string(q.excursions) + " excursions per point, estimator " +
                           to_string(q.estimator));
     os << "friction " << format_number(q.params.friction) << " m/s^2, relaxation "
        << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias) << " m/s^2\n\n";
-    char buf[300];
-    std::snprintf(buf, sizeof buf, "%10s %10s  %-25s %-25s %-20s %-20s\n", "tau [s]", "noise", "D [m^2/s]",
-                  "M0 [m/s]", "E[t1] [s]", "dlogD/dlogGamma");
-    os << buf;
+    using number_text::fixed;
+    using number_text::pad;
+    os << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -25) << " " << pad("M0 [m/s]", -25)
+       << " " << pad("E[t1] [s]", -20) << " " << pad("dlogD/dlogGamma", -20) << "\n";
     for (const auto& p : r.points) {
-        char slope[64];
-        if (std::isnan(p.slope.value)) std::snprintf(slope, sizeof slope, "%s", "-");
-        else std::snprintf(slope, sizeof slope, "%7.3f +- %-7.3f", p.slope.value, p.slope.std_error);
-        std::snprintf(buf, sizeof buf, "%10.4g %10.4g  %s %s %10.4g +- %-7.2g %s", p.tau, p.noise,
-                      estimate_cell(p.estimates.diffusivity).c_str(), estimate_cell(p.estimates.mobility).c_str(),
-                      p.estimates.mean_duration.value, p.estimates.mean_duration.std_error, slope);
-        os << buf;
+        const std::string slope = std::isnan(p.slope.value)
+                                      ? std::string("-")
+                                      : pad(fixed(p.slope.value, 3), 7) + " +- " + pad(fixed(p.slope.std_error, 3), -7);
+        os << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10) << "  "
+           << estimate_cell(p.estimates.diffusivity) << " " << estimate_cell(p.estimates.mobility) << " "
+           << pad(format_number(p.estimates.mean_duration.value, 4), 10) << " +- "
+           << pad(format_number(p.estimates.mean_duration.std_error, 2), -7) << " " << slope;
         if (dt_per_point(q.engine)) os << "  dt " << format_number(p.dt) << " s";
         if (scheme_per_point(q.engine)) os << "  " << to_string(p.scheme);
         os << "\n";
@@ -103,9 +103,9 @@ std::string to_table(const SweepResult& r) {
         os << "\nfitted D ~ noise^alpha per tau (weighted least squares in log-log):\n";
         for (const auto& e : r.exponents) {
             const std::string chi2 = std::isnan(e.chi2_per_dof) ? "-" : format_number(e.chi2_per_dof, 2);
-            std::snprintf(buf, sizeof buf, "  tau %10.4g s: alpha = %.3f +- %.3f (chi2/dof %s over %d points)\n",
-                          e.tau, e.exponent.value, e.exponent.std_error, chi2.c_str(), e.points);
-            os << buf;
+            os << "  tau " << pad(format_number(e.tau, 4), 10) << " s: alpha = " << fixed(e.exponent.value, 3)
+               << " +- " << fixed(e.exponent.std_error, 3) << " (chi2/dof " << chi2 << " over " << e.points
+               << " points)\n";
         }
     }
     os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3) << " s (seed " << q.control.seed << ")\n"
@@ -114,7 +114,7 @@ std::string to_table(const SweepResult& r) {
 }
 
 std::string to_csv(const SweepResult& r) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
        << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"
        << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Reports of the exact white-noise references (report.hpp): JSON, table, CSV.
 #include <cmath>
-#include <cstdio>
 
 #include "format.hpp"
 #include "report_common.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 
 namespace stickslip {
@@ -55,37 +55,33 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
 std::string to_table(const WhiteNoiseResult& r) {
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     os << "stickslip analytic: exact white-noise references\n";
     os << "friction " << format_number(q.params.friction) << " m/s^2, noise " << format_number(q.params.noise)
        << " m^2/s^3, relaxation " << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias)
        << " m/s^2\n\n";
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "%-16s %15.10g %-8s %15.10g\n", "mobility M0", r.reference.mobility, "m/s",
-                  r.reference.mobility / sc.velocity);
-    os << buf;
-    std::snprintf(buf, sizeof buf, "%-16s %15.10g %-8s %15.10g\n", "diffusivity D", r.reference.diffusivity, "m^2/s",
-                  r.reference.diffusivity / sc.diffusivity);
-    os << buf;
-    std::snprintf(buf, sizeof buf, "%-16s %15.10g %-8s %15.10g\n", "variance Var(V)", r.reference.variance,
-                  "m^2/s^2", r.reference.variance / (sc.velocity * sc.velocity));
-    os << buf << "(last column: nondimensional)\n";
+    using number_text::pad;
+    const auto row = [&os](const char* name, double value, const char* unit, double nondim) {
+        os << pad(name, -16) << " " << pad(format_number(value, 10), 15) << " " << pad(unit, -8) << " "
+           << pad(format_number(nondim, 10), 15) << "\n";
+    };
+    row("mobility M0", r.reference.mobility, "m/s", r.reference.mobility / sc.velocity);
+    row("diffusivity D", r.reference.diffusivity, "m^2/s", r.reference.diffusivity / sc.diffusivity);
+    row("variance Var(V)", r.reference.variance, "m^2/s^2", r.reference.variance / (sc.velocity * sc.velocity));
+    os << "(last column: nondimensional)\n";
     if (!q.times.empty()) {
         os << "\n" << r.method << "; v0 = " << format_number(q.v0) << " m/s\n";
-        std::snprintf(buf, sizeof buf, "%14s %18s %22s\n", "t [s]", "E[V(t)|v0] [m/s]", "<V(t)V(0)> [m^2/s^2]");
-        os << buf;
-        for (std::size_t k = 0; k < q.times.size(); ++k) {
-            std::snprintf(buf, sizeof buf, "%14.6g %18.10g %22.10g\n", q.times[k], r.first_moment[k],
-                          r.autocorrelation[k]);
-            os << buf;
-        }
+        os << pad("t [s]", 14) << " " << pad("E[V(t)|v0] [m/s]", 18) << " " << pad("<V(t)V(0)> [m^2/s^2]", 22) << "\n";
+        for (std::size_t k = 0; k < q.times.size(); ++k)
+            os << pad(format_number(q.times[k]), 14) << " " << pad(format_number(r.first_moment[k], 10), 18) << " "
+               << pad(format_number(r.autocorrelation[k], 10), 22) << "\n";
     }
     os << notes(r.warnings);
     return os.str();
 }
 
 std::string to_csv(const WhiteNoiseResult& r) {
-    std::ostringstream os;
+    std::ostringstream os = report_stream();
     const auto& q = r.request;
     os << "mobility,diffusivity,variance";
     if (!q.times.empty()) os << ",time,first_moment,autocorrelation";

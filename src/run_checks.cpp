@@ -99,6 +99,12 @@ void check_start(const ModelParams& p, double x0, double v0) {
         throw InvalidParameter("v0", "v0 = " + format_number(v0) +
                                          " m/s: its square (E[V^2], U^2) would overflow double precision; |v0| "
                                          "must be at most 1e100, in m/s and in units of noise/friction");
+    // The exact white-noise references take any finite bias; a path's
+    // velocities (bias x relaxation, squared) overflow beyond this.
+    if (std::fabs(p.bias) > max_start_magnitude * p.friction)
+        throw InvalidParameter("bias", "bias = " + format_number(p.bias) +
+                                           " m s^-2 is more than 1e100 times the friction: the velocities of a path "
+                                           "would overflow double precision");
     const double sd = p.white() ? 1.0 : 1.0 / std::sqrt(p.tau);
     if (std::isfinite(x0) && (std::fabs(x0) > max_start_magnitude || std::fabs(x0) / sd > max_start_magnitude))
         throw InvalidParameter("x0", "x0 = " + format_number(x0) +

@@ -45,7 +45,8 @@ inline constexpr double max_start_magnitude = 1e100;
 
 /// Checks a trajectory start of model `p`: v0 [m/s] finite and at most
 /// max_start_magnitude ("v0"); x0 [s^-1/2] NaN, which means "the default
-/// start", or finite and at most max_start_magnitude ("x0").
+/// start", or finite and at most max_start_magnitude ("x0"); |bias| at most
+/// max_start_magnitude frictions ("bias").
 void check_start(const ModelParams& p, double x0, double v0);
 
 /// The default start of a trajectory's noise [s^-1/2] (x0 NaN): 0 for white

@@ -1,27 +1,28 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/setting.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <sstream>
 
 #include "format.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {
 
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s) {
+    // Appended: GCC 12 warns (-Wrestrict, a false positive) on "'" + std::string.
+    return std::string("'").append(printable_text(s)).append("'");
+}
 
 [[noreturn]] void fail(const SettingInfo& info, const std::string& what) {
     throw InvalidParameter(info.name, std::string(info.name) + " " + what);
 }
 
-/// The exponent of a printf %e/%g number without '+' and leading zeros:
+/// The exponent of a %e/%g number without '+' and leading zeros:
 /// "1e-04" -> "1e-4", "3e+08" -> "3e8".
 std::string tidy_exponent(std::string s) {
     const auto e = s.find('e');
@@ -50,6 +51,56 @@ std::vector<double> spaced_values(double lo, double hi, std::uint64_t n, bool li
     return out;
 }
 
+std::string printable_text(std::string_view text) {
+    // A message is one line on a terminal: control bytes and broken UTF-8
+    // (binary garbage in a config file) would garble or split it.
+    std::string out;
+    const auto escape = [&out](unsigned char c) { out.append("\\x").append(number_text::hex(c, 2)); };
+    for (std::size_t k = 0; k < text.size();) {
+        const auto c = static_cast<unsigned char>(text[k]);
+        if (c < 0x80) {
+            if (c < 0x20 || c == 0x7f) escape(c);
+            else out += static_cast<char>(c);
+            ++k;
+            continue;
+        }
+        const std::size_t n = utf8_sequence_length(text.substr(k));
+        if (n == 0) {
+            escape(c);
+            ++k;
+        } else {
+            out.append(text.substr(k, n));
+            k += n;
+        }
+    }
+    return out;
+}
+
+std::size_t utf8_sequence_length(std::string_view text) {
+    if (text.empty()) return 0;
+    const auto b = [&text](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char c = b(0);
+    std::size_t n = 0;
+    unsigned lo = 0x80, hi = 0xbf; // the range of the second byte (no overlong forms, no surrogates)
+    if (c < 0x80) return 1;
+    if (c >= 0xc2 && c <= 0xdf) n = 2;
+    else if (c >= 0xe0 && c <= 0xef) {
+        n = 3;
+        if (c == 0xe0) lo = 0xa0;
+        if (c == 0xed) hi = 0x9f;
+    } else if (c >= 0xf0 && c <= 0xf4) {
+        n = 4;
+        if (c == 0xf0) lo = 0x90;
+        if (c == 0xf4) hi = 0x8f;
+    } else {
+        return 0;
+    }
+    if (text.size() < n || b(1) < lo || b(1) > hi) return 0;
+    for (std::size_t k = 2; k < n; ++k)
+        if (b(k) < 0x80 || b(k) > 0xbf) return 0;
+    return n;
+}
+
 // ---- formatting --------------------------------------------------------------
 
 std::string format_setting(double x) {
@@ -58,18 +109,15 @@ std::string format_setting(double x) {
     // The shortest text that reads back exactly: the fewest significant
     // digits, written in fixed or scientific form, whichever is shorter
     // (1e-4 rather than 0.0001, 10 rather than 1e1).
+    const auto reads_back = [x](const std::string& text) { return number_text::read_double(text) == x; };
     for (int digits = 1; digits <= 17; ++digits) {
-        char g[40], e[40];
-        std::snprintf(g, sizeof g, "%.*g", digits, x);
-        if (std::strtod(g, nullptr) != x) continue;
-        std::snprintf(e, sizeof e, "%.*e", digits - 1, x);
-        std::string best = tidy_exponent(e);
+        if (!reads_back(number_text::general(x, digits))) continue;
+        std::string best = tidy_exponent(number_text::scientific(x, digits - 1));
         if (std::fabs(x) < 1e16) { // the fixed form, with as many decimals as it needs
             for (int decimals = 0; decimals <= 20; ++decimals) {
-                char f[64];
-                std::snprintf(f, sizeof f, "%.*f", decimals, x);
-                if (std::strtod(f, nullptr) == x) {
-                    if (std::string(f).size() <= best.size()) best = f;
+                const std::string f = number_text::fixed(x, decimals);
+                if (reads_back(f)) {
+                    if (f.size() <= best.size()) best = f;
                     break;
                 }
             }
@@ -110,31 +158,22 @@ std::string format_setting(const NumberRange& x) {
 // ---- parsing -------------------------------------------------------------------
 
 void parse_setting(const SettingInfo& info, const std::string& text, double& out) {
-    char* end = nullptr;
-    errno = 0;
-    // Decimal only: strtod would also read hexadecimal ("0x10" = 16) and
-    // hexadecimal floats, which no user means on this command line.
-    const bool decimal = text.find_first_of("xXpP") == std::string::npos;
-    const double x = std::strtod(text.c_str(), &end);
-    // ERANGE: overflow (x = +-HUGE_VAL) is refused; underflow to a subnormal
-    // or zero (5e-324, 1e-400) is the nearest double, as for any decimal.
-    const bool overflow = errno == ERANGE && std::isinf(x);
-    if (text.empty() || !decimal || end != text.c_str() + text.size() || overflow)
-        fail(info, "must be a number, got " + quoted(text));
-    if (std::isnan(x)) fail(info, "must be a number, got NaN");
-    out = x;
+    // Decimal only, whatever the locale: overflow is refused; underflow to a
+    // subnormal or zero (5e-324, 1e-400) is the nearest double, as for any
+    // decimal (settings that cannot take one say so in their validate()).
+    const std::optional<double> x = number_text::read_double(text);
+    if (!x) fail(info, "must be a number, got " + quoted(text));
+    if (std::isnan(*x)) fail(info, "must be a number, got NaN");
+    out = *x;
 }
 
 void parse_setting(const SettingInfo& info, const std::string& text, std::uint64_t& out) {
     // Plain digits are read exactly (seeds use all 64 bits); other forms (1e6)
     // through double, only where every integer is exact (below 2^53).
     if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos) {
-        char* end = nullptr;
-        errno = 0;
-        const unsigned long long n = std::strtoull(text.c_str(), &end, 10);
-        if (errno == ERANGE || end != text.c_str() + text.size())
-            fail(info, "must be a non-negative integer below 2^64, got " + quoted(text));
-        out = static_cast<std::uint64_t>(n);
+        const std::optional<std::uint64_t> n = number_text::read_unsigned(text);
+        if (!n) fail(info, "must be a non-negative integer below 2^64, got " + quoted(text));
+        out = *n;
         return;
     }
     double x = 0;
@@ -169,7 +208,7 @@ void parse_setting(const SettingInfo& info, const std::string& text, bool& out) 
             out = false;
             return;
         }
-    fail(info, "must be true or false, got " + quoted(text));
+    fail(info, "must be true or false (also 1/0, yes/no, on/off), got " + quoted(text));
 }
 
 void parse_setting(const SettingInfo& info, const std::string& text, const OptionalNumber& out) {
@@ -197,13 +236,9 @@ void parse_setting(const SettingInfo& info, const std::string& text, const Numbe
 
 void parse_setting(const SettingInfo& info, const std::string& text, const SeedValue& out) {
     // Decimal digits only: no sign, no spaces, no octal/hex surprises ("010" is ten).
-    char* end = nullptr;
-    errno = 0;
-    const std::string msg = "must be an integer in [0, 2^64), got " + quoted(text);
-    if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) fail(info, msg);
-    const unsigned long long x = std::strtoull(text.c_str(), &end, 10);
-    if (end != text.c_str() + text.size() || errno == ERANGE) fail(info, msg);
-    out.value = x;
+    const std::optional<std::uint64_t> x = number_text::read_unsigned(text);
+    if (!x) fail(info, "must be an integer in [0, 2^64), got " + quoted(text));
+    out.value = *x;
 }
 
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberList& out) {

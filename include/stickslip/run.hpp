@@ -49,7 +49,9 @@ void visit_settings(RunSettings& r, Visitor&& v) {
     visit_settings(r.params, v);
     visit_settings(r.engine, v);
     v(SeedValue{r.control.seed}, SettingInfo{"seed", "", "random seed (64-bit); same seed, same result"});
-    v(r.control.threads, SettingInfo{"threads", "", "worker threads; 0 = all cores"});
+    v(r.control.threads, SettingInfo{"threads", "",
+                                     "worker threads; 0 = the CPUs this process may use (affinity, CPU quota, "
+                                     "MPI ranks per node)"});
     v(r.level, SettingInfo{"level", "", "confidence level of the intervals, in (0, 1)"});
 }
 

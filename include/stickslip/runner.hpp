@@ -45,7 +45,7 @@ struct Progress {
 /// process split. None of it but the seed and first_index changes a result's
 /// bits (runner.hpp, top).
 struct RunControl {
-    unsigned threads = 0;          ///< 0: all hardware threads
+    unsigned threads = 0;          ///< 0: the CPUs this process may use (default_threads(), threads.hpp)
     std::uint64_t seed = 1;        ///< user seed (the Philox key)
     std::uint64_t first_index = 0; ///< first sample index (for splitting runs)
     /// Called about every `progress_interval` seconds, after a block of
@@ -120,9 +120,14 @@ struct RunTotals {
     std::uint64_t work = 0;   ///< steps or events, all samples
     /// Wall time of the run [s]; a resumed run counts only this invocation.
     double seconds = 0.0;
-    /// Worker threads used: RunControl::threads (0: all cores), at most one
-    /// per block of this process.
+    /// Worker threads used: RunControl::threads (0: default_threads()), at
+    /// most one per block of this process.
     unsigned threads = 1;
+    /// How `threads` was chosen: ThreadChoice::from ("option" for
+    /// RunControl::threads > 0, else "hardware", "affinity", "cpu-quota",
+    /// "slurm", each possibly with "+local-ranks"), with "+blocks" when this
+    /// process had fewer blocks than that.
+    std::string threads_from;
     bool interrupted = false; ///< stopped early (RunControl::stop): the sums are of a prefix of whole blocks
     std::uint64_t resumed = 0; ///< samples restored from a checkpoint rather than computed
 };

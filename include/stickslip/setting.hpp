@@ -172,6 +172,16 @@ const char* setting_form(const NumberList&);
 const char* setting_form(const NumberRange&);
 /// @}
 
+/// `text` as a message may quote it: every control byte, and every byte that is
+/// not part of valid UTF-8, written as \\xNN (so that a message stays one
+/// readable line whatever a user or a file gave).
+std::string printable_text(std::string_view text);
+
+/// The length of the valid UTF-8 sequence that starts `text` (1 for ASCII), or
+/// 0 when it does not start with one (a stray continuation byte, an overlong
+/// form, a surrogate, a truncated sequence, or empty text).
+std::size_t utf8_sequence_length(std::string_view text);
+
 /// n values from lo to hi, spaced evenly in log (lo, hi > 0) or, when linear,
 /// evenly; the endpoints are exact. What "lo:hi:n" means in a NumberList.
 std::vector<double> spaced_values(double lo, double hi, std::uint64_t n, bool linear = false);

@@ -8,6 +8,7 @@
 #include "bindings.hpp"
 #include "stickslip/analytic.hpp"
 #include "stickslip/fokker_planck.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -195,11 +196,11 @@ void bind_analytic(py::module_& m) {
         .def("to_table", [](const R& r) { return to_table(r); })
         .def("to_csv", [](const R& r) { return to_csv(r); })
         .def("__repr__", [](const R& r) {
-            char buf[200];
-            std::snprintf(buf, sizeof buf, "WhiteNoiseResult(mobility=%.6g m/s, diffusivity=%.6g m^2/s, variance=%.6g m^2/s^2, times=%zu, velocities=%zu)",
-                          r.reference.mobility, r.reference.diffusivity, r.reference.variance, r.request.times.size(),
-                          r.request.velocities.size());
-            return std::string(buf);
+            using number_text::general;
+            return "WhiteNoiseResult(mobility=" + general(r.reference.mobility) + " m/s, diffusivity=" +
+                   general(r.reference.diffusivity) + " m^2/s, variance=" + general(r.reference.variance) +
+                   " m^2/s^2, times=" + std::to_string(r.request.times.size()) +
+                   ", velocities=" + std::to_string(r.request.velocities.size()) + ")";
         });
 }
 

@@ -24,7 +24,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <future>
 #include <mutex>
@@ -37,6 +36,7 @@
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/checkpoint.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
@@ -207,14 +207,13 @@ struct Monitor {
         }
         const double rate = s > 0 ? static_cast<double>(d) / s : 0.0;
         const double left = rate > 0 ? static_cast<double>(t - d) / rate : 0.0;
-        char buf[400];
-        std::snprintf(buf, sizeof buf, "\r%llu/%llu %s, %.1f s elapsed, ~%.0f s left   %s",
-                      static_cast<unsigned long long>(d), static_cast<unsigned long long>(t), what.c_str(), s, left,
-                      final ? "\n" : "");
+        std::string line = "\r"; // appended: GCC 12 warns (-Wrestrict, a false positive) on "\r" + std::string
+        line += std::to_string(d) + "/" + std::to_string(t) + " " + what + ", " + number_text::fixed(s, 1) +
+                " s elapsed, ~" + number_text::fixed(left, 0) + " s left   " + (final ? "\n" : "");
         try {
             py::object err = py::module_::import("sys").attr("stderr");
             if (err.is_none()) return;
-            err.attr("write")(std::string(buf));
+            err.attr("write")(line);
             err.attr("flush")();
         } catch (py::error_already_set&) {
         }
@@ -354,9 +353,8 @@ SweepResult run_sweep(SweepRequest req, bool progress, const std::optional<std::
     Monitor mon;
     req.control.progress_interval = 0.0;
     req.point_progress = [&mon](std::size_t k, std::size_t n, double noise, double tau) {
-        char what[160];
-        std::snprintf(what, sizeof what, "excursions (point %zu/%zu: noise %g, tau %g)", k + 1, n, noise, tau);
-        return mon.callback(what);
+        return mon.callback("excursions (point " + std::to_string(k + 1) + "/" + std::to_string(n) + ": noise " +
+                            number_text::general(noise) + ", tau " + number_text::general(tau) + ")");
     };
     req.control.cancel = &mon.cancel; // every point's run stops within one sample
     const auto journal = journal_for(req, checkpoint, checkpoint_every, resume);

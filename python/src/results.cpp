@@ -3,12 +3,12 @@
 // request, requests.cpp): attributes as NumPy arrays and Estimates, and the
 // CLI's renderings (to_dict() is the CLI's JSON).
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "bindings.hpp"
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
 #include "stickslip/sweep.hpp"
@@ -50,6 +50,10 @@ void add_totals(Cls& cls) {
         .def_property_readonly(
             "threads", [](const R& r) { return r.totals.threads; }, "worker threads used")
         .def_property_readonly(
+            "threads_from", [](const R& r) { return r.totals.threads_from; },
+            "how the thread count was chosen: 'option' (threads=N), else 'hardware', 'affinity', 'cpu-quota' or "
+            "'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the blocks were fewer")
+        .def_property_readonly(
             "interrupted", [](const R& r) { return r.totals.interrupted; },
             "True when the run was stopped early (Ctrl-C): the result is of the blocks completed, in index order")
         .def_property_readonly(
@@ -74,11 +78,7 @@ void add_long_excursion(Cls& cls, Get get) {
 
 EstimateSeries series(const std::vector<Estimate>& v, double level) { return EstimateSeries{v, level}; }
 
-std::string g4(double x) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.4g", x);
-    return buf;
-}
+std::string g4(double x) { return number_text::general(x, 4); }
 
 std::string estimate_short(const Estimate& e) { return g4(e.value) + " +- " + g4(e.std_error); }
 

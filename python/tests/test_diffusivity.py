@@ -63,6 +63,8 @@ class DiffusivityTest(unittest.TestCase):
         two = stickslip.diffusivity(P, engine="pdmp", excursions=640, seed=11, threads=2)
         self.assertEqual(one.threads, 1)
         self.assertEqual(two.threads, 2)
+        self.assertEqual(two.threads_from, "option")
+        self.assertEqual(two.to_dict()["work"]["threads_from"], "option")
         self.assertEqual(without_work(one.to_dict()), without_work(two.to_dict()))
         self.assertEqual(one.diffusivity.value, two.diffusivity.value)
 

@@ -155,6 +155,7 @@ struct DryOutcome {
     std::string config_text; ///< what --print-config prints
     bool valid = false;      ///< validate(request) passed
     std::string validation;  ///< its message when not
+    std::string output;      ///< --output: where --print-config writes
 };
 
 struct DryCommand {
@@ -169,25 +170,37 @@ constexpr bool resumable() {
     return false;
 }
 
-/// commands.cpp's add_checkpoint_flags().
-void add_checkpoint_flags(CLI::App* app, CheckpointOptions& o) {
-    app->add_option("--checkpoint", o.path, CheckpointOptions::path_help)->type_name("FILE");
-    app->add_option("--checkpoint-every", o.every, CheckpointOptions::every_help)->capture_default_str();
-    app->add_option("--resume", o.resume, CheckpointOptions::resume_help)->type_name("FILE");
+/// commands.cpp's CheckpointFlags and add_checkpoint_flags().
+struct CheckpointFlags {
+    CheckpointOptions options;
+    std::string every;
+};
+
+void add_checkpoint_flags(CLI::App* app, CheckpointFlags& o) {
+    app->add_option("--checkpoint", o.options.path, CheckpointOptions::path_help)->type_name("FILE");
+    app->add_option("--checkpoint-every", o.every, CheckpointOptions::every_help);
+    app->add_option("--resume", o.options.resume, CheckpointOptions::resume_help)->type_name("FILE");
+}
+
+/// commands.cpp's read_checkpoint_flags().
+void read_checkpoint_flags(CheckpointFlags& o) {
+    if (!o.every.empty())
+        parse_setting(SettingInfo{"checkpoint-every", "s", CheckpointOptions::every_help}, o.every, o.options.every);
+    validate(o.options);
 }
 
 /// One subcommand as commands.cpp's add_command() builds it (the same flags,
-/// from the same request), run up to the computation: apply(),
-/// --print-config, the output, the checkpoint journal (which reads --resume
-/// and writes a first --checkpoint), and validate(), which the computation
-/// would call first.
+/// from the same request), run up to the computation: apply() and the other
+/// flags, validate() (which --print-config and the computation call first),
+/// --print-config, the output, and the checkpoint journal (which reads
+/// --resume and writes a first --checkpoint).
 template <class Request, class Result>
 DryCommand add_dry(CLI::App& app, Result (*)(const Request&)) {
     struct State {
         Request request;
         cli::SettingFlags flags;
         cli::OutputFlags output;
-        CheckpointOptions checkpoint;
+        CheckpointFlags checkpoint;
     };
     auto state = std::make_shared<State>();
     const std::string command = Request::command;
@@ -198,8 +211,11 @@ DryCommand add_dry(CLI::App& app, Result (*)(const Request&)) {
     return {sub, [state, command] {
                 DryOutcome o;
                 o.command = command;
+                o.output = state->output.output;
                 try {
                     state->flags.apply();
+                    cli::read_output_flags(state->output);
+                    if constexpr (resumable<Request>()) read_checkpoint_flags(state->checkpoint);
                 } catch (const InvalidParameter&) {
                     o.expect = Expect::bad_input;
                     return o;
@@ -213,15 +229,20 @@ DryCommand add_dry(CLI::App& app, Result (*)(const Request&)) {
                     o.validation = e.parameter() + ": " + e.what();
                 }
                 if (state->flags.print_config()) {
-                    o.expect = Expect::print_config;
+                    o.expect = o.valid ? Expect::print_config : Expect::bad_input;
+                    try {
+                        cli::Output out(state->output); // checks --format and --output
+                    } catch (const InvalidParameter&) {
+                        o.expect = Expect::bad_input;
+                    }
                     return o;
                 }
                 try {
-                    if constexpr (resumable<Request>()) cli::refuse_shared_paths(state->output, state->checkpoint);
+                    if constexpr (resumable<Request>()) cli::refuse_shared_paths(state->output, state->checkpoint.options);
                     cli::Output out(state->output); // opens (and, leaving, removes) the temporary
                     if constexpr (resumable<Request>()) {
                         try {
-                            CheckpointOptions quiet = state->checkpoint;
+                            CheckpointOptions quiet = state->checkpoint.options;
                             quiet.warn = [](const std::string&) {}; // the real run's stderr is the one checked
                             const std::unique_ptr<RunJournal> journal = make_journal(state->request, quiet);
                         } catch (const InvalidParameter&) {
@@ -354,11 +375,17 @@ void check_real(const std::vector<std::string>& args, const DryOutcome& dry) {
         if (r.code != 0 || (g_capture.on && (r.out.empty() || !r.err.empty())))
             finding(args, "--help/--version: expected exit 0 and text on stdout only, got " + got);
         return;
-    case Expect::print_config:
-        if (r.code != 0 || (g_capture.on && (r.out != dry.config_text || !r.err.empty())))
+    case Expect::print_config: {
+        // Written where --output says: stdout, a descriptor, or elsewhere.
+        const std::string& o = dry.output;
+        const bool to_out = o.empty() || o == "/dev/stdout" || o == "/dev/fd/1";
+        const bool to_err = o == "/dev/stderr" || o == "/dev/fd/2";
+        if (r.code != 0 || (g_capture.on && (r.out != (to_out ? dry.config_text : std::string()) ||
+                                             r.err != (to_err ? dry.config_text : std::string()))))
             finding(args, "--print-config: expected exit 0 and the dry path's text" + quote_block(dry.config_text) +
-                              "\ngot " + got);
+                              "\nwritten to " + (o.empty() ? std::string("stdout") : o) + ", got " + got);
         return;
+    }
     case Expect::would_compute: return;
     }
 }
@@ -374,9 +401,11 @@ void check_round_trip(const std::vector<std::string>& args, const DryOutcome& dr
     if (!seen.insert(std::hash<std::string>{}(dry.command + '\n' + dry.config_text)).second) return;
     write_file(sandbox().roundtrip, dry.config_text);
     const DryOutcome back = dry_run({"stickslip", dry.command, "--config", sandbox().roundtrip, "--print-config"});
-    if (back.expect != Expect::print_config)
+    // --print-config refuses settings that do not validate, from a file as from flags.
+    const Expect want = back.valid ? Expect::print_config : Expect::bad_input;
+    if (back.expect != want)
         finding(args, std::string("--print-config's text, read back with --config, gives ") + name(back.expect) +
-                          " instead of --print-config:" + quote_block(dry.config_text));
+                          " instead of " + name(want) + ":" + quote_block(dry.config_text));
     if (back.config_text != dry.config_text)
         finding(args, "--print-config's text, read back with --config, prints another text:" +
                           quote_block(dry.config_text) + "\nthen:" + quote_block(back.config_text));

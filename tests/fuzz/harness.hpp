@@ -8,8 +8,9 @@
 //  * the dry path, a replica of commands.cpp that builds the same CLI11 app
 //    from the same pieces (SettingFlags, add_output_flags, the main app's
 //    settings), parses, fills the request (apply(): defaults, the config file,
-//    the command line), writes --print-config, opens the --output target and
-//    calls the library's validate(request), opens the checkpoint journal
+//    the command line), calls the library's validate(request) (which
+//    --print-config needs too), writes --print-config, opens the --output target,
+//    opens the checkpoint journal
 //    (which reads --resume), and stops there: it predicts what
 //    the real command will do without computing anything;
 //  * the real path, stickslip::cli::run_command(), the very function main()
@@ -28,11 +29,12 @@
 //  * the real command disagreeing with the dry prediction: bad input that is
 //    not exit 2 with nothing on stdout and exactly one "stickslip: error: "
 //    line on stderr; --help that is not exit 0; --print-config whose output
-//    differs from the dry path's;
+//    differs from the dry path's (on stdout, or where --output says);
 //  * --config naming a folder and read as an empty file instead of refused;
-//  * a --print-config text that, read back with --config, is refused, or
-//    prints a different text, or changes whether the request is valid (the
-//    README's promise: --print-config then --config reproduces a run exactly).
+//  * a --print-config text that, read back with --config, is refused although
+//    its request is valid, or prints a different text, or changes whether the
+//    request is valid (the README's promise: --print-config then --config
+//    reproduces a run exactly).
 //
 // File names never reach the file system as given: every --config, --resume,
 // --output and --checkpoint value is replaced by a path in the sandbox (a
