@@ -9,6 +9,7 @@
 #include <exception>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <type_traits>
 
 #include "distributed.hpp"
@@ -166,12 +167,17 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                     (void)progress; // only runs report progress
                 }
                 if constexpr (resumable<Request>()) {
+                    // From here the run polls the stop flag (a signal while
+                    // the journal opens is seen by the first block); writing
+                    // the result afterwards is not stopped gracefully.
+                    std::optional<GracefulStop> graceful(std::in_place);
                     req.control.stop = StopOnSignals::flag();
                     const std::unique_ptr<RunJournal> journal = open_journal(req, state->checkpoint.options);
                     req.control.journal = journal.get();
                     if (customise) customise(req, state->output.quiet);
                     try {
                         const Result r = compute(req);
+                        graceful.reset();
                         if (journal) journal->write();
                         emit(out, r);
                     } catch (const RunInterrupted&) {

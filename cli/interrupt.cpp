@@ -19,6 +19,11 @@ static_assert(std::atomic<bool>::is_always_lock_free, "the handler sets an atomi
 std::atomic<bool> g_stop{false};
 volatile std::sig_atomic_t g_signal = 0;
 volatile std::sig_atomic_t g_announce = 0; ///< this process prints the one line
+// Whether a computation that polls the stop flag is running (GracefulStop).
+// Outside one nothing would ever read the flag: parsing, reading a config
+// from /dev/zero, `analytic`, or writing to a FIFO nobody reads ignored the
+// first SIGINT and SIGTERM and, within the grace below, the second too.
+volatile std::sig_atomic_t g_graceful = 0;
 // When the first signal came (CLOCK_MONOTONIC, ns; written by the handler
 // only, which blocks both signals while it runs).
 volatile std::int64_t g_first_ns = 0;
@@ -39,26 +44,40 @@ constexpr int kSignals[] = {SIGINT, SIGTERM};
 struct sigaction g_previous[std::size(kSignals)];
 bool g_installed[std::size(kSignals)] = {};
 
-void say(const char* text) {
-    if (g_announce && ::write(STDERR_FILENO, text, std::strlen(text)) < 0) return;
-}
-
-extern "C" void on_stop_signal(int sig) {
-    if (!g_stop.exchange(true)) { // the first: stop gracefully
-        g_signal = sig;
-        g_first_ns = now_ns();
-        say("\nstickslip: stopping: finishing the blocks in flight, then writing the result so far (a second "
-            "signal aborts)\n");
-        return;
-    }
-    if (now_ns() - g_first_ns < kGraceNs) return; // the first one again, through the group
-    // A second, later one: abort now, leaving no partial output.
+/// Ends the process by `sig`, leaving no partial output: the temporaries are
+/// removed, the default action restored and the signal raised again (it is
+/// delivered when the handler returns). Async-signal-safe.
+void abort_by(int sig) {
     remove_output_temporary();
     struct sigaction dfl {};
     dfl.sa_handler = SIG_DFL;
     sigemptyset(&dfl.sa_mask);
     ::sigaction(sig, &dfl, nullptr);
-    ::raise(sig); // delivered when the handler returns: the process ends by this signal
+    ::raise(sig);
+}
+
+void say(const char* text) {
+    if (g_announce && ::write(STDERR_FILENO, text, std::strlen(text)) < 0) return;
+}
+
+extern "C" void on_stop_signal(int sig) {
+    // The first one again, through the group, even if the run it stopped
+    // has since finished and is writing its result.
+    if (g_stop && now_ns() - g_first_ns < kGraceNs) return;
+    if (!g_graceful) { // nothing polls the flag: end now, as by default
+        g_stop = true;
+        g_signal = sig;
+        abort_by(sig);
+        return;
+    }
+    if (!g_stop.exchange(true)) { // the first: stop gracefully
+        g_signal = sig;
+        g_first_ns = now_ns();
+        say("\nstickslip: stopping: finishing the blocks in flight, then writing the result so far (another "
+            "signal, a second or more later, aborts)\n");
+        return;
+    }
+    abort_by(sig); // a second, later one
 }
 
 } // namespace
@@ -88,6 +107,9 @@ StopOnSignals::~StopOnSignals() {
             g_installed[i] = false;
         }
 }
+
+GracefulStop::GracefulStop() { g_graceful = 1; }
+GracefulStop::~GracefulStop() { g_graceful = 0; }
 
 const std::atomic<bool>* StopOnSignals::flag() { return &g_stop; }
 int StopOnSignals::signal() { return g_signal; }

@@ -32,6 +32,18 @@ public:
     static int signal();
 };
 
+/// While one lives, a computation polls StopOnSignals::flag(): the first
+/// signal stops it gracefully. Outside it (parsing, validation, commands
+/// that do not poll, writing the result) a signal ends the process at once,
+/// by that signal, leaving no partial file.
+class GracefulStop {
+public:
+    GracefulStop();
+    ~GracefulStop();
+    GracefulStop(const GracefulStop&) = delete;
+    GracefulStop& operator=(const GracefulStop&) = delete;
+};
+
 /// The exit code of a run stopped by `signal`: 128 + signal.
 inline int exit_code_of_signal(int signal) { return 128 + signal; }
 
