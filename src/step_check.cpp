@@ -48,6 +48,10 @@ constexpr double kAutoEventWhiteRelaxation = 1.0 / 16;
 //    at 1, -10% at 2, -76% at 15) and M0 to T_f/2 (-1.1%; -2% at T_f, -3.6%
 //    at 2 T_f, no drag).
 constexpr double kEventTauNote = 1.0, kEventTauRefuse = 8.0;
+// The finest steps its tables validate (docs/validation.md, "The event scheme
+// at fine steps"): dt/tau = 1e-5 (coloured), 1e-5 friction times (white).
+// Finer steps are not known to be wrong, only not shown right: a note.
+constexpr double kEventFinestValidated = 1e-5;
 constexpr double kEventWhiteRelaxationNote = 0.25, kEventWhiteRelaxationRefuse = 2.0;
 constexpr double kEventWhiteFrictionNote = 0.5, kEventWhiteFrictionRefuse = 2.0;
 
@@ -156,6 +160,12 @@ void check_event_step(const ModelParams& p, double dt, std::vector<std::string>&
         else if (rf > kEventWhiteFrictionNote)
             note = in_friction + ": the white-noise event scheme's M0 is about -1% at 0.5 and -2% at 1";
     }
+    const double finest = p.white() ? dt / sc.time : dt / p.tau;
+    if (refuse.empty() && note.empty() && finest < kEventFinestValidated)
+        notes.push_back(at + format_number(finest, 3) + (p.white() ? " friction times" : " correlation times of the noise") +
+                        ": finer than the event scheme's validated steps (down to 1e-5; docs/validation.md, \"The "
+                        "event scheme at fine steps\"), so not shown right there; a coarser --dt is as accurate and "
+                        "cheaper");
     if (!refuse.empty()) throw InvalidParameter("dt", refuse + where + "; " + cure);
     if (!note.empty()) notes.push_back(note + where + "; " + cure);
 }

@@ -567,6 +567,12 @@ TEST(CliStepNotes, AnEventStepBeyondItsValidatedReachGetsANote) {
     const Result fine = run(with(white, {"--dt", "0.5"}));
     ASSERT_EQ(fine.code, 0) << fine.err;
     EXPECT_EQ(fine.out.find("friction times"), std::string::npos) << fine.out;
+    // Below the finest validated step (dt/tau = 1e-5): a note, not a refusal.
+    const Result finest = run({"diffusivity", "--scheme", "event", "--dt", "2e-6", "--excursions", "20"});
+    ASSERT_EQ(finest.code, 0) << finest.err;
+    EXPECT_NE(finest.out.find("4e-06 correlation times of the noise: finer than the event scheme's validated steps"),
+              std::string::npos)
+        << finest.out;
     const Result drag = run({"diffusivity", "--tau", "0", "--scheme", "event", "--dt", "0.05", "--excursions", "2000"});
     ASSERT_EQ(drag.code, 0) << drag.err;
     EXPECT_NE(drag.out.find("0.746 relaxation times"), std::string::npos) << drag.out;
