@@ -211,7 +211,9 @@ private:
                 law.chol[i][k] = q.chol[i][k];
             }
         }
+#if !defined(__clang__) // GCC's no-dependence hint; clang vectorizes this loop without it
 #pragma GCC ivdep
+#endif
         for (int l = 0; l < L; ++l) {
             const double z1 = g_.z[0][p][l], z2 = g_.z[1][p][l], z3 = g_.side[0][p][l];
             const double x0 = g_.x[l], v0 = g_.v[l], u0 = g_.u[l], s = g_.phase[l];

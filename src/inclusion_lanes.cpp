@@ -123,7 +123,9 @@ private:
         const double band = c.h_friction, xd = c.x_down, xu = c.x_up, rate = c.bridge_rate;
         const auto cap = static_cast<std::int64_t>(c.max_steps);
         std::int64_t any = 0;
+#if !defined(__clang__) // GCC's no-dependence hint; clang vectorizes this loop without it
 #pragma GCC ivdep
+#endif
         for (int l = 0; l < L; ++l) {
             const double z1 = g_.z[0][p][l], z2 = g_.z[1][p][l];
             const double x0 = g_.x[l], v0 = g_.v[l];

@@ -159,7 +159,7 @@ TEST(CliOutput, WritesTheFileAndNothingOnStdout) {
     const Result r = run({"analytic", "--format", "json", "--output", file});
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out, "");
-    EXPECT_NO_THROW((void)json::parse(slurp(file)));
+    EXPECT_TRUE(json::accept(slurp(file))) << "valid JSON";
     EXPECT_EQ(list_dir(dir), std::vector<std::string>{"d.json"}) << "no temporary file left";
     std::remove(file.c_str());
     ::rmdir(dir.c_str());
@@ -232,8 +232,8 @@ const Bad kBad[] = {
 };
 
 INSTANTIATE_TEST_SUITE_P(All, CliObservablesBadInput, ::testing::ValuesIn(kBad),
-                         [](const ::testing::TestParamInfo<Bad>& info) {
-                             std::string n = std::to_string(info.index) + "_" + info.param.args[0];
+                         [](const ::testing::TestParamInfo<Bad>& bad) {
+                             std::string n = std::to_string(bad.index) + "_" + bad.param.args[0];
                              return n;
                          });
 

@@ -501,7 +501,8 @@ TEST(Touchette, RejectsInvalidInput) {
     drag.relaxation = 2.0;
     ss::ModelParams biased = p;
     biased.bias = 0.1;
-    for (const auto& [q, name] : {std::pair{drag, std::string("relaxation")}, std::pair{biased, std::string("bias")}}) {
+    for (const auto& [model, name] : {std::pair{drag, std::string("relaxation")}, std::pair{biased, std::string("bias")}}) {
+        const ss::ModelParams& q = model; // clang 14 cannot capture a structured binding
         expect_parameter(name, [&] { ss::dry_friction_first_moment(q, 1.0, 1.0); });
         expect_parameter(name, [&] { ss::dry_friction_autocorrelation(q, 1.0); });
         expect_parameter(name, [&] { ss::dry_friction_propagator(q, 0.0, 1.0, 1.0); });
