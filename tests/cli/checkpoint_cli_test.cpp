@@ -34,50 +34,6 @@ void write_file(const std::string& path, const std::string& text) {
     out << text;
 }
 
-/// Starts `stickslip args...` with SIGINT and SIGTERM at their defaults (a
-/// test run from a background shell inherits SIGINT ignored), stdout to
-/// `out_path`, stderr to `err_path`, no core files.
-pid_t start(const Args& args, const std::string& out_path, const std::string& err_path) {
-    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
-    argv_s.insert(argv_s.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : argv_s) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) { // only async-signal-safe calls until exec
-        struct rlimit no_core {};
-        ::setrlimit(RLIMIT_CORE, &no_core);
-        ::signal(SIGINT, SIG_DFL);
-        ::signal(SIGTERM, SIG_DFL);
-        sigset_t none;
-        sigemptyset(&none);
-        ::sigprocmask(SIG_SETMASK, &none, nullptr);
-        const int in = ::open("/dev/null", O_RDONLY);
-        const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        ::dup2(in, STDIN_FILENO);
-        ::dup2(out, STDOUT_FILENO);
-        ::dup2(err, STDERR_FILENO);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
-    }
-    return pid;
-}
-
-/// The wait status, or nothing if it still runs after `seconds` (then it is
-/// killed: a test fails rather than hangs).
-std::optional<int> wait_for_exit(pid_t pid, double seconds) {
-    const auto end = clock_type::now() + std::chrono::duration<double>(seconds);
-    do {
-        int status = 0;
-        if (::waitpid(pid, &status, WNOHANG) == pid) return status;
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    } while (clock_type::now() < end);
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, nullptr, 0);
-    return std::nullopt;
-}
-
 /// Runs to the end with `args`; returns the JSON and the wall time.
 std::optional<json> timed_json(const Args& args, double& seconds) {
     const auto t0 = clock_type::now();

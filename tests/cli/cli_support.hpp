@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -24,7 +26,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -210,6 +214,52 @@ inline int count_lines(const std::string& s) {
     int n = 0;
     for (char c : s) n += c == '\n';
     return n;
+}
+
+/// Starts `stickslip args...` in a child process: every signal at its
+/// default (a test run from a background shell inherits SIGINT and SIGQUIT
+/// ignored) except `ignored`, none blocked, stdin from /dev/null, stdout and
+/// stderr to the given files, no core file (SIGQUIT, SIGXCPU and SIGXFSZ dump
+/// core by default). For tests that signal or kill the run.
+inline pid_t start(const Args& args, const std::string& out_path, const std::string& err_path, int ignored = 0) {
+    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
+    argv_s.insert(argv_s.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) { // only async-signal-safe calls until exec
+        struct rlimit no_core {};
+        ::setrlimit(RLIMIT_CORE, &no_core);
+        for (int s = 1; s < NSIG; ++s)
+            if (s != SIGKILL && s != SIGSTOP) ::signal(s, s == ignored ? SIG_IGN : SIG_DFL);
+        sigset_t none;
+        sigemptyset(&none);
+        ::sigprocmask(SIG_SETMASK, &none, nullptr);
+        const int in = ::open("/dev/null", O_RDONLY);
+        const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        ::dup2(in, STDIN_FILENO);
+        ::dup2(out, STDOUT_FILENO);
+        ::dup2(err, STDERR_FILENO);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
+/// The wait status of `pid`, or nothing if it still runs after `seconds`
+/// (then it is killed: a test fails rather than hangs).
+inline std::optional<int> wait_for_exit(pid_t pid, double seconds) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    do {
+        int status = 0;
+        if (::waitpid(pid, &status, WNOHANG) == pid) return status;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    } while (std::chrono::steady_clock::now() < end);
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    return std::nullopt;
 }
 
 } // namespace clitest

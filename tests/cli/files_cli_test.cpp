@@ -58,49 +58,6 @@ void expect_bad_input(const Result& r, std::initializer_list<std::string> needle
     for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << what << ": no '" << n << "' in: " << r.err;
 }
 
-/// Starts `stickslip args...` with the terminating signals at their defaults,
-/// stdin, stdout and stderr from and to the given files, no core file.
-pid_t start(const Args& args, const std::string& out_path, const std::string& err_path) {
-    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
-    argv_s.insert(argv_s.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : argv_s) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) { // only async-signal-safe calls until exec
-        struct rlimit no_core {};
-        ::setrlimit(RLIMIT_CORE, &no_core);
-        ::signal(SIGINT, SIG_DFL);
-        ::signal(SIGTERM, SIG_DFL);
-        sigset_t none;
-        sigemptyset(&none);
-        ::sigprocmask(SIG_SETMASK, &none, nullptr);
-        const int in = ::open("/dev/null", O_RDONLY);
-        const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        ::dup2(in, STDIN_FILENO);
-        ::dup2(out, STDOUT_FILENO);
-        ::dup2(err, STDERR_FILENO);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
-    }
-    return pid;
-}
-
-/// The wait status, or nothing if it still runs after `seconds` (then it is
-/// killed: a test fails rather than hangs).
-std::optional<int> wait_for_exit(pid_t pid, double seconds) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    do {
-        int status = 0;
-        if (::waitpid(pid, &status, WNOHANG) == pid) return status;
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    } while (std::chrono::steady_clock::now() < end);
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, nullptr, 0);
-    return std::nullopt;
-}
-
 /// Waits until `path` exists or process `pid` has ended (not reaped).
 bool wait_for_file(const std::string& path, pid_t pid) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);

@@ -375,42 +375,9 @@ TEST(CliOutputFile, DirectoryOrUnwritableDirectoryFailsBeforeAnyWork) {
 /// and SIGQUIT ignored) except `ignored`, and no core file (SIGQUIT, SIGXCPU
 /// and SIGXFSZ dump core by default).
 pid_t start_long_run(const std::string& dir, int ignored = 0) {
-    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH, "diffusivity", "--excursions", "100000000", "--scheme", "resolvent", "--dt", "1e-4",
-                                    "--output", dir + "/out.json", "--quiet"};
-    std::vector<char*> argv;
-    for (auto& a : argv_s) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) { // only async-signal-safe calls until exec
-        struct rlimit no_core {};
-        ::setrlimit(RLIMIT_CORE, &no_core);
-        for (int s = 1; s < NSIG; ++s)
-            if (s != SIGKILL && s != SIGSTOP) ::signal(s, s == ignored ? SIG_IGN : SIG_DFL);
-        sigset_t none;
-        sigemptyset(&none);
-        ::sigprocmask(SIG_SETMASK, &none, nullptr);
-        const int null = ::open("/dev/null", O_RDWR);
-        ::dup2(null, STDIN_FILENO);
-        ::dup2(null, STDOUT_FILENO);
-        ::dup2(null, STDERR_FILENO);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
-    }
-    return pid;
-}
-
-/// The wait status, or nothing if the process is still running after
-/// `seconds` (then it is killed: a test fails rather than hangs).
-std::optional<int> wait_for_exit(pid_t pid, double seconds) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    do {
-        int status = 0;
-        if (::waitpid(pid, &status, WNOHANG) == pid) return status;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    } while (std::chrono::steady_clock::now() < end);
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, nullptr, 0);
-    return std::nullopt;
+    return start({"diffusivity", "--excursions", "100000000", "--scheme", "resolvent", "--dt", "1e-4", "--output",
+                  dir + "/out.json", "--quiet"},
+                 "/dev/null", "/dev/null", ignored);
 }
 
 /// Waits until the run has opened its temporary in DIR (it does so before
