@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "progress.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <unistd.h>
 
@@ -12,11 +13,23 @@ namespace stickslip::cli {
 
 std::function<bool(const Progress&)> progress_line(bool quiet, const std::string& what, double level) {
     if (quiet || !isatty(STDERR_FILENO) || distributed()) return {}; // no interleaved lines from many processes
-    return [what, level](const Progress& pr) {
+    // The rate is this process's own: a resumed run starts with samples done
+    // in no time, and the first report comes before any block has finished;
+    // until one has, the time left is unknown, not "~0 s" (a near-white run
+    // of 12 hours said "~0 s left" for its first minutes).
+    struct Start {
+        bool seen = false;
+        std::uint64_t done = 0;
+        double seconds = 0.0;
+    };
+    return [what, level, start = Start{}](const Progress& pr) mutable {
         using number_text::fixed;
         using number_text::general;
-        const double rate = pr.seconds > 0 ? static_cast<double>(pr.done) / pr.seconds : 0.0;
-        const double left = rate > 0 ? static_cast<double>(pr.total - pr.done) / rate : 0.0;
+        if (!start.seen) start = Start{true, pr.done, pr.seconds};
+        const bool moved = pr.done > start.done && pr.seconds > start.seconds;
+        const double rate =
+            moved ? static_cast<double>(pr.done - start.done) / (pr.seconds - start.seconds) : 0.0;
+        const double left = moved ? static_cast<double>(pr.total - pr.done) / rate : 0.0;
         std::string estimate;
         if (level > 0 && pr.moments && pr.moments->count() >= 2) {
             const auto e = estimate_long_excursion(*pr.moments, level);
@@ -27,7 +40,13 @@ std::function<bool(const Progress&)> progress_line(bool quiet, const std::string
         }
         std::string line = "\r"; // appended: GCC 12 warns (-Wrestrict, a false positive) on "\r" + std::string
         line += std::to_string(pr.done) + "/" + std::to_string(pr.total) + " " + what + estimate + ", " +
-                fixed(rate, 0) + "/s, " + fixed(pr.seconds, 1) + " s elapsed, ~" + fixed(left, 0) + " s left   ";
+                (moved ? fixed(rate, 0) + "/s, " : std::string()) + fixed(pr.seconds, 1) + " s elapsed, ";
+        if (moved || pr.done == pr.total) {
+            line += '~';
+            line += fixed(left, 0) + " s left   ";
+        } else {
+            line += "estimating...   ";
+        }
         std::fputs(line.c_str(), stderr);
         if (pr.done == pr.total) std::fprintf(stderr, "\n");
         std::fflush(stderr);

@@ -44,6 +44,12 @@ void check_bins(const VelocityBins& b) {
 }
 
 /// Sampling interval of a path observable [s].
+/// The sampling interval that adds work of its own (an explicit --sample-dt
+/// of the event scheme or the PDMP), 0 otherwise: the cost model's input.
+double extra_sampling(const EngineSettings& s, double sample_dt) {
+    return s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent ? 0.0 : sample_dt;
+}
+
 double sampling_interval(const EngineSettings& s, double sample_dt) {
     if (!std::isfinite(sample_dt) || sample_dt < 0)
         throw InvalidParameter("sample-dt", "sample-dt must be a finite number >= 0 (s), got " +
@@ -285,7 +291,7 @@ PreparedEngine prepare_request(const StationaryDensityRequest& req_in) {
     check_bins(req.bins);
     check_event_sampling(req);
     sampling_interval(req.engine, req.sample_dt);
-    detail::check_excursions_can_end(engine);
+    detail::check_excursions_can_end(engine, extra_sampling(req.engine, req.sample_dt));
     return engine;
 }
 
@@ -347,7 +353,8 @@ bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engin
 StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req_in) {
     const StationaryDensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     const PreparedEngine prepared = prepare_request(req);
-    const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
+    const std::vector<std::string> notes =
+        detail::start_notes(prepared, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
     const SampledEngine engine(prepared);
     StationaryDensityResult out;
     out.request = req;
@@ -451,7 +458,7 @@ PreparedEngine prepare_request(const CorrelationRequest& req_in) {
     if (max_lag / dt > static_cast<double>(kMaxLagSamples))
         throw InvalidParameter("max-lag", "max-lag / sampling interval exceeds " + std::to_string(kMaxLagSamples) +
                                               " samples; use a shorter --max-lag (pdmp: or a coarser --sample-dt)");
-    detail::check_excursions_can_end(engine);
+    detail::check_excursions_can_end(engine, extra_sampling(req.engine, req.sample_dt));
     return engine;
 }
 
@@ -462,7 +469,8 @@ void validate(const CorrelationRequest& req) { prepare_request(req); }
 CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
     const CorrelationRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     const PreparedEngine prepared = prepare_request(req);
-    const std::vector<std::string> notes = detail::start_notes(prepared, req.excursions, req.control);
+    const std::vector<std::string> notes =
+        detail::start_notes(prepared, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
     CorrelationResult out;
     out.request = req;
     out.resolved = prepared.resolved;

@@ -72,9 +72,10 @@ void check_finite(const LongExcursionEstimates& est) {
                                       "in this run; rescale friction and noise towards 1");
 }
 
-std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl) {
+std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
+                                     double sample_dt) {
     std::vector<std::string> notes = e.notes;
-    if (excursions > 0) note_cost(e, excursions, notes);
+    if (excursions > 0) note_cost(e, excursions, notes, sample_dt);
     if (ctl.notice)
         for (const auto& n : notes) ctl.notice(n);
     return notes;

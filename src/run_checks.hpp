@@ -29,8 +29,10 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
 void check_finite(const LongExcursionEstimates& est);
 
 /// The notes of a run about to start (the engine's, and for `excursions` > 0
-/// long excursions the predicted cost), each passed to RunControl::notice.
-std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl);
+/// long excursions the predicted cost, samples every sample_dt > 0 [s]
+/// included), each passed to RunControl::notice.
+std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
+                                     double sample_dt = 0.0);
 
 /// A run stopped early (RunControl::stop): throws RunInterrupted when fewer
 /// than 2 of its `samples` ("excursions", "trajectories") completed, else adds

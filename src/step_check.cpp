@@ -92,10 +92,14 @@ double excursion_duration_lower_bound(const ModelParams& p) {
     return 0.5 * (ou_first_passage_time(up, p.tau) + ou_first_passage_time(down, p.tau));
 }
 
-double excursion_work_lower_bound(const PreparedEngine& e) {
+double excursion_work_lower_bound(const PreparedEngine& e, double sample_dt) {
     const double t = excursion_duration_lower_bound(e.params);
-    if (e.settings.engine == Engine::Pdmp) return t * e.pdmp.rate;
-    return t / e.settings.dt;
+    // A sample costs about what a step or an event does (the velocity is
+    // interpolated and binned), so it counts as one: `density --sample-dt
+    // 5e-324` sampled every 5e-324 s and ran for ever.
+    const double samples = sample_dt > 0 ? t / sample_dt : 0.0;
+    if (e.settings.engine == Engine::Pdmp) return t * e.pdmp.rate + samples;
+    return t / e.settings.dt + samples;
 }
 
 double resolvent_bias(const ModelParams& p, double dt) {
@@ -206,10 +210,21 @@ void check_step(const PreparedEngine& e, std::vector<std::string>& notes) {
     if (s.engine == Engine::Inclusion && s.scheme == Scheme::Event) check_event_step(p, s.dt, notes);
 }
 
-void check_excursions_can_end(const PreparedEngine& e) {
+void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
     const ModelParams& p = e.params;
     const EngineSettings& s = e.settings;
-    const double work = excursion_work_lower_bound(e);
+    const double work = excursion_work_lower_bound(e, sample_dt);
+    const double t = excursion_duration_lower_bound(p);
+    if (sample_dt > 0 && work >= static_cast<double>(s.max_work_per_excursion) && t / sample_dt >= 0.5 * work)
+        throw InvalidParameter("sample-dt", "sampling every " + format_number(sample_dt) + " s, an excursion of at "
+                                            "least " + duration_text(t) + " on average takes " +
+                                            (std::isfinite(t / sample_dt) ? "about " + rounded(t / sample_dt)
+                                                                          : std::string("unboundedly many")) +
+                                            " samples, more than --max-steps (" +
+                                            std::to_string(s.max_work_per_excursion) +
+                                            ") allows: the run could not finish; use a --sample-dt of at least " +
+                                            rounded(2 * t / static_cast<double>(s.max_work_per_excursion)) +
+                                            " s (0: the engine's step)");
     if (work >= static_cast<double>(s.max_work_per_excursion)) {
         const double sd = p.white() ? 0.0 : std::sqrt(p.tau);
         const double h = std::max(std::fabs(p.upper_threshold()), std::fabs(p.lower_threshold())) * sd;
@@ -228,8 +243,8 @@ void check_excursions_can_end(const PreparedEngine& e) {
     }
 }
 
-void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes) {
-    const double work = excursion_work_lower_bound(e) * static_cast<double>(samples);
+void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes, double sample_dt) {
+    const double work = excursion_work_lower_bound(e, sample_dt) * static_cast<double>(samples);
     if (!(work > kLongRun)) return;
     const char* unit = e.settings.engine == Engine::Pdmp ? "events" : "steps";
     notes.push_back("a long run: at least about " + rounded(work) + " " + unit + " in all (" +

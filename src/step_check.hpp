@@ -51,8 +51,9 @@ double ou_first_passage_time(double h, double tau);
 /// coloured noise: the mean of T(h) over the two thresholds. 0 for white noise.
 double excursion_duration_lower_bound(const ModelParams& p);
 
-/// Steps (inclusion) or events (PDMP) a long excursion needs at least.
-double excursion_work_lower_bound(const PreparedEngine& e);
+/// Steps (inclusion) or events (PDMP) a long excursion needs at least, and
+/// with sample_dt > 0 [s] (density, correlation) its samples, one unit each.
+double excursion_work_lower_bound(const PreparedEngine& e, double sample_dt = 0.0);
 
 /// The predicted relative bias of D of the resolvent scheme (see above): > 0
 /// when D comes out too high.
@@ -72,12 +73,15 @@ double auto_step(const ModelParams& p, Scheme scheme);
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
 
 /// Refuses (InvalidParameter "max-steps") a run of long excursions that
-/// cannot end under the runaway guard (see the top of the file).
-void check_excursions_can_end(const PreparedEngine& e);
+/// cannot end under the runaway guard (see the top of the file), and
+/// (InvalidParameter "sample-dt") one whose samples every sample_dt > 0 [s]
+/// alone would exceed the guard.
+void check_excursions_can_end(const PreparedEngine& e, double sample_dt = 0.0);
 
 /// A note when `samples` long excursions are predicted to cost more than
 /// 3e10 steps or events (five minutes on one core at least; the bound is 2-3x short), with the
 /// estimate; nothing otherwise.
-void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes);
+void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes,
+               double sample_dt = 0.0);
 
 } // namespace stickslip::detail

@@ -41,7 +41,6 @@ values = ["1e308", "-1e308", "1e15", "5e-324"]
 known_slow = {
     ("diffusivity", "noise", "1e15"), ("density", "noise", "1e15"), ("sweep", "noise", "1e15"),
     ("diffusivity", "rel-precision", "5e-324"),  # runs to --max-excursions 1e8
-    ("density", "sample-dt", "5e-324"),
 }
 # Settings that are parameters, not results: a null there means "not applicable".
 inputs = {"params", "nondimensional", "work", "settings"}

@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Issue 28, item 5: no run that cannot finish starts without saying so.
+// Refusals come up front (exit 2, the flag named); the progress line does not
+// claim "~0 s left" before it has measured anything.
+#include <fcntl.h>
+#include <poll.h>
+#include <stdlib.h>
+
+#include "cli_support.hpp"
+
+namespace {
+
+using clitest::Args;
+using clitest::run;
+
+TEST(HopelessCli, DensitySamplingEveryDenormalIsRefused) {
+    // Sampled every 5e-324 s, the run never ended.
+    const auto r = run({"density", "--excursions", "200", "--sample-dt", "5e-324"});
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("--sample-dt"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("use a --sample-dt of at least"), std::string::npos) << r.err;
+    EXPECT_EQ(clitest::count_lines(r.err), 1) << r.err;
+    EXPECT_TRUE(r.out.empty());
+}
+
+TEST(HopelessCli, PdmpSamplingBeyondTheGuardIsRefused) {
+    const auto r = run({"density", "--engine", "pdmp", "--excursions", "200", "--sample-dt", "1e-12"});
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("--sample-dt"), std::string::npos) << r.err;
+}
+
+TEST(HopelessCli, CoarseEnoughSamplingStillRuns) {
+    const auto r = run({"density", "--excursions", "200", "--sample-dt", "1e-3", "--quiet"});
+    EXPECT_EQ(r.code, 0) << r.err;
+}
+
+/// stderr of a run on a terminal (a pseudo-terminal's master read here), so
+/// that the progress line and the notes are written.
+std::string stderr_on_terminal(const Args& args) {
+    const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return "no pty";
+    const int slave = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
+    if (slave < 0) return "no pty";
+    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
+    argv_s.insert(argv_s.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&fa, slave, 2);
+    pid_t pid = 0;
+    const int rc = ::posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    ::close(slave);
+    if (rc != 0) return "spawn failed";
+    std::string text;
+    char buf[4096];
+    for (;;) {
+        pollfd p{master, POLLIN, 0};
+        if (::poll(&p, 1, 60000) <= 0) break;
+        const ssize_t n = ::read(master, buf, sizeof buf);
+        if (n <= 0) break; // EIO once the child has closed its end
+        text.append(buf, static_cast<std::size_t>(n));
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ::close(master);
+    return text;
+}
+
+TEST(HopelessCli, ProgressSaysEstimatingBeforeAnyBlockHasFinished) {
+    const std::string err = stderr_on_terminal({"diffusivity", "--excursions", "2000", "--threads", "1"});
+    // The first report comes at once, before any block: it must not say "~0 s left".
+    const auto first_end = err.find('\r', 1);
+    const std::string first = err.substr(0, first_end);
+    EXPECT_NE(first.find("estimating..."), std::string::npos) << err;
+    EXPECT_EQ(first.find("~0 s left"), std::string::npos) << err;
+    // The last report has the measured rate.
+    EXPECT_NE(err.find("2000/2000 excursions"), std::string::npos) << err;
+    EXPECT_NE(err.find(" s left"), std::string::npos) << err;
+}
+
+} // namespace
