@@ -42,11 +42,6 @@ std::optional<json> timed_json(const Args& args, double& seconds) {
     return j;
 }
 
-Args with(Args a, std::initializer_list<std::string> more) {
-    a.insert(a.end(), more);
-    return a;
-}
-
 // One case of every quantity that merges blocks, sized to run for about a
 // second on one core (half a second on two), on both engines where the engine
 // matters.

@@ -27,6 +27,7 @@
 #include <stdexcept>
 #include <string>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -260,6 +261,26 @@ inline std::optional<int> wait_for_exit(pid_t pid, double seconds) {
     ::kill(pid, SIGKILL);
     ::waitpid(pid, nullptr, 0);
     return std::nullopt;
+}
+
+/// `a` with `more` appended.
+inline Args with(Args a, std::initializer_list<std::string> more) {
+    a.insert(a.end(), more);
+    return a;
+}
+
+/// lstat() of `path` (st_mode 0 when it does not exist).
+inline struct stat lstat_of(const std::string& path) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) st.st_mode = 0;
+    return st;
+}
+
+/// A symlink's target, or "" when `path` is not one.
+inline std::string link_of(const std::string& path) {
+    char buf[4096];
+    const ssize_t n = ::readlink(path.c_str(), buf, sizeof buf);
+    return n < 0 ? std::string() : std::string(buf, static_cast<std::size_t>(n));
 }
 
 } // namespace clitest

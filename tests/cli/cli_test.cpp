@@ -22,11 +22,6 @@ using nlohmann::json;
 const Args kPdmp{"diffusivity", "--engine", "pdmp", "--excursions", "300", "--format", "json"};
 const Args kInclusion{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "200", "--format", "json"};
 
-Args with(Args base, std::initializer_list<std::string> more) {
-    base.insert(base.end(), more);
-    return base;
-}
-
 void expect_number(const json& j, const std::string& key, const std::string& where) {
     ASSERT_TRUE(j.contains(key)) << where << " lacks \"" << key << "\":\n" << j.dump(2);
     EXPECT_TRUE(j[key].is_number()) << where << "." << key << " is not a number: " << j[key];

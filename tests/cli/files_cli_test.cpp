@@ -25,23 +25,6 @@ using nlohmann::json;
 /// A run of a fraction of a second through the block driver.
 const Args kSmall{"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "2000", "--quiet", "--format", "json"};
 
-Args with(Args a, std::initializer_list<std::string> more) {
-    a.insert(a.end(), more);
-    return a;
-}
-
-struct stat lstat_of(const std::string& path) {
-    struct stat st {};
-    if (::lstat(path.c_str(), &st) != 0) st.st_mode = 0;
-    return st;
-}
-
-std::string link_of(const std::string& path) {
-    char buf[4096];
-    const ssize_t n = ::readlink(path.c_str(), buf, sizeof buf);
-    return n < 0 ? std::string() : std::string(buf, static_cast<std::size_t>(n));
-}
-
 bool is_checkpoint(const std::string& text) {
     try {
         return json::parse(text).value("format", "") == "stickslip-checkpoint";

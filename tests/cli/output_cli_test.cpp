@@ -42,18 +42,6 @@ bool is_json_object(const std::string& text) {
     }
 }
 
-struct stat lstat_of(const std::string& path) {
-    struct stat st {};
-    if (::lstat(path.c_str(), &st) != 0) st.st_mode = 0;
-    return st;
-}
-
-std::string link_of(const std::string& path) {
-    char buf[4096];
-    const ssize_t n = ::readlink(path.c_str(), buf, sizeof buf);
-    return n < 0 ? std::string() : std::string(buf, static_cast<std::size_t>(n));
-}
-
 // --- written through: FIFO, devices, /dev/stdout ------------------------------------------------
 
 // Guards against replacing a FIFO by a regular file (the old rename did): the

@@ -12,11 +12,6 @@ using nlohmann::json;
 
 const Args kBase{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3", "--excursions", "256", "--format", "json"};
 
-Args with(Args a, std::initializer_list<std::string> more) {
-    a.insert(a.end(), more);
-    return a;
-}
-
 TEST(CliPrecision, StopsWithHalfWidthWithinTarget) {
     const auto j = run_json(with(kBase, {"--rel-precision", "0.08"}));
     ASSERT_TRUE(j);
