@@ -47,13 +47,13 @@
 #include <cstdint>
 #include <limits>
 
-#include "stickslip/event_lanes.hpp"
-#include "stickslip/event_scheme.hpp"
-#include "stickslip/inclusion.hpp"
-#include "stickslip/inclusion_lanes.hpp"
-#include "stickslip/pdmp.hpp"
-#include "stickslip/rng.hpp"
-#include "stickslip/rng_batch.hpp"
+#include "stickslip/kernels/event_lanes.hpp"
+#include "stickslip/kernels/event_scheme.hpp"
+#include "stickslip/kernels/resolvent.hpp"
+#include "stickslip/kernels/resolvent_lanes.hpp"
+#include "stickslip/kernels/pdmp.hpp"
+#include "stickslip/random/rng.hpp"
+#include "stickslip/random/rng_batch.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "distributed.hpp"
 
-#include "stickslip/exact_sum.hpp"
+#include "stickslip/stats/exact_sum.hpp"
 #include "stickslip/params.hpp"
 
 #include <cstdlib>

@@ -3,7 +3,7 @@
 // fuzz targets (tests/fuzz/) can call it in-process; main() only brackets it
 // with the process split.
 #include "distributed.hpp"
-#include "run.hpp"
+#include "app.hpp"
 
 namespace cli = stickslip::cli;
 

@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include "distributed.hpp"
-#include "stickslip/estimators.hpp"
+#include "stickslip/stats/estimators.hpp"
 #include "stickslip/number_text.hpp"
 
 namespace stickslip::cli {

@@ -20,7 +20,7 @@
 /// Var(V) by quadrature, and Touchette's transient closed forms for pure dry
 /// friction. The comment at the top of this header explains the design.
 
-#include "params.hpp"
+#include "stickslip/params.hpp"
 
 namespace stickslip {
 

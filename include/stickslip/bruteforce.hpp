@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "estimators.hpp"
-#include "run.hpp"
+#include "stickslip/stats/estimators.hpp"
+#include "stickslip/run.hpp"
 
 namespace stickslip {
 

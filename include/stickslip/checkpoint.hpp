@@ -47,7 +47,7 @@
 #include <utility>
 #include <vector>
 
-#include "setting.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip {
 

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <string>
 
-#include "setting.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip {
 

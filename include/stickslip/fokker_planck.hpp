@@ -61,8 +61,8 @@
 #include <memory>
 #include <vector>
 
-#include "analytic.hpp"
-#include "params.hpp"
+#include "stickslip/analytic.hpp"
+#include "stickslip/params.hpp"
 
 namespace stickslip {
 

@@ -39,12 +39,12 @@
 #include <string>
 #include <vector>
 
-#include "diffusivity.hpp"
-#include "estimators.hpp"
-#include "excursion.hpp"
-#include "params.hpp"
-#include "run.hpp"
-#include "runner.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/stats/estimators.hpp"
+#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/params.hpp"
+#include "stickslip/run.hpp"
+#include "stickslip/runner.hpp"
 
 namespace stickslip {
 

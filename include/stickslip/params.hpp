@@ -19,7 +19,7 @@
 
 #include <string>
 
-#include "setting.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip {
 

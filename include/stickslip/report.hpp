@@ -13,11 +13,11 @@
 
 #include <string>
 
-#include "bruteforce.hpp"
-#include "diffusivity.hpp"
-#include "observables.hpp"
-#include "sweep.hpp"
-#include "white_noise.hpp"
+#include "stickslip/bruteforce.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/observables.hpp"
+#include "stickslip/sweep.hpp"
+#include "stickslip/white_noise.hpp"
 
 namespace stickslip {
 

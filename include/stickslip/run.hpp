@@ -18,13 +18,13 @@
 #include <string>
 #include <vector>
 
-#include "engine.hpp"
-#include "event_scheme.hpp"
-#include "inclusion.hpp"
-#include "params.hpp"
-#include "pdmp.hpp"
-#include "runner.hpp"
-#include "setting.hpp"
+#include "stickslip/engine.hpp"
+#include "stickslip/kernels/event_scheme.hpp"
+#include "stickslip/kernels/resolvent.hpp"
+#include "stickslip/params.hpp"
+#include "stickslip/kernels/pdmp.hpp"
+#include "stickslip/runner.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip {
 

@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "estimators.hpp"
-#include "excursion.hpp"
-#include "moment_sums.hpp"
-#include "params.hpp"
+#include "stickslip/stats/estimators.hpp"
+#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/stats/moment_sums.hpp"
+#include "stickslip/params.hpp"
 
 namespace stickslip {
 

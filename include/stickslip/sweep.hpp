@@ -19,7 +19,7 @@
 #include <functional>
 #include <vector>
 
-#include "diffusivity.hpp"
+#include "stickslip/diffusivity.hpp"
 
 namespace stickslip {
 

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "analytic.hpp"
-#include "params.hpp"
+#include "stickslip/analytic.hpp"
+#include "stickslip/params.hpp"
 
 namespace stickslip {
 

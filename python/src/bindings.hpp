@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/estimators.hpp"
+#include "stickslip/stats/estimators.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip::python {

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # The event scheme at coarse steps (docs/validation.md, "The event scheme at
 # coarse steps"): the measured reach behind the step checks of
-# src/step_check.cpp. Each row is one `diffusivity` run of 1e5 excursions,
+# src/driver/step_check.cpp. Each row is one `diffusivity` run of 1e5 excursions,
 # seed 1, against a reference the row did not produce (coloured noise: the
 # event scheme at a step of tau/10 or finer with the same excursions count;
 # white noise: the exact quadrature of `stickslip analytic`). Steps the checks

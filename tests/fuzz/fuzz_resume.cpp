@@ -10,7 +10,7 @@
 //
 // A checksum covers a checkpoint, so nearly every mutation would stop there.
 // Inputs of even size that are JSON objects with a "checksum" have it put
-// right first (FNV-1a of the compact JSON without it, as src/checkpoint.cpp
+// right first (FNV-1a of the compact JSON without it, as src/driver/checkpoint.cpp
 // computes it), so that the checks behind it are fuzzed too; inputs of odd
 // size are read as they are.
 #include <cstddef>

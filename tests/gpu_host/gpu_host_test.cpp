@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The CUDA backend's per-thread loop (stickslip/device_excursions.hpp),
+// The CUDA backend's per-thread loop (stickslip/kernels/device_excursions.hpp),
 // compiled as host code, against the CPU engine: every outcome bitwise the
 // same, and the run's exact sums too, for both schemes, coloured noise with
 // stop rules Q and P, white noise, capped excursions, partial blocks, odd
@@ -15,10 +15,10 @@
 #include <thread>
 #include <vector>
 
-#include "cuda/host_merge.hpp"
-#include "stickslip/device_excursions.hpp"
-#include "stickslip/inclusion_lanes.hpp"
-#include "stickslip/rng_batch.hpp"
+#include "engines/cuda/host_merge.hpp"
+#include "stickslip/kernels/device_excursions.hpp"
+#include "stickslip/kernels/resolvent_lanes.hpp"
+#include "stickslip/random/rng_batch.hpp"
 #include "stickslip/run.hpp"
 #include "stickslip/runner.hpp"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The transcendental functions of the device (stickslip/portable_math.hpp):
+// The transcendental functions of the device (stickslip/random/portable_math.hpp):
 // correctly rounded against 60-digit references (portable_math_reference.txt,
 // from make_portable_math_reference.py), including arguments where glibc is
 // not; the decision rule kernel_below_exp uses on the device; and that the
@@ -17,9 +17,9 @@
 #include <sstream>
 #include <string>
 
-#include "stickslip/detail/ziggurat_device_tables.hpp"
-#include "stickslip/portable_math.hpp"
-#include "stickslip/rng.hpp"
+#include "stickslip/random/detail/ziggurat_device_tables.hpp"
+#include "stickslip/random/portable_math.hpp"
+#include "stickslip/random/rng.hpp"
 
 namespace ss = stickslip;
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "stickslip/analytic.hpp"
-#include "stickslip/event_scheme.hpp"
+#include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/observables.hpp"
-#include "stickslip/rng_batch.hpp"
+#include "stickslip/random/rng_batch.hpp"
 #include "support.hpp"
 
 namespace {

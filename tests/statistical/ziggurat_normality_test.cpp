@@ -29,7 +29,7 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 
-#include "stickslip/rng_batch.hpp"
+#include "stickslip/random/rng_batch.hpp"
 #include "support.hpp"
 
 namespace {

@@ -14,10 +14,10 @@
 #include <limits>
 #include <vector>
 
-#include "stickslip/event_lanes.hpp"
-#include "stickslip/event_scheme.hpp"
-#include "stickslip/rng.hpp"
-#include "stickslip/rng_batch.hpp"
+#include "stickslip/kernels/event_lanes.hpp"
+#include "stickslip/kernels/event_scheme.hpp"
+#include "stickslip/random/rng.hpp"
+#include "stickslip/random/rng_batch.hpp"
 
 namespace ss = stickslip;
 

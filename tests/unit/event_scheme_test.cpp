@@ -11,8 +11,8 @@
 #include "stickslip/analytic.hpp"
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
-#include "stickslip/event_scheme.hpp"
-#include "stickslip/rng_batch.hpp"
+#include "stickslip/kernels/event_scheme.hpp"
+#include "stickslip/random/rng_batch.hpp"
 #include "stickslip/runner.hpp"
 
 namespace ss = stickslip;

@@ -43,7 +43,7 @@
 
 #include <boost/multiprecision/cpp_int.hpp>
 
-#include "stickslip/exact_sum.hpp"
+#include "stickslip/stats/exact_sum.hpp"
 
 namespace ss = stickslip;
 using boost::multiprecision::cpp_int;

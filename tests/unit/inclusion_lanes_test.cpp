@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/inclusion.hpp"
-#include "stickslip/inclusion_lanes.hpp"
-#include "stickslip/rng.hpp"
+#include "stickslip/kernels/resolvent.hpp"
+#include "stickslip/kernels/resolvent_lanes.hpp"
+#include "stickslip/random/rng.hpp"
 
 namespace ss = stickslip;
 

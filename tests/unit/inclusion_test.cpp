@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "stickslip/inclusion.hpp"
+#include "stickslip/kernels/resolvent.hpp"
 #include "stickslip/params.hpp"
 
 namespace ss = stickslip;

@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "stickslip/moment_sums.hpp"
+#include "stickslip/stats/moment_sums.hpp"
 
 namespace {
 

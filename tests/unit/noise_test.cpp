@@ -21,7 +21,7 @@
 #include <map>
 #include <vector>
 
-#include "stickslip/noise.hpp"
+#include "stickslip/kernels/noise.hpp"
 
 namespace ss = stickslip;
 using boost::math::quadrature::gauss_kronrod;

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "stickslip/params.hpp"
-#include "stickslip/pdmp.hpp"
+#include "stickslip/kernels/pdmp.hpp"
 
 namespace ss = stickslip;
 

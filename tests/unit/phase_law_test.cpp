@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/phase_law.hpp"
+#include "stickslip/kernels/phase_law.hpp"
 
 namespace ss = stickslip;
 

@@ -6,7 +6,7 @@
 
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
-#include "stickslip/pdmp.hpp"
+#include "stickslip/kernels/pdmp.hpp"
 
 namespace ss = stickslip;
 

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/rng.hpp"
-#include "stickslip/rng_batch.hpp"
-#include "stickslip/ziggurat.hpp"
+#include "stickslip/random/rng.hpp"
+#include "stickslip/random/rng_batch.hpp"
+#include "stickslip/random/ziggurat.hpp"
 
 namespace ss = stickslip;
 namespace zd = stickslip::detail;

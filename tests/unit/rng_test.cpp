@@ -29,7 +29,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "stickslip/rng.hpp"
+#include "stickslip/random/rng.hpp"
 
 namespace ss = stickslip;
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The closed forms behind the step checks (src/step_check.hpp): the mean
+// The closed forms behind the step checks (src/driver/step_check.hpp): the mean
 // first-passage time of the OU noise, against its small- and large-threshold
 // expansions, and the bound on an excursion's length in the Fig. 2 case.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "../../src/step_check.hpp"
+#include "../../src/driver/step_check.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/run.hpp"

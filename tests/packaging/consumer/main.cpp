@@ -11,7 +11,7 @@
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/report.hpp"
-#include "stickslip/rng.hpp"
+#include "stickslip/random/rng.hpp"
 
 int main() {
     stickslip::ModelParams p; // the paper's Fig. 2 case

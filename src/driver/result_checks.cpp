@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "driver/result_checks.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "core/format.hpp"
+#include "driver/step_check.hpp"
+#include "stickslip/diffusivity.hpp"
+
+namespace stickslip::detail {
+
+void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
+                               std::vector<std::string>& warnings) {
+    const ModelParams& p = e.params;
+    const EngineSettings& s = e.settings;
+    const ResolvedEngine& resolved = e.resolved;
+    const std::uint64_t done = totals.moments.count();
+    note_interruption(totals, "excursions", warnings);
+    if (totals.capped > 0) {
+        const std::string msg = std::to_string(totals.capped) + " of " + std::to_string(totals.requested) +
+                                " excursions hit the runaway guard of " + std::to_string(s.max_work_per_excursion) +
+                                (s.engine == Engine::Pdmp ? " events" : " steps") +
+                                " and were dropped: the estimates are biased towards short excursions";
+        if (!allow_capped) throw CappedExcursions(msg + " (raise --max-steps, or pass --allow-capped)");
+        warnings.push_back(msg);
+    }
+    if (done < 2) throw CappedExcursions("fewer than 2 excursions completed; nothing to estimate");
+    if (!(totals.moments.mean_y() > 0)) {
+        // Every excursion ended at its first step: t = 0 and U = 0 for all, so
+        // D and M0 would be 0/0. The step cannot see the noise cross the band.
+        const ModelParams nd0 = to_nondimensional(p);
+        std::string why = "every excursion ended within its first step (mean duration 0 s), so the estimates "
+                          "would be 0/0: ";
+        if (s.engine == Engine::Inclusion && !p.white() && nd0.tau < 0.1)
+            why += "at tau' = " + format_number(nd0.tau) + " the noise crosses the static band faster than dt = " +
+                   format_number(s.dt) + " s resolves; the noise is practically white: use --tau 0, or a much "
+                                         "smaller --dt";
+        else
+            why += "the step does not resolve this model; use a much smaller --dt or the pdmp engine";
+        throw UntrustworthyResult(why);
+    }
+    if (s.engine == Engine::Pdmp && resolved.truncated_mass > 1e-9)
+        warnings.push_back("the pdmp lattice is truncated at L = " + format_number(resolved.lattice_bound) +
+                           " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
+                           format_number(resolved.truncated_mass) + "; use a finer grid");
+    if (done < few_excursions)
+        warnings.push_back("only " + std::to_string(done) +
+                           " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
+                           "themselves uncertain; use 10000 or more for reliable intervals");
+    const ModelParams nd = to_nondimensional(p);
+    if (s.engine == Engine::Pdmp && !p.white())
+        warnings.push_back("pdmp mean_duration runs between the lattice points beyond the thresholds: it exceeds the "
+                           "continuum E[t1] by a few % (about 12% at tau = 1 s, grid 0.125); halve --grid to see it "
+                           "converge. D and M0 are not affected");
+    if (p.white())
+        warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
+                           format_number(resolved.white_level) + " m/s, not a stick-slip excursion");
+    else if (nd.tau < 0.1 ||
+             (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent && s.dt > 0.01 * p.tau))
+        warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
+                           "is not << tau; report it with that caveat, not as a check");
+}
+
+void check_finite(const LongExcursionEstimates& est) {
+    for (const auto& [name, x] : {std::pair<const char*, const Estimate*>{"D", &est.diffusivity},
+                                  {"M0", &est.mobility}, {"E[t1]", &est.mean_duration}})
+        if (!std::isfinite(x->value) || !std::isfinite(x->std_error))
+            throw UntrustworthyResult(std::string("the estimate of ") + name + " (" + format_number(x->value) +
+                                      " +- " + format_number(x->std_error) +
+                                      ") is not a finite number: the model's scales overflow double precision "
+                                      "in this run; rescale friction and noise towards 1");
+}
+
+std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
+                                     double sample_dt) {
+    std::vector<std::string> notes = e.notes;
+    if (excursions > 0) note_cost(e, excursions, notes, sample_dt);
+    if (ctl.notice)
+        for (const auto& n : notes) ctl.notice(n);
+    return notes;
+}
+
+void note_interruption(const RunTotals& totals, const char* samples, std::vector<std::string>& warnings) {
+    if (!totals.interrupted) return;
+    const std::uint64_t done = totals.moments.count() + totals.capped;
+    if (totals.moments.count() < 2) throw RunInterrupted();
+    warnings.push_back("interrupted: the result is from the first " + std::to_string(done) + " of " +
+                       std::to_string(totals.requested) + " " + samples +
+                       " (whole blocks in index order, so unbiased; the intervals are wider)");
+}
+
+void check_start(const ModelParams& p, double x0, double v0) {
+    if (!std::isfinite(v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+    if (std::isinf(x0)) throw InvalidParameter("x0", "x0 must be a finite number (s^-1/2)");
+    // Found by the extreme-value sweep (tests/cli/extreme_values.py): a start
+    // near 1e308 gave NaN means with exit 0 (bruteforce, moments).
+    const double v_unit = scales_of(p).velocity;
+    if (std::fabs(v0) > max_start_magnitude || std::fabs(v0) / v_unit > max_start_magnitude)
+        throw InvalidParameter("v0", "v0 = " + format_number(v0) +
+                                         " m/s: its square (E[V^2], U^2) would overflow double precision; |v0| "
+                                         "must be at most 1e100, in m/s and in units of noise/friction");
+    // The exact white-noise references take any finite bias; a path's
+    // velocities (bias x relaxation, squared) overflow beyond this.
+    if (std::fabs(p.bias) > max_start_magnitude * p.friction)
+        throw InvalidParameter("bias", "bias = " + format_number(p.bias) +
+                                           " m s^-2 is more than 1e100 times the friction: the velocities of a path "
+                                           "would overflow double precision");
+    const double sd = p.white() ? 1.0 : 1.0 / std::sqrt(p.tau);
+    if (std::isfinite(x0) && (std::fabs(x0) > max_start_magnitude || std::fabs(x0) / sd > max_start_magnitude))
+        throw InvalidParameter("x0", "x0 = " + format_number(x0) +
+                                         " s^-1/2: the velocities it drives would overflow double precision; |x0| "
+                                         "must be at most 1e100, in s^-1/2 and in standard deviations 1/sqrt(tau)");
+}
+
+double default_start_noise(const PreparedEngine& e) {
+    if (e.params.white()) return 0.0;
+    if (e.settings.engine == Engine::Pdmp) return (e.pdmp.k_plus + 1) * e.pdmp.delta;
+    return e.params.upper_threshold();
+}
+
+} // namespace stickslip::detail

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "stickslip/run.hpp"
+
+#include <cmath>
+
+#include "stickslip/stats/estimators.hpp"
+#include "driver/step_check.hpp"
+
+namespace stickslip {
+
+double auto_time_step(const ModelParams& p, Scheme scheme) {
+    validate(p);
+    return detail::auto_step(p, scheme);
+}
+
+Scheme auto_scheme(const ModelParams& p, PathUse use) {
+    if (p.white()) return use == PathUse::GridSamples ? Scheme::Resolvent : Scheme::Event;
+    // Near-white noise (tau' below about 1e-4): the event step must resolve
+    // tau, the resolvent's follows the white-noise law and is the longer.
+    return auto_time_step(p, Scheme::Resolvent) > auto_time_step(p, Scheme::Event) ? Scheme::Resolvent
+                                                                                    : Scheme::Event;
+}
+
+EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, PathUse use) {
+    // The scheme matters to the inclusion engine only (the PDMP's is kept).
+    if (s.scheme == Scheme::Auto && s.engine == Engine::Inclusion) s.scheme = auto_scheme(p, use);
+    if (s.dt_auto && s.engine == Engine::Inclusion) s.dt = auto_time_step(p, s.scheme);
+    return s;
+}
+
+PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given) {
+    const EngineSettings s = resolve_engine_settings(p, given);
+    PreparedEngine e;
+    e.params = p;
+    e.settings = s;
+    // Building an engine's constants validates the model, both step settings
+    // and how they fit together.
+    ResolvedEngine& r = e.resolved;
+    if (s.engine == Engine::Pdmp) {
+        e.pdmp = make_pdmp_constants(p, s);
+        const PdmpConstants& c = e.pdmp;
+        r.stop_rule = "exact";
+        r.lattice_bound = c.n_max * c.delta;
+        r.lattice_points = 2 * c.n_max + 1;
+        r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
+        r.jump_rate = c.rate;
+    } else if (s.scheme == Scheme::Event) {
+        e.event = make_event_constants(p, s);
+        r.stop_rule = e.event.white ? "velocity-levels" : "exact";
+        if (e.event.white) r.white_level = e.event.level;
+    } else {
+        e.inclusion = make_inclusion_constants(p, s);
+        const InclusionConstants& c = e.inclusion;
+        if (c.white) {
+            r.stop_rule = "velocity-levels";
+            r.white_level = c.level;
+        } else {
+            r.stop_rule = to_string(c.rule);
+        }
+    }
+    if (!p.white()) {
+        r.upper_threshold = p.upper_threshold();
+        r.lower_threshold = p.lower_threshold();
+    }
+    return e;
+}
+
+ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s) { return prepare_engine(p, s).resolved; }
+
+PreparedEngine prepare(const RunSettings& r) {
+    PreparedEngine e = prepare_engine(r.params, r.engine);
+    normal_quantile_two_sided(r.level); // validates the level
+    check_run_control(r.control);
+    detail::check_step(e, e.notes);
+    return e;
+}
+
+void validate(const RunSettings& r) { prepare(r); }
+
+void validate(const ExcursionSettings& e) {
+    if (e.excursions < 2)
+        throw InvalidParameter("excursions", "excursions must be >= 2 (got " + std::to_string(e.excursions) + ")");
+}
+
+} // namespace stickslip

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Construction and validation of the inclusion engine's per-run constants.
+#include "stickslip/kernels/resolvent.hpp"
+
+#include <cmath>
+
+#include "core/format.hpp"
+
+namespace stickslip {
+
+double white_level_default(const ModelParams& p) {
+    double scale = 0.7 * p.noise / p.friction;
+    if (!std::isinf(p.relaxation)) scale = std::fmin(scale, std::sqrt(p.noise * p.relaxation / 2.0));
+    return 0.5 * scale;
+}
+
+InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSettings& s) {
+    validate(p);
+    validate(s);
+    require_stationary_state(p);
+    InclusionConstants c{};
+    c.h = s.dt;
+    c.keep = 1.0 - s.dt * p.inverse_relaxation();
+    if (c.keep < 0)
+        throw InvalidParameter("dt", "dt must be smaller than relaxation (dt = " + detail::format_number(s.dt) +
+                                         " s, relaxation = " + detail::format_number(p.relaxation) +
+                                         " s): the explicit drift step would overshoot");
+    c.h_bias = s.dt * p.bias;
+    c.h_friction = s.dt * p.friction;
+    c.white = p.white();
+    c.max_steps = s.max_work_per_excursion;
+    if (c.white) {
+        c.h_amp = std::sqrt(p.noise * s.dt);
+        c.level = s.white_level > 0 ? s.white_level : white_level_default(p);
+        c.rule = StopRule::Stuck; // unused for white noise
+    } else {
+        c.h_amp = s.dt * p.force_amplitude();
+        c.ou = ou_step(p.tau, s.dt);
+        c.f_x = c.h_amp * c.ou.mean_coef;
+        c.f_z = c.h_amp * c.ou.l11;
+        if (!(std::isfinite(c.ou.l11) && std::isfinite(c.ou.l21) && std::isfinite(c.ou.l22) &&
+              std::isfinite(c.ou.mean_coef)))
+            throw InvalidParameter("dt", "dt/tau = " + detail::format_number(s.dt / p.tau) +
+                                             " is outside the range where the OU step is computable");
+        c.x_up = p.upper_threshold();
+        c.x_down = p.lower_threshold();
+        c.bridge_rate = p.tau * p.tau / s.dt;
+        c.rule = s.stop_rule;
+        if (c.rule == StopRule::Auto) c.rule = s.dt <= auto_bridge_ratio * p.tau ? StopRule::Bridge : StopRule::Stuck;
+    }
+    return c;
+}
+
+} // namespace stickslip

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "core/format.hpp"
+#include "stickslip/params.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace stickslip {
+
+double ModelParams::force_amplitude() const { return std::sqrt(noise / 2.0); }
+
+double ModelParams::inverse_relaxation() const { return std::isinf(relaxation) ? 0.0 : 1.0 / relaxation; }
+
+double ModelParams::upper_threshold() const { return (friction - bias) / force_amplitude(); }
+
+double ModelParams::lower_threshold() const { return (-friction - bias) / force_amplitude(); }
+
+Scales scales_of(const ModelParams& p) {
+    Scales s{};
+    s.time = p.noise / (p.friction * p.friction);
+    s.length = p.noise * p.noise / (p.friction * p.friction * p.friction);
+    s.velocity = p.noise / p.friction;
+    s.acceleration = p.friction;
+    s.diffusivity = s.length * s.length / s.time;
+    s.noise_level = 1.0 / std::sqrt(s.time);
+    return s;
+}
+
+ModelParams to_nondimensional(const ModelParams& p) {
+    const Scales s = scales_of(p);
+    ModelParams nd;
+    nd.friction = 1.0;
+    nd.noise = 1.0;
+    nd.tau = p.tau / s.time;
+    nd.relaxation = std::isinf(p.relaxation) ? p.relaxation : p.relaxation / s.time;
+    nd.bias = p.bias / p.friction;
+    return nd;
+}
+
+ModelParams from_nondimensional(const ModelParams& nd, double friction, double noise) {
+    ModelParams unit;
+    unit.friction = friction;
+    unit.noise = noise;
+    const Scales s = scales_of(unit);
+    ModelParams p;
+    p.friction = friction;
+    p.noise = noise;
+    p.tau = nd.tau * s.time;
+    p.relaxation = std::isinf(nd.relaxation) ? nd.relaxation : nd.relaxation * s.time;
+    p.bias = nd.bias * friction;
+    return p;
+}
+
+void validate(const ModelParams& p) {
+    if (!std::isfinite(p.friction) || p.friction <= 0)
+        throw InvalidParameter("friction", "friction must be a finite number > 0 (m s^-2), got " + detail::format_number(p.friction));
+    if (!std::isfinite(p.noise) || p.noise <= 0)
+        throw InvalidParameter("noise", "noise must be a finite number > 0 (m^2 s^-3), got " + detail::format_number(p.noise));
+    if (!std::isfinite(p.tau) || p.tau < 0)
+        throw InvalidParameter("tau", "tau must be a finite number >= 0 (s; 0 is white noise), got " + detail::format_number(p.tau));
+    if (std::isnan(p.relaxation) || p.relaxation <= 0)
+        throw InvalidParameter("relaxation",
+                               "relaxation must be > 0 (s) or inf (no viscous drag), got " + detail::format_number(p.relaxation));
+    // A subnormal relaxation time makes 1/relaxation infinite and the
+    // automatic step zero: refused here, by name, rather than blamed on --dt.
+    if (p.relaxation < std::numeric_limits<double>::min())
+        throw InvalidParameter("relaxation", "relaxation must be at least " +
+                                                 format_setting(std::numeric_limits<double>::min()) +
+                                                 " s (the smallest normal double) or inf, got " +
+                                                 detail::format_number(p.relaxation));
+    if (!std::isfinite(p.bias))
+        throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + detail::format_number(p.bias));
+    // Products that overflow would make every later formula meaningless.
+    const Scales s = scales_of(p);
+    if (!std::isfinite(s.diffusivity) || s.diffusivity <= 0 || !std::isfinite(s.time) || s.time <= 0) {
+        // Name the parameter that is further from 1 (the one to rescale), and
+        // say which unit of the nondimensional system leaves double's range.
+        const bool friction_off = std::fabs(std::log10(p.friction)) >= std::fabs(std::log10(p.noise));
+        const char* unit = !(std::isfinite(s.time) && s.time > 0) ? "the time unit noise/friction^2"
+                                                                  : "the diffusivity unit noise^3/friction^4";
+        throw InvalidParameter(friction_off ? "friction" : "noise",
+                               "friction = " + detail::format_number(p.friction) + " m s^-2 and noise = " +
+                                   detail::format_number(p.noise) + " m^2 s^-3 put " + unit +
+                                   " outside double precision's range; rescale the units (SI multiples) so that "
+                                   "both are nearer 1");
+    }
+}
+
+bool has_stationary_state(const ModelParams& p) {
+    return !std::isinf(p.relaxation) || std::fabs(p.bias) < p.friction;
+}
+
+void require_stationary_state(const ModelParams& p) {
+    if (!has_stationary_state(p))
+        throw InvalidParameter("bias", "with relaxation inf the bias must satisfy |bias| < friction (otherwise the "
+                                       "object accelerates forever and D is undefined); got bias " +
+                                           detail::format_number(p.bias) + ", friction " + detail::format_number(p.friction));
+}
+
+} // namespace stickslip

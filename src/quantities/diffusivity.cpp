@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "stickslip/diffusivity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "core/format.hpp"
+#include "driver/result_checks.hpp"
+#include "driver/step_check.hpp"
+
+namespace stickslip {
+
+PreparedEngine prepare(const DiffusivityRequest& req_in) {
+    const DiffusivityRequest req = with_resolved_engine(req_in);
+    PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
+    validate(static_cast<const ExcursionSettings&>(req));
+    if (!std::isfinite(req.rel_precision) || req.rel_precision < 0 || req.rel_precision >= 1)
+        throw InvalidParameter("rel-precision", "rel-precision must be in [0, 1) (0 = off), got " +
+                                                    detail::format_number(req.rel_precision));
+    if (req.rel_precision > 0 && req.max_excursions < req.excursions)
+        throw InvalidParameter("max-excursions", "max-excursions must be >= excursions (got " +
+                                                     std::to_string(req.max_excursions) + ")");
+    detail::check_excursions_can_end(engine);
+    if (req.check_dt) {
+        if (req.engine.engine != Engine::Inclusion)
+            throw InvalidParameter("check-dt", "check-dt needs the inclusion engine (the pdmp has no time step)");
+        const std::uint64_t most = req.rel_precision > 0 ? req.max_excursions : req.excursions;
+        if (req.control.first_index >= check_dt_first_index || most > check_dt_first_index)
+            throw InvalidParameter("check-dt", "check-dt needs the run's sample indices below 2^55");
+        try {
+            prepare(check_dt_request(req, req.excursions));
+        } catch (const InvalidParameter& e) {
+            throw InvalidParameter("check-dt", "twice the step cannot be run: --" + e.parameter() + ": " + e.what());
+        }
+    }
+    return engine;
+}
+
+DiffusivityRequest check_dt_request(const DiffusivityRequest& req, std::uint64_t excursions) {
+    DiffusivityRequest coarse = req;
+    coarse.check_dt = false;
+    coarse.rel_precision = 0;
+    coarse.excursions = excursions;
+    coarse.engine = resolve_engine_settings(req.params, req.engine);
+    coarse.engine.dt *= 2;
+    coarse.engine.dt_auto = false; // twice the step the main run takes
+    coarse.control.first_index = check_dt_first_index + req.control.first_index;
+    return coarse;
+}
+
+namespace {
+
+/// The --check-dt run: as many excursions as `main` has, at 2 dt, on
+/// independent streams; its progress continues the main run's line.
+DiscretisationCheck run_check_dt(const DiffusivityRequest& req, const DiffusivityResult& main,
+                                 std::vector<std::string>& warnings, bool& interrupted) {
+    const std::uint64_t n = main.totals.requested;
+    DiffusivityRequest coarse = check_dt_request(req, n);
+    if (req.control.progress) {
+        coarse.control.progress = [&req, &main, n](const Progress& p) {
+            Progress q{n + p.done, 2 * n, main.totals.seconds + p.seconds, &main.totals.moments};
+            return req.control.progress(q);
+        };
+    }
+    const PreparedEngine engine = prepare(static_cast<const RunSettings&>(coarse));
+    const RunTotals t = run_long_excursions(engine, n, coarse.control);
+    std::vector<std::string> ignored; // the main run's warnings say it all
+    try {
+        detail::finish_long_excursion_run(engine, t, req.allow_capped, ignored);
+    } catch (const UntrustworthyResult& e) {
+        throw UntrustworthyResult(std::string("the --check-dt run at 2 dt: ") + e.what());
+    }
+    const LongExcursionEstimates est = estimate_long_excursion(t.moments, req.level, req.estimator);
+    detail::check_finite(est);
+    DiscretisationCheck c;
+    c.dt = req.engine.dt;
+    c.check_dt = coarse.engine.dt;
+    c.excursions = t.moments.count();
+    c.steps = t.work;
+    const auto& d = main.estimates.diffusivity;
+    const auto& m = main.estimates.mobility;
+    c.diffusivity_difference = est.diffusivity.value - d.value;
+    c.diffusivity_stderr = std::hypot(est.diffusivity.std_error, d.std_error);
+    c.mobility_difference = est.mobility.value - m.value;
+    c.mobility_stderr = std::hypot(est.mobility.std_error, m.std_error);
+    if (t.interrupted) {
+        interrupted = true;
+        warnings.push_back("interrupted during the --check-dt run: its difference is from the first " +
+                           std::to_string(c.excursions) + " of " + std::to_string(n) + " excursions at 2 dt");
+    }
+    using detail::format_number;
+    // Significant at |z| > 3: a false alarm in about 0.3% of runs per quantity.
+    for (const auto& [name, diff, se, value] :
+         {std::tuple<const char*, double, double, double>{"D", c.diffusivity_difference, c.diffusivity_stderr, d.value},
+          {"M0", c.mobility_difference, c.mobility_stderr, m.value}}) {
+        const double z = diff / se;
+        if (std::fabs(z) > 3)
+            warnings.push_back(std::string("the step's bias is visible: ") + name + " at 2 dt differs from " + name +
+                               " at dt by " + format_number(100 * diff / std::fabs(value), 2) + "% (z = " +
+                               format_number(z, 2) + "); for a first-order scheme the bias at dt is about that "
+                               "difference (2.4 times it where D converges like sqrt(dt), white noise): use a "
+                               "smaller --dt" +
+                               (req.params.white() || req.engine.scheme == Scheme::Event ? "" : " or --scheme event"));
+    }
+    return c;
+}
+
+std::uint64_t round_up_to_blocks(std::uint64_t n) { return (n + block_size - 1) / block_size * block_size; }
+
+/// Precision on demand (DiffusivityRequest::rel_precision): batches of long
+/// excursions at consecutive, block-aligned sample indices until the target.
+RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& engine, PrecisionOutcome& outcome) {
+    RunTotals total;
+    outcome.target = req.rel_precision;
+    outcome.reached = false;
+    outcome.batches = 0;
+    std::uint64_t batch = std::min(round_up_to_blocks(req.excursions), req.max_excursions);
+    std::uint64_t projected = batch;
+    for (;;) {
+        RunControl ctl = req.control;
+        ctl.first_index = req.control.first_index + total.requested;
+        if (req.control.progress) {
+            ctl.progress = [&](const Progress& p) {
+                BivariateMoments merged = total.moments; // for the progress line only: rounding does not matter
+                if (p.moments) merged.merge(*p.moments);
+                Progress q{total.requested + p.done, projected, total.seconds + p.seconds, &merged};
+                return req.control.progress(q);
+            };
+        }
+        const RunTotals t = run_long_excursions(engine, batch, ctl);
+        total.sums.merge(t.sums); // exact: the batches' order and sizes leave no trace
+        total.moments = total.sums.moments();
+        total.requested += t.requested;
+        total.capped += t.capped;
+        total.work += t.work;
+        total.seconds += t.seconds;
+        total.threads = t.threads;
+        total.threads_from = t.threads_from;
+        total.resumed += t.resumed;
+        total.interrupted = t.interrupted;
+        ++outcome.batches;
+        if (total.capped > 0 && !req.allow_capped) break; // reported by the caller
+        std::uint64_t needed = batch;
+        if (total.moments.count() >= 2) {
+            const auto est = estimate_long_excursion(total.moments, req.level, req.estimator);
+            const double d = est.diffusivity.value;
+            outcome.relative_half_width = d > 0 ? (est.diffusivity.hi - d) / d : std::numeric_limits<double>::infinity();
+            if (outcome.relative_half_width <= req.rel_precision) {
+                outcome.reached = true;
+                break;
+            }
+            // Half-width ~ 1/sqrt(N): N_needed = N (rel/target)^2, with 10% to spare.
+            const double n = static_cast<double>(total.moments.count());
+            const double ratio = outcome.relative_half_width / req.rel_precision;
+            const double more = std::isfinite(ratio) ? n * (1.1 * ratio * ratio - 1.0) : 4.0 * n;
+            needed = static_cast<std::uint64_t>(std::clamp(more, 1.0, 4.0 * static_cast<double>(total.requested)));
+        }
+        if (total.interrupted) break; // reported by the caller
+        if (total.requested >= req.max_excursions) break;
+        batch = std::min(round_up_to_blocks(std::max<std::uint64_t>(needed, block_size)),
+                         req.max_excursions - total.requested);
+        projected = total.requested + batch;
+    }
+    return total;
+}
+
+} // namespace
+
+void validate(const DiffusivityRequest& req) { prepare(req); }
+
+DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) { return compute_diffusivity(req, prepare(req)); }
+
+DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const PreparedEngine& engine) {
+    const DiffusivityRequest req = with_resolved_engine(req_in);
+    using detail::format_number;
+    const std::vector<std::string> notes = detail::start_notes(engine, req.excursions, req.control);
+    DiffusivityResult out;
+    out.request = req;
+    out.resolved = engine.resolved;
+    if (req.rel_precision > 0) out.totals = run_to_precision(req, engine, out.precision);
+    else out.totals = run_long_excursions(engine, req.excursions, req.control);
+    detail::finish_long_excursion_run(engine, out.totals, req.allow_capped, out.warnings);
+    out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
+    detail::check_finite(out.estimates);
+    if (req.rel_precision > 0 && !out.precision.reached)
+        out.warnings.push_back("precision target not reached: relative half-width " +
+                               format_number(out.precision.relative_half_width, 3) + " > " +
+                               format_number(req.rel_precision, 3) + " after " +
+                               std::to_string(out.totals.moments.count() + out.totals.capped) + " excursions (" +
+                               (out.totals.interrupted ? "interrupted" : "--max-excursions") + ")");
+    if (req.estimator == Estimator::Paper &&
+        (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
+        out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");
+    if (req.check_dt) {
+        if (out.totals.interrupted)
+            out.warnings.push_back("the --check-dt run was not started: the run was interrupted");
+        else
+            out.discretisation = run_check_dt(req, out, out.warnings, out.totals.interrupted);
+    }
+    out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
+    return out;
+}
+
+} // namespace stickslip

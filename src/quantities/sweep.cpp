@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "stickslip/sweep.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/format.hpp"
+
+namespace stickslip {
+
+namespace {
+
+/// " [at noise N, tau T]": where in a sweep a point failed.
+std::string at_point(double noise, double tau) {
+    return " [at noise " + detail::format_number(noise) + ", tau " + detail::format_number(tau) + "]";
+}
+
+constexpr std::size_t kMaxPoints = 1u << 16; // sweep_index_stride * kMaxPoints = 2^56 sample indices
+
+DiffusivityRequest point_request(const SweepRequest& req, double noise, double tau, std::size_t k) {
+    DiffusivityRequest d;
+    static_cast<RunSettings&>(d) = req;
+    static_cast<ExcursionSettings&>(d) = req;
+    d.params.noise = noise;
+    d.params.tau = tau;
+    d.estimator = req.estimator;
+    d.control.first_index = req.control.first_index + k * sweep_index_stride;
+    return d;
+}
+
+std::vector<double> sorted_unique(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+}
+
+/// The sorted grid of a sweep and its points' prepared engines (tau-major).
+struct PreparedSweep {
+    std::vector<double> noises, taus;
+    std::vector<PreparedEngine> engines;
+};
+
+/// Every check of a sweep, once: the grid, then every point as a diffusivity
+/// run (the first bad point is named).
+PreparedSweep prepare_sweep(const SweepRequest& req) {
+    if (req.noises.empty()) throw InvalidParameter("noise", "the sweep needs at least one noise value");
+    if (req.taus.empty()) throw InvalidParameter("tau", "the sweep needs at least one tau value");
+    if (req.noises.size() * req.taus.size() > kMaxPoints)
+        throw InvalidParameter("noise", "at most 65536 sweep points");
+    if (req.excursions > sweep_index_stride) throw InvalidParameter("excursions", "at most 2^40 excursions per point");
+    if (req.control.first_index != 0) throw InvalidParameter("first-index", "a sweep starts at sample index 0");
+    for (double g : req.noises)
+        if (std::isnan(g)) throw InvalidParameter("noise", "noise must be a number, got NaN");
+    for (double t : req.taus)
+        if (std::isnan(t)) throw InvalidParameter("tau", "tau must be a number, got NaN");
+    PreparedSweep out{sorted_unique(req.noises), sorted_unique(req.taus), {}};
+    std::size_t k = 0;
+    for (double t : out.taus)
+        for (double g : out.noises) {
+            try {
+                out.engines.push_back(prepare(point_request(req, g, t, k++)));
+            } catch (const InvalidParameter& e) {
+                const std::string where =
+                    " (at noise " + detail::format_number(g) + ", tau " + detail::format_number(t) + ")";
+                throw InvalidParameter(e.parameter(), e.what() + where);
+            }
+        }
+    return out;
+}
+
+} // namespace
+
+void validate(const SweepRequest& req) { prepare_sweep(req); }
+
+SweepResult compute_sweep(const SweepRequest& req) {
+    const PreparedSweep prepared = prepare_sweep(req);
+    SweepResult out;
+    out.request = req;
+    out.request.noises = prepared.noises;
+    out.request.taus = prepared.taus;
+    // With --dt auto each point has its own step (SweepPoint::dt), none the sweep's.
+    if (out.request.engine.dt_auto && out.request.engine.engine == Engine::Inclusion)
+        out.request.engine.dt = std::numeric_limits<double>::quiet_NaN();
+    const auto& noises = out.request.noises;
+    const auto& taus = out.request.taus;
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t total = noises.size() * taus.size();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::size_t k = 0;
+    for (double tau : taus) {
+        if (out.interrupted) break;
+        const std::size_t first = out.points.size();
+        for (double noise : noises) {
+            DiffusivityRequest d = point_request(out.request, noise, tau, k);
+            d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
+            DiffusivityResult r;
+            try {
+                r = compute_diffusivity(d, prepared.engines[k]);
+            } catch (const CappedExcursions& e) {
+                throw CappedExcursions(std::string(e.what()) + at_point(noise, tau));
+            } catch (const UntrustworthyResult& e) {
+                throw UntrustworthyResult(std::string(e.what()) + at_point(noise, tau));
+            } catch (const RunInterrupted&) {
+                if (out.points.empty()) throw;
+                out.interrupted = true; // stopped before this point had a result
+                break;
+            }
+            out.resumed += r.totals.resumed;
+            SweepPoint p;
+            p.noise = noise;
+            p.tau = tau;
+            p.estimates = r.estimates;
+            p.stop_rule = r.resolved.stop_rule;
+            p.dt = r.request.engine.dt;
+            p.scheme = r.request.engine.scheme;
+            p.work = r.totals.work;
+            p.seconds = r.totals.seconds;
+            p.warnings = r.warnings;
+            out.points.push_back(p);
+            ++k;
+            if (r.totals.interrupted) {
+                out.interrupted = true;
+                break;
+            }
+        }
+        // Local slopes from the neighbours; errors from the independent standard errors.
+        const std::size_t n = out.points.size() - first; // all the noises, unless interrupted
+        auto logd = [&](std::size_t i) { return std::log(out.points[first + i].estimates.diffusivity.value); };
+        auto sig = [&](std::size_t i) {
+            const auto& e = out.points[first + i].estimates.diffusivity;
+            return e.std_error / e.value;
+        };
+        for (std::size_t i = 0; i < n; ++i) {
+            if (n < 2) {
+                out.points[first + i].slope = make_interval(nan, nan, req.level);
+                continue;
+            }
+            const std::size_t a = i == 0 ? 0 : i - 1, b = i + 1 == n ? n - 1 : i + 1;
+            const double dx = std::log(noises[b]) - std::log(noises[a]);
+            const double s = (logd(b) - logd(a)) / dx;
+            const double se = std::hypot(sig(a), sig(b)) / dx;
+            out.points[first + i].slope = make_interval(s, se, req.level);
+        }
+        if (n >= 2) {
+            // Weighted least squares of log D on log Gamma.
+            double sw = 0, sx = 0, sy = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double w = 1 / (sig(i) * sig(i));
+                sw += w;
+                sx += w * std::log(noises[i]);
+                sy += w * logd(i);
+            }
+            const double xb = sx / sw, yb = sy / sw;
+            double sxx = 0, sxy = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double w = 1 / (sig(i) * sig(i)), x = std::log(noises[i]) - xb;
+                sxx += w * x * x;
+                sxy += w * x * (logd(i) - yb);
+            }
+            const double alpha = sxy / sxx;
+            double chi2 = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double r = (logd(i) - yb - alpha * (std::log(noises[i]) - xb)) / sig(i);
+                chi2 += r * r;
+            }
+            SweepExponent e;
+            e.tau = tau;
+            e.exponent = make_interval(alpha, std::sqrt(1 / sxx), req.level);
+            e.points = static_cast<int>(n);
+            e.chi2_per_dof = n > 2 ? chi2 / static_cast<double>(n - 2) : nan;
+            out.exponents.push_back(e);
+        }
+    }
+    if (out.interrupted)
+        out.warnings.push_back("interrupted: " + std::to_string(out.points.size()) + " of " + std::to_string(total) +
+                               " points have a result (the last from a prefix of its excursions)");
+    for (const auto& p : out.points)
+        for (const auto& w : p.warnings)
+            if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
+                w.rfind("only ", 0) != 0)
+                out.warnings.push_back(w);
+    if (req.excursions < 5000)
+        out.warnings.push_back("fewer than 5000 excursions per point: the standard errors (and so the slope errors) "
+                               "are themselves uncertain");
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+} // namespace stickslip

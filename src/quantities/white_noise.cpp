@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "stickslip/white_noise.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "core/format.hpp"
+#include "stickslip/fokker_planck.hpp"
+
+namespace stickslip {
+
+bool is_pure_dry_friction(const ModelParams& p) { return std::isinf(p.relaxation) && p.bias == 0.0; }
+
+void validate(const WhiteNoiseRequest& req) {
+    ModelParams p = req.params;
+    p.tau = 0.0;
+    validate(p);
+    if (!has_stationary_state(p))
+        throw InvalidParameter("bias", "no stationary state: with relaxation inf, |bias| must be < friction");
+    if (!std::isfinite(req.v0)) throw InvalidParameter("v0", "v0 must be a finite number (m/s)");
+    if (req.times.size() > 100000) throw InvalidParameter("times", "at most 100000 times");
+    if (req.velocities.size() > 1000000) throw InvalidParameter("velocities", "at most 1000000 velocities");
+    if (req.times.size() * req.velocities.size() > 10000000)
+        throw InvalidParameter("velocities", "at most 1e7 (time, velocity) pairs");
+    for (double v : req.velocities)
+        if (!std::isfinite(v))
+            throw InvalidParameter("velocities", "velocities must be finite (m/s), got " + detail::format_number(v));
+    for (double t : req.times)
+        if (!std::isfinite(t) || t < 0)
+            throw InvalidParameter("times", "times must be finite and >= 0 (s), got " + detail::format_number(t));
+}
+
+WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req) {
+    validate(req);
+    WhiteNoiseResult out;
+    out.request = req;
+    out.request.params.tau = 0.0;
+    const ModelParams& p = out.request.params;
+    out.reference = white_noise_reference(p);
+    if (!req.velocities.empty()) {
+        const HayakawaDensity density(p);
+        for (double v : req.velocities) out.stationary_density.push_back(density(v));
+    }
+    if (req.times.empty()) return out;
+    std::vector<double> positive; // times with a transition density (t > 0)
+    for (double t : req.times)
+        if (t > 0) positive.push_back(t);
+    std::vector<std::vector<double>> rows;
+    if (is_pure_dry_friction(p)) {
+        out.method = "closed form (Touchette, Van der Straeten and Just 2010, eqs. 2.10, 2.11 and 2.13)";
+        for (double t : req.times) {
+            out.first_moment.push_back(dry_friction_first_moment(p, t, req.v0));
+            out.autocorrelation.push_back(dry_friction_autocorrelation(p, t));
+        }
+        if (!req.velocities.empty())
+            for (double t : positive) {
+                std::vector<double> row;
+                for (double v : req.velocities) row.push_back(dry_friction_propagator(p, v, t, req.v0));
+                rows.push_back(std::move(row));
+            }
+    } else {
+        out.method = "fokker-planck (finite volumes, see fokker_planck.hpp)";
+        const WhiteNoiseFokkerPlanck fp(p);
+        out.first_moment = fp.first_moment(req.v0, req.times);
+        out.autocorrelation = fp.autocorrelation(req.times);
+        if (!req.velocities.empty() && !positive.empty()) rows = fp.density(req.v0, positive, req.velocities);
+    }
+    if (!req.velocities.empty()) {
+        std::size_t k = 0;
+        for (double t : req.times) out.transient_density.push_back(t > 0 ? rows[k++] : std::vector<double>{});
+    }
+    return out;
+}
+
+} // namespace stickslip

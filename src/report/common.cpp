@@ -1,0 +1,270 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "report/common.hpp"
+
+#include <cmath>
+#include <locale>
+
+#include "core/format.hpp"
+#include "stickslip/report.hpp"
+#include "stickslip/number_text.hpp"
+#include "stickslip/version.hpp"
+
+namespace stickslip::detail {
+
+// ---- JSON -------------------------------------------------------------------
+
+ordered_json json_number(double x) {
+    if (std::isnan(x)) return nullptr;
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    return x;
+}
+
+ordered_json estimate_json(const Estimate& e, bool with_ci) {
+    ordered_json j;
+    j["value"] = e.value;
+    j["stderr"] = e.std_error;
+    if (with_ci) {
+        j["ci"] = {json_number(e.lo), json_number(e.hi)}; // D's upper end is "inf" when se >= D / q
+        j["level"] = e.level;
+    }
+    return j;
+}
+
+ordered_json series_point(const char* key, double where, const Estimate& e) {
+    ordered_json j;
+    j[key] = where;
+    j["value"] = json_number(e.value);
+    j["stderr"] = json_number(e.std_error);
+    j["ci"] = {json_number(e.lo), json_number(e.hi)};
+    return j;
+}
+
+ordered_json long_excursion_json(const LongExcursionEstimates& e) {
+    ordered_json j;
+    j["diffusivity"] = estimate_json(e.diffusivity);
+    j["mobility"] = estimate_json(e.mobility);
+    j["mean_duration"] = estimate_json(e.mean_duration, false);
+    j["completed"] = e.excursions;
+    return j;
+}
+
+ordered_json report_head(const char* quantity, const EngineSettings& s, const char* estimator,
+                         const std::string* stop_rule) {
+    ordered_json j;
+    if (quantity) j["quantity"] = quantity;
+    j["engine"] = to_string(s.engine);
+    if (estimator) j["estimator"] = estimator;
+    if (stop_rule) j["stop_rule"] = *stop_rule;
+    return j;
+}
+
+ordered_json params_json(const RunSettings& r) {
+    const ModelParams& p = r.params;
+    ordered_json j;
+    j["friction"] = p.friction;
+    j["noise"] = p.noise;
+    j["tau"] = p.tau;
+    j["relaxation"] = json_number(p.relaxation);
+    j["bias"] = p.bias;
+    if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid;
+    else {
+        j["dt"] = r.engine.dt;
+        if (r.engine.dt_auto) j["dt_auto"] = true; // the step --dt auto chose (inclusion engine)
+    }
+    j["seed"] = r.control.seed;
+    return j;
+}
+
+ordered_json nondimensional_json(const RunSettings& r) {
+    const ModelParams nd = to_nondimensional(r.params);
+    const Scales sc = scales_of(r.params);
+    ordered_json j;
+    j["tau"] = nd.tau;
+    j["relaxation"] = json_number(nd.relaxation);
+    j["bias"] = nd.bias;
+    if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid / sc.noise_level;
+    else j["dt"] = r.engine.dt / sc.time;
+    j["time_unit"] = sc.time;
+    j["length_unit"] = sc.length;
+    j["velocity_unit"] = sc.velocity;
+    j["diffusivity_unit"] = sc.diffusivity;
+    return j;
+}
+
+ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) {
+    ordered_json j;
+    if (!r.params.white()) {
+        j["upper_threshold"] = e.upper_threshold;
+        j["lower_threshold"] = e.lower_threshold;
+    }
+    if (r.engine.engine == Engine::Pdmp) {
+        j["lattice_bound"] = e.lattice_bound;
+        j["lattice_points"] = e.lattice_points;
+        j["truncated_mass"] = e.truncated_mass;
+        j["jump_rate"] = e.jump_rate;
+    } else {
+        j["scheme"] = to_string(r.engine.scheme);
+        if (r.params.white()) j["white_level"] = e.white_level;
+    }
+    j["max_work_per_excursion"] = r.engine.max_work_per_excursion;
+    return j;
+}
+
+ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
+    ordered_json work;
+    work[s.engine == Engine::Pdmp ? "events" : "steps"] = t.work;
+    work["seconds"] = t.seconds;
+    work["threads"] = t.threads;
+    if (!t.threads_from.empty()) work["threads_from"] = t.threads_from; // docs/guide.md, "Threads"
+    if (t.resumed) work["resumed_samples"] = t.resumed; // restored from a checkpoint
+    return work;
+}
+
+void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings,
+                     bool interrupted) {
+    if (interrupted) j["interrupted"] = true;
+    if (work) j["work"] = *work;
+    j["warnings"] = warnings;
+    j["version"] = version();
+    if (*source_revision()) j["revision"] = source_revision();
+}
+
+void append_members(ordered_json& into, const ordered_json& from) {
+    for (auto it = from.begin(); it != from.end(); ++it) into[it.key()] = it.value();
+}
+
+std::string dump(const ordered_json& j, int indent) { return j.dump(indent) + "\n"; }
+
+// ---- tables -------------------------------------------------------------------
+
+std::ostringstream report_stream() {
+    std::ostringstream os;
+    os.imbue(std::locale::classic()); // a host's global C++ locale must not group "10000" into "10.000"
+    return os;
+}
+
+std::string relaxation_text(double relaxation) {
+    return std::isinf(relaxation) ? std::string("inf") : format_number(relaxation) + " s";
+}
+
+std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra) {
+    std::ostringstream os = report_stream();
+    os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
+       << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : (s.dt_auto && std::isnan(s.dt) ? std::string("dt auto, per point") : "dt " + format_number(s.dt) + " s" + (s.dt_auto ? " (auto)" : "")))
+       << (s.engine != Engine::Inclusion ? std::string()
+           : s.scheme == Scheme::Auto   ? std::string(", scheme auto, per point") // a sweep's
+                                        : ", " + to_string(s.scheme) + " scheme")
+       << extra << "\n";
+    return os.str();
+}
+
+std::string param_line(const ModelParams& p, const EngineSettings& s) {
+    std::ostringstream os = report_stream();
+    os << "friction " << format_number(p.friction) << " m/s^2, noise " << format_number(p.noise) << " m^2/s^3, tau "
+       << format_number(p.tau) << " s, relaxation " << relaxation_text(p.relaxation) << ", bias "
+       << format_number(p.bias) << " m/s^2\n";
+    const ModelParams nd = to_nondimensional(p);
+    const Scales sc = scales_of(p);
+    os << "nondimensional: tau' " << format_number(nd.tau) << ", relaxation' "
+       << (std::isinf(nd.relaxation) ? std::string("inf") : format_number(nd.relaxation)) << ", bias' "
+       << format_number(nd.bias);
+    if (s.engine == Engine::Pdmp) os << ", grid' " << format_number(s.grid / sc.noise_level);
+    else os << ", dt' " << format_number(s.dt / sc.time);
+    os << "  (time unit " << format_number(sc.time) << " s, length unit " << format_number(sc.length) << " m)\n";
+    return os.str();
+}
+
+std::string work_line(std::uint64_t samples, const char* what, std::uint64_t seed, const EngineSettings& s,
+                      const RunTotals& t, const std::string& extra) {
+    std::ostringstream os = report_stream();
+    os << samples << " " << what << " (seed " << seed << "), " << t.work
+       << (s.engine == Engine::Pdmp ? " events" : " steps") << ", " << format_number(t.seconds, 3) << " s on "
+       << t.threads << " thread" << (t.threads > 1 ? "s" : "") << extra << "\n";
+    return os.str();
+}
+
+std::string notes(const std::vector<std::string>& warnings) {
+    std::string s;
+    for (const auto& w : warnings) s += "note: " + w + "\n";
+    return s;
+}
+
+std::string table_head(double level) {
+    // Built with append: GCC 12 warns (-Wrestrict, a false positive) on " " + std::string.
+    using number_text::pad;
+    std::string interval = " ";
+    interval.append(format_number(100 * level, 3)).append("% interval");
+    return pad("quantity", -14) + " " + pad("value", 13) + "  " + pad("+- stderr", -13) + " " + pad(interval, -25) +
+           "  " + pad("unit", -7) + " " + pad("nondim", 11) + "\n";
+}
+
+void table_row(std::ostringstream& os, const std::string& name, const Estimate& e, double unit,
+               const std::string& units, bool ci) {
+    using number_text::pad;
+    std::string interval = pad("", 27);
+    if (ci) // appended: GCC 12 warns (-Wrestrict, a false positive) on "[" + std::string
+        interval = std::string("[").append(pad(format_number(e.lo), 11)).append(", ").append(pad(format_number(e.hi), 11)).append("]");
+    os << pad(name, -14) << " " << pad(format_number(e.value), 13) << "  +- " << pad(format_number(e.std_error, 3), -10)
+       << " " << interval << "  " << pad(units, -7) << " " << pad(format_number(e.value / unit), 11) << "\n";
+}
+
+std::string estimate_cell(const Estimate& e) {
+    return number_text::pad(format_number(e.value), 12) + " +- " + number_text::pad(format_number(e.std_error, 3), -10);
+}
+
+// ---- CSV --------------------------------------------------------------------------
+
+std::string csv_number(double x) {
+    if (std::isnan(x)) return ""; // undefined (e.g. a slope from one point): an empty cell, never "nan"
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    return format_number(x, 12);
+}
+
+std::string csv_estimate_header(const std::string& name) {
+    return name + "," + name + "_stderr," + name + "_lo," + name + "_hi";
+}
+
+std::string csv_estimate(const Estimate& e) {
+    return csv_number(e.value) + "," + csv_number(e.std_error) + "," + csv_number(e.lo) + "," + csv_number(e.hi);
+}
+
+} // namespace stickslip::detail
+
+namespace stickslip {
+
+namespace {
+
+// The first null (a NaN or inf that nlohmann wrote as null) below `j`, as a
+// JSON path; empty when there is none.
+std::string first_null(const nlohmann::json& j, const std::string& path) {
+    if (j.is_null()) return path.empty() ? "." : path;
+    if (j.is_number_float() && !std::isfinite(j.get<double>())) return path;
+    if (j.is_object()) {
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            // The settings may say "not applicable" with null (x0 of white
+            // noise), and so may a sweep's fits, which need two (slope) or
+            // three (exponent's chi2_per_dof) points: their inputs, the
+            // points' D and M0, are checked.
+            if (path.empty() && (it.key() == "params" || it.key() == "nondimensional")) continue;
+            if (it.key() == "slope" || it.key() == "exponents") continue;
+            if (std::string bad = first_null(*it, path + "." + it.key()); !bad.empty()) return bad;
+        }
+    } else if (j.is_array()) {
+        for (std::size_t i = 0; i < j.size(); ++i)
+            if (std::string bad = first_null(j[i], path + "[" + std::to_string(i) + "]"); !bad.empty()) return bad;
+    }
+    return {};
+}
+
+} // namespace
+
+void check_finite_result(const std::string& json) {
+    const std::string bad = first_null(nlohmann::json::parse(json), "");
+    if (!bad.empty())
+        throw UntrustworthyResult("the result's " + bad.substr(bad[0] == '.' ? 1 : 0) +
+                                  " is not a finite number: the settings take this run beyond what double precision "
+                                  "or the samples can resolve (too few samples in a bin or lag, a step or value near "
+                                  "1e308); nothing was written");
+}
+
+} // namespace stickslip

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Internal: what every report shares, so all outputs agree: the JSON head
+// (quantity, engine, estimator, stop rule), the parameter and nondimensional
+// blocks, the tail (engine details, work, warnings, version and source
+// revision), the table's head and work lines, and the number formats of
+// tables and CSV.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stickslip/stats/estimators.hpp"
+#include "stickslip/run.hpp"
+
+namespace stickslip::detail {
+
+using nlohmann::ordered_json;
+
+// ---- JSON -------------------------------------------------------------------
+
+/// A number, "inf"/"-inf" for infinities, null for NaN (JSON has neither).
+ordered_json json_number(double x);
+/// {value, stderr[, ci, level]}.
+ordered_json estimate_json(const Estimate& e, bool with_ci = true);
+/// {key: where, value, stderr, ci}: one point of a series (null for NaN).
+ordered_json series_point(const char* key, double where, const Estimate& e);
+/// {diffusivity, mobility, mean_duration, completed}.
+ordered_json long_excursion_json(const LongExcursionEstimates& e);
+
+/// The head of a report: "quantity" (when given), "engine", "estimator" (when
+/// given) and "stop_rule" (when given).
+ordered_json report_head(const char* quantity, const EngineSettings& s, const char* estimator,
+                         const std::string* stop_rule);
+/// The model, the engine's step (dt or grid) and the seed.
+ordered_json params_json(const RunSettings& r);
+/// The nondimensional block: tau, relaxation, bias, dt or grid, and the units.
+ordered_json nondimensional_json(const RunSettings& r);
+/// engine_details: the thresholds, the PDMP lattice or the white level, the guard.
+ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r);
+/// The tail of a report: "interrupted": true for a run stopped early, "work"
+/// (when `work` is not null), "warnings", "version" and, when the build knows
+/// it, "revision".
+void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings,
+                     bool interrupted = false);
+/// {steps|events, seconds, threads} of a run, and resumed_samples when some
+/// were restored from a checkpoint.
+ordered_json work_json(const EngineSettings& s, const RunTotals& t);
+/// Every member of `from` appended to `into`, in order.
+void append_members(ordered_json& into, const ordered_json& from);
+/// The text of a JSON report.
+std::string dump(const ordered_json& j, int indent);
+
+// ---- tables -------------------------------------------------------------------
+
+/// The stream every text report is written into: the classic locale, whatever
+/// the global C++ locale of the host program (numbers themselves are written
+/// by stickslip/number_text.hpp).
+std::ostringstream report_stream();
+
+/// "stickslip WHAT: ENGINE engine, dt X s" + extra + "\n".
+std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra);
+/// The physical and nondimensional parameter lines.
+std::string param_line(const ModelParams& p, const EngineSettings& s);
+/// "N WHAT (seed S), W steps, T s on K threads" + extra + "\n".
+std::string work_line(std::uint64_t samples, const char* what, std::uint64_t seed, const EngineSettings& s,
+                      const RunTotals& t, const std::string& extra = "");
+/// One "note: ..." line per warning.
+std::string notes(const std::vector<std::string>& warnings);
+/// Column titles of the estimate tables, with the interval's level.
+std::string table_head(double level);
+/// One estimate row: value, stderr, interval (if ci), unit, value / unit.
+void table_row(std::ostringstream& os, const std::string& name, const Estimate& e, double unit,
+               const std::string& units, bool ci = true);
+/// "value +- stderr" in fixed columns.
+std::string estimate_cell(const Estimate& e);
+/// "inf" written as "inf", else x with 6 significant digits and its unit.
+std::string relaxation_text(double relaxation);
+
+// ---- CSV --------------------------------------------------------------------------
+
+/// A CSV cell: 12 significant digits, "inf"/"-inf", and empty for NaN (never "nan").
+std::string csv_number(double x);
+/// "name,name_stderr,name_lo,name_hi".
+std::string csv_estimate_header(const std::string& name);
+/// value,stderr,lo,hi.
+std::string csv_estimate(const Estimate& e);
+
+} // namespace stickslip::detail

@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Reports of the long-excursion diffusivity run and the brute-force run
+// (report.hpp): JSON, aligned table, CSV.
+#include "report/common.hpp"
+#include "stickslip/report.hpp"
+
+#include "core/format.hpp"
+
+namespace stickslip {
+
+using namespace detail;
+
+// ---- diffusivity ----------------------------------------------------------------
+
+std::string to_json(const DiffusivityResult& r, int indent) {
+    const auto& q = r.request;
+    const std::string estimator = to_string(q.estimator);
+    ordered_json j = report_head(nullptr, q.engine, estimator.c_str(), &r.resolved.stop_rule);
+    auto params = params_json(q);
+    params["excursions"] = q.excursions;
+    params["level"] = q.level;
+    j["params"] = params;
+    auto nd = nondimensional_json(q);
+    const Scales sc = scales_of(q.params);
+    nd["diffusivity"] = r.estimates.diffusivity.value / sc.diffusivity;
+    nd["mobility"] = r.estimates.mobility.value / sc.velocity;
+    nd["mean_duration"] = r.estimates.mean_duration.value / sc.time;
+    j["nondimensional"] = nd;
+    j["diffusivity"] = estimate_json(r.estimates.diffusivity);
+    j["mobility"] = estimate_json(r.estimates.mobility);
+    j["mean_duration"] = estimate_json(r.estimates.mean_duration, false);
+    j["completed"] = r.estimates.excursions;
+    j["capped"] = r.totals.capped;
+    if (q.rel_precision > 0) {
+        ordered_json pr;
+        pr["target"] = r.precision.target;
+        pr["relative_half_width"] = r.precision.relative_half_width;
+        pr["reached"] = r.precision.reached;
+        pr["batches"] = r.precision.batches;
+        pr["max_excursions"] = q.max_excursions;
+        j["precision"] = pr;
+    }
+    if (r.discretisation) {
+        const DiscretisationCheck& c = *r.discretisation;
+        ordered_json dc;
+        dc["dt"] = c.dt;
+        dc["check_dt"] = c.check_dt;
+        dc["excursions"] = c.excursions;
+        dc["steps"] = c.steps;
+        dc["diffusivity"] = {{"difference", json_number(c.diffusivity_difference)},
+                             {"stderr", json_number(c.diffusivity_stderr)}};
+        dc["mobility"] = {{"difference", json_number(c.mobility_difference)},
+                          {"stderr", json_number(c.mobility_stderr)}};
+        j["discretisation"] = dc;
+    }
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    const ordered_json work = work_json(q.engine, r.totals);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    return dump(j, indent);
+}
+
+namespace {
+/// "a +- b unit (z = ...)" for a --check-dt difference.
+std::string difference_text(double difference, double stderr_, const char* unit) {
+    return format_number(difference, 3) + " +- " + format_number(stderr_, 2) + " " + unit + " (z = " +
+           format_number(difference / stderr_, 2) + ")";
+}
+} // namespace
+
+std::string to_table(const DiffusivityResult& r) {
+    const auto& q = r.request;
+    const Scales sc = scales_of(q.params);
+    const Estimate& d = r.estimates.diffusivity;
+    std::ostringstream os = report_stream();
+    os << engine_line("diffusivity", q.engine,
+                      ", stop rule " + r.resolved.stop_rule + ", estimator " + to_string(q.estimator));
+    os << param_line(q.params, q.engine);
+    os << "\n" << table_head(q.level);
+    table_row(os, "diffusivity D", d, sc.diffusivity, "m^2/s");
+    table_row(os, "mobility M0", r.estimates.mobility, sc.velocity, "m/s");
+    table_row(os, "mean E[t1]", r.estimates.mean_duration, sc.time, "s", false);
+    if (r.discretisation) {
+        const DiscretisationCheck& c = *r.discretisation;
+        os << "\ncheck at 2 dt = " << format_number(c.check_dt) << " s (" << c.excursions
+           << " excursions): D(2 dt) - D(dt) = "
+           << difference_text(c.diffusivity_difference, c.diffusivity_stderr, "m^2/s")
+           << "\n                                   M0(2 dt) - M0(dt) = "
+           << difference_text(c.mobility_difference, c.mobility_stderr, "m/s") << "\n";
+    }
+    os << "\n"
+       << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals,
+                    "; relative half-width of D: " + format_number(100 * (d.hi - d.value) / d.value, 3) + "%")
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const DiffusivityResult& r) {
+    const auto& q = r.request;
+    const auto& p = q.params;
+    std::ostringstream os = report_stream();
+    os << "engine,friction,noise,tau,relaxation,bias,excursions,seed," << csv_estimate_header("diffusivity") << ","
+       << csv_estimate_header("mobility") << ",mean_duration,mean_duration_stderr"
+       << (r.discretisation ? ",check_dt,diffusivity_difference,diffusivity_difference_stderr,mobility_difference,"
+                              "mobility_difference_stderr"
+                            : "")
+       << "\n";
+    os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
+       << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
+       << r.estimates.excursions << "," << q.control.seed << "," << csv_estimate(r.estimates.diffusivity) << ","
+       << csv_estimate(r.estimates.mobility) << "," << csv_number(r.estimates.mean_duration.value) << ","
+       << csv_number(r.estimates.mean_duration.std_error);
+    if (r.discretisation) {
+        const DiscretisationCheck& c = *r.discretisation;
+        os << "," << csv_number(c.check_dt) << "," << csv_number(c.diffusivity_difference) << ","
+           << csv_number(c.diffusivity_stderr) << "," << csv_number(c.mobility_difference) << ","
+           << csv_number(c.mobility_stderr);
+    }
+    os << "\n";
+    return os.str();
+}
+
+// ---- brute force --------------------------------------------------------------
+
+std::string to_json(const BruteForceResult& r, int indent) {
+    const auto& q = r.request;
+    ordered_json j = report_head(nullptr, q.engine, "bruteforce", &r.resolved.stop_rule);
+    auto params = params_json(q);
+    params["time"] = q.horizon;
+    params["trajectories"] = q.trajectories;
+    params["x0"] = r.start_noise;
+    params["v0"] = q.v0;
+    params["level"] = q.level;
+    j["params"] = params;
+    auto nd = nondimensional_json(q);
+    const Scales sc = scales_of(q.params);
+    nd["time"] = q.horizon / sc.time;
+    nd["diffusivity"] = r.estimates.diffusivity.value / sc.diffusivity;
+    nd["mobility"] = r.estimates.mobility.value / sc.velocity;
+    j["nondimensional"] = nd;
+    j["diffusivity"] = estimate_json(r.estimates.diffusivity);
+    j["mobility"] = estimate_json(r.estimates.mobility);
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    const ordered_json work = work_json(q.engine, r.totals);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    return dump(j, indent);
+}
+
+std::string to_table(const BruteForceResult& r) {
+    const auto& q = r.request;
+    const Scales sc = scales_of(q.params);
+    std::ostringstream os = report_stream();
+    os << engine_line("bruteforce", q.engine,
+                      ", horizon t = " + format_number(q.horizon) + " s, start x0 = " + format_number(r.start_noise) +
+                          " s^-1/2, v0 = " + format_number(q.v0) + " m/s");
+    os << param_line(q.params, q.engine);
+    os << "\n" << table_head(q.level);
+    table_row(os, "D_t", r.estimates.diffusivity, sc.diffusivity, "m^2/s");
+    table_row(os, "U(t)/t", r.estimates.mobility, sc.velocity, "m/s");
+    os << "\n"
+       << work_line(r.estimates.trajectories, "trajectories", q.control.seed, q.engine, r.totals)
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const BruteForceResult& r) {
+    const auto& q = r.request;
+    const auto& p = q.params;
+    std::ostringstream os = report_stream();
+    os << "engine,friction,noise,tau,relaxation,bias,time,trajectories,seed," << csv_estimate_header("diffusivity")
+       << "," << csv_estimate_header("mobility") << "\n";
+    os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
+       << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
+       << csv_number(q.horizon) << "," << r.estimates.trajectories << "," << q.control.seed << ","
+       << csv_estimate(r.estimates.diffusivity) << "," << csv_estimate(r.estimates.mobility) << "\n";
+    return os.str();
+}
+
+} // namespace stickslip

@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Reports of the velocity statistics (report.hpp): the stationary density, the
+// transient moments, the autocorrelation and sample paths, as JSON (the
+// contract the Python module's to_dict() shares), aligned tables and CSV.
+#include <cmath>
+
+#include "core/format.hpp"
+#include "report/common.hpp"
+#include "stickslip/number_text.hpp"
+#include "stickslip/report.hpp"
+
+namespace stickslip {
+
+using namespace detail;
+
+namespace {
+
+ordered_json histogram_json(const VelocityHistogram& h) {
+    ordered_json bins = ordered_json::array();
+    for (std::size_t k = 0; k < h.density.size(); ++k) {
+        ordered_json b;
+        b["lo"] = h.edges[k];
+        b["hi"] = h.edges[k + 1];
+        b["density"] = h.density[k].value;
+        b["stderr"] = h.density[k].std_error;
+        bins.push_back(b);
+    }
+    ordered_json j;
+    j["bins"] = bins;
+    j["stuck"] = estimate_json(h.stuck);
+    j["below"] = estimate_json(h.below, false);
+    j["above"] = estimate_json(h.above, false);
+    return j;
+}
+
+} // namespace
+
+// ---- stationary density ----------------------------------------------------------
+
+std::string to_json(const StationaryDensityResult& r, int indent) {
+    const auto& q = r.request;
+    ordered_json j = report_head("stationary_density", q.engine, nullptr, &r.resolved.stop_rule);
+    auto params = params_json(q);
+    params["excursions"] = q.excursions;
+    params["bins"] = q.bins.count;
+    params["range"] = {q.bins.lo, q.bins.hi};
+    if (q.engine.engine == Engine::Pdmp) params["sample_dt"] = q.sample_dt > 0 ? q.sample_dt : q.engine.dt;
+    params["level"] = q.level;
+    j["params"] = params;
+    j["nondimensional"] = nondimensional_json(q);
+    j["histogram"] = histogram_json(r.histogram);
+    j["mean"] = estimate_json(r.mean);
+    j["variance"] = estimate_json(r.variance);
+    append_members(j, long_excursion_json(r.estimates));
+    j["capped"] = r.totals.capped;
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    const ordered_json work = work_json(q.engine, r.totals);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    return dump(j, indent);
+}
+
+std::string to_table(const StationaryDensityResult& r) {
+    const auto& q = r.request;
+    std::ostringstream os = report_stream();
+    os << engine_line("density", q.engine, ", stationary velocity density by long excursions (renewal-reward)");
+    os << param_line(q.params, q.engine) << "\n";
+    using number_text::pad;
+    os << pad("v_lo [m/s]", 13) << " " << pad("v_hi [m/s]", 13) << "  " << pad("density [s/m] +- stderr", -25) << "\n";
+    for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
+        os << pad(format_number(r.histogram.edges[k]), 13) << " " << pad(format_number(r.histogram.edges[k + 1]), 13)
+           << "  " << estimate_cell(r.histogram.density[k]) << "\n";
+    os << "\nP(V = 0) (stuck)   " << estimate_cell(r.histogram.stuck) << "\n";
+    os << "P(outside range)   " << format_number(r.histogram.below.value + r.histogram.above.value) << "\n";
+    os << "mean E[V]          " << estimate_cell(r.mean) << " m/s\n";
+    os << "variance Var(V)    " << estimate_cell(r.variance) << " m^2/s^2\n";
+    os << "diffusivity D      " << estimate_cell(r.estimates.diffusivity) << " m^2/s (same excursions)\n\n";
+    os << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals) << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const StationaryDensityResult& r) {
+    std::ostringstream os = report_stream();
+    os << "kind,v_lo,v_hi,value,stderr,lo,hi\n";
+    for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
+        os << "density," << csv_number(r.histogram.edges[k]) << "," << csv_number(r.histogram.edges[k + 1]) << ","
+           << csv_estimate(r.histogram.density[k]) << "\n";
+    os << "stuck,0,0," << csv_estimate(r.histogram.stuck) << "\n";
+    os << "below,-inf," << csv_number(r.histogram.edges.front()) << "," << csv_estimate(r.histogram.below) << "\n";
+    os << "above," << csv_number(r.histogram.edges.back()) << ",inf," << csv_estimate(r.histogram.above) << "\n";
+    return os.str();
+}
+
+// ---- transient ------------------------------------------------------------------------
+
+std::string to_json(const TransientResult& r, int indent) {
+    const auto& q = r.request;
+    ordered_json j = report_head("transient", q.engine, nullptr, nullptr);
+    auto params = params_json(q);
+    params["v0"] = q.v0;
+    if (std::isnan(q.x0)) params["x0"] = q.params.white() ? ordered_json(nullptr) : ordered_json("stationary");
+    else params["x0"] = q.x0;
+    params["trajectories"] = q.trajectories;
+    params["level"] = q.level;
+    j["params"] = params;
+    j["nondimensional"] = nondimensional_json(q);
+    ordered_json m1 = ordered_json::array(), m2 = ordered_json::array(), st = ordered_json::array();
+    for (std::size_t k = 0; k < r.time.size(); ++k) {
+        m1.push_back(series_point("time", r.time[k], r.first_moment[k]));
+        m2.push_back(series_point("time", r.time[k], r.second_moment[k]));
+        st.push_back(series_point("time", r.time[k], r.stuck[k]));
+    }
+    j["first_moment"] = m1;
+    j["second_moment"] = m2;
+    j["stuck"] = st;
+    if (!r.density.empty()) {
+        ordered_json d = ordered_json::array();
+        for (std::size_t k = 0; k < r.time.size(); ++k) {
+            ordered_json h = histogram_json(r.density[k]);
+            h["time"] = r.time[k];
+            d.push_back(h);
+        }
+        j["density"] = d;
+    }
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    const ordered_json work = work_json(q.engine, r.totals);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    return dump(j, indent);
+}
+
+std::string to_table(const TransientResult& r) {
+    const auto& q = r.request;
+    std::ostringstream os = report_stream();
+    os << engine_line("moments", q.engine,
+                      ", from v0 = " + format_number(q.v0) + " m/s, X(0) " +
+                          (q.params.white() ? std::string("n/a (white noise)")
+                                            : std::isnan(q.x0) ? std::string("~ N(0, 1/tau)") : "= " + format_number(q.x0)));
+    os << param_line(q.params, q.engine) << "\n";
+    using number_text::pad;
+    os << pad("t [s]", 12) << " " << pad("E[V(t)] [m/s]", -25) << " " << pad("E[V(t)^2] [m^2/s^2]", -25) << " "
+       << pad("P(V(t) = 0)", -25) << "\n";
+    for (std::size_t k = 0; k < r.time.size(); ++k)
+        os << pad(format_number(r.time[k]), 12) << " " << estimate_cell(r.first_moment[k]) << " "
+           << estimate_cell(r.second_moment[k]) << " " << estimate_cell(r.stuck[k]) << "\n";
+    if (!r.density.empty())
+        os << "(the transient density, " << r.density.size() << " times x " << q.bins.count
+           << " bins, is in --format json; --format csv gives it alone)\n";
+    os << "\n" << work_line(r.totals.moments.count(), "trajectories", q.control.seed, q.engine, r.totals)
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const TransientResult& r) {
+    std::ostringstream os = report_stream();
+    if (r.density.empty()) {
+        os << "time," << csv_estimate_header("first_moment") << "," << csv_estimate_header("second_moment") << ","
+           << csv_estimate_header("stuck") << "\n";
+        for (std::size_t k = 0; k < r.time.size(); ++k)
+            os << csv_number(r.time[k]) << "," << csv_estimate(r.first_moment[k]) << "," << csv_estimate(r.second_moment[k])
+               << "," << csv_estimate(r.stuck[k]) << "\n";
+        return os.str();
+    }
+    os << "time,v_lo,v_hi,density,stderr\n";
+    for (std::size_t k = 0; k < r.time.size(); ++k) {
+        const auto& h = r.density[k];
+        for (std::size_t b = 0; b < h.density.size(); ++b)
+            os << csv_number(r.time[k]) << "," << csv_number(h.edges[b]) << "," << csv_number(h.edges[b + 1]) << ","
+               << csv_number(h.density[b].value) << "," << csv_number(h.density[b].std_error) << "\n";
+    }
+    return os.str();
+}
+
+// ---- correlation ----------------------------------------------------------------------
+
+std::string to_json(const CorrelationResult& r, int indent) {
+    const auto& q = r.request;
+    ordered_json j = report_head("autocorrelation", q.engine, nullptr, &r.resolved.stop_rule);
+    auto params = params_json(q);
+    params["excursions"] = q.excursions;
+    params["max_lag"] = q.max_lag;
+    params["lags"] = q.lags;
+    if (q.engine.engine == Engine::Pdmp) params["sample_dt"] = q.sample_dt > 0 ? q.sample_dt : q.engine.dt;
+    params["level"] = q.level;
+    j["params"] = params;
+    j["nondimensional"] = nondimensional_json(q);
+    ordered_json a = ordered_json::array(), h = ordered_json::array(), n = ordered_json::array();
+    for (std::size_t k = 0; k < r.lag.size(); ++k) {
+        a.push_back(series_point("lag", r.lag[k], r.autocorrelation[k]));
+        h.push_back(series_point("lag", r.lag[k], r.covariance[k]));
+        n.push_back(series_point("lag", r.lag[k], r.normalised[k]));
+    }
+    j["autocorrelation"] = a;
+    j["covariance"] = h;
+    j["normalised_covariance"] = n;
+    j["mean"] = estimate_json(r.mean);
+    append_members(j, long_excursion_json(r.estimates));
+    j["capped"] = r.totals.capped;
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    const ordered_json work = work_json(q.engine, r.totals);
+    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    return dump(j, indent);
+}
+
+std::string to_table(const CorrelationResult& r) {
+    const auto& q = r.request;
+    std::ostringstream os = report_stream();
+    os << engine_line("correlation", q.engine, ", stationary autocorrelation by long excursions (renewal-reward)");
+    os << param_line(q.params, q.engine) << "\n";
+    using number_text::pad;
+    os << pad("lag r [s]", 12) << " " << pad("<V(0)V(r)> [m^2/s^2]", -25) << " " << pad("h(r) [m^2/s^2]", -25) << " "
+       << pad("h(r)/h(0)", -25) << "\n";
+    for (std::size_t k = 0; k < r.lag.size(); ++k)
+        os << pad(format_number(r.lag[k]), 12) << " " << estimate_cell(r.autocorrelation[k]) << " "
+           << estimate_cell(r.covariance[k]) << " " << estimate_cell(r.normalised[k]) << "\n";
+    os << "\nmean E[V]          " << estimate_cell(r.mean) << " m/s\n";
+    os << "diffusivity D      " << estimate_cell(r.estimates.diffusivity) << " m^2/s (same excursions)\n\n";
+    os << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals) << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const CorrelationResult& r) {
+    std::ostringstream os = report_stream();
+    os << "lag," << csv_estimate_header("autocorrelation") << "," << csv_estimate_header("covariance") << ","
+       << csv_estimate_header("normalised") << "\n";
+    for (std::size_t k = 0; k < r.lag.size(); ++k)
+        os << csv_number(r.lag[k]) << "," << csv_estimate(r.autocorrelation[k]) << "," << csv_estimate(r.covariance[k]) << ","
+           << csv_estimate(r.normalised[k]) << "\n";
+    return os.str();
+}
+
+// ---- trajectories -------------------------------------------------------------------------
+
+std::string to_json(const TrajectoryResult& r, int indent) {
+    const auto& q = r.request;
+    ordered_json j = report_head(q.paths == 0 ? "excursion" : "paths", q.engine, nullptr, nullptr);
+    auto params = params_json(q);
+    if (q.paths == 0) params["index"] = q.index;
+    else {
+        params["paths"] = q.paths;
+        params["time"] = q.horizon;
+        params["v0"] = q.v0;
+        params["every"] = q.every;
+    }
+    j["params"] = params;
+    j["nondimensional"] = nondimensional_json(q);
+    if (q.paths == 0) {
+        j["displacement"] = r.excursion.displacement;
+        j["duration"] = r.excursion.duration;
+        j["first_half_duration"] = r.excursion.first_half;
+        j["complete"] = !r.excursion.capped;
+    }
+    ordered_json ps = ordered_json::array();
+    for (const auto& p : r.paths) {
+        ordered_json o;
+        o["t"] = p.t;
+        o["x"] = p.x;
+        o["mode"] = p.mode;
+        o["v"] = p.v;
+        o["u"] = p.u;
+        ps.push_back(o);
+    }
+    j["paths"] = ps;
+    j["engine_details"] = engine_details_json(r.resolved, q);
+    add_report_tail(j, nullptr, r.warnings);
+    return dump(j, indent);
+}
+
+std::string to_csv(const TrajectoryResult& r) {
+    std::ostringstream os = report_stream();
+    os << "path,t,x,mode,v,u\n";
+    for (std::size_t k = 0; k < r.paths.size(); ++k) {
+        const auto& p = r.paths[k];
+        for (std::size_t i = 0; i < p.t.size(); ++i)
+            os << k << "," << csv_number(p.t[i]) << "," << csv_number(p.x[i]) << "," << p.mode[i] << ","
+               << csv_number(p.v[i]) << "," << csv_number(p.u[i]) << "\n";
+    }
+    return os.str();
+}
+
+std::string to_table(const TrajectoryResult& r) {
+    const auto& q = r.request;
+    std::ostringstream os = report_stream();
+    if (q.paths == 0)
+        os << engine_line("trajectory", q.engine,
+                          ", long excursion " + std::to_string(q.index) + ": U = " +
+                              format_number(r.excursion.displacement) + " m, t1 = " +
+                              format_number(r.excursion.duration) + " s");
+    else
+        os << engine_line("trajectory", q.engine,
+                          ", " + std::to_string(q.paths) + " paths on [0, " + format_number(q.horizon) + "] s");
+    os << param_line(q.params, q.engine) << "\n";
+    using number_text::pad;
+    os << pad("path", 5) << " " << pad("t [s]", 13) << " " << pad("X [s^-1/2]", 13) << " " << pad("mode", 5) << " "
+       << pad("V [m/s]", 13) << " " << pad("U [m]", 13) << "\n";
+    for (std::size_t k = 0; k < r.paths.size(); ++k) {
+        const auto& p = r.paths[k];
+        for (std::size_t i = 0; i < p.t.size(); ++i)
+            os << pad(std::to_string(k), 5) << " " << pad(format_number(p.t[i]), 13) << " "
+               << pad(format_number(p.x[i]), 13) << " " << pad(std::to_string(p.mode[i]), 5) << " "
+               << pad(format_number(p.v[i]), 13) << " " << pad(format_number(p.u[i]), 13) << "\n";
+    }
+    os << notes(r.warnings);
+    return os.str();
+}
+
+} // namespace stickslip

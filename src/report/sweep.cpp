@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Reports of parameter sweeps (report.hpp): JSON, table, CSV.
+#include <cmath>
+
+#include "core/format.hpp"
+#include "report/common.hpp"
+#include "stickslip/number_text.hpp"
+#include "stickslip/report.hpp"
+
+namespace stickslip {
+
+using namespace detail;
+
+// ---- sweep ------------------------------------------------------------------------------------
+
+namespace {
+
+/// --dt auto on the inclusion engine: every point has its own step (SweepPoint::dt).
+bool dt_per_point(const EngineSettings& s) { return s.dt_auto && s.engine == Engine::Inclusion; }
+
+/// --scheme auto on the inclusion engine: every point has its own scheme (SweepPoint::scheme).
+bool scheme_per_point(const EngineSettings& s) { return s.scheme == Scheme::Auto && s.engine == Engine::Inclusion; }
+
+} // namespace
+
+std::string to_json(const SweepResult& r, int indent) {
+    const auto& q = r.request;
+    const std::string estimator = to_string(q.estimator);
+    ordered_json j = report_head("sweep", q.engine, estimator.c_str(), nullptr);
+    auto params = params_json(q);
+    params.erase("noise");
+    params.erase("tau");
+    const bool own_dt = dt_per_point(q.engine), own_scheme = scheme_per_point(q.engine);
+    if (own_dt) params.erase("dt"); // each point's own: points[k].dt
+    params["noises"] = q.noises;
+    params["taus"] = q.taus;
+    params["excursions"] = q.excursions;
+    params["level"] = q.level;
+    j["params"] = params;
+    ordered_json pts = ordered_json::array();
+    for (const auto& p : r.points) {
+        ModelParams mp = q.params;
+        mp.noise = p.noise;
+        mp.tau = p.tau;
+        const Scales sc = scales_of(mp);
+        ordered_json o;
+        o["noise"] = p.noise;
+        o["tau"] = p.tau;
+        o["stop_rule"] = p.stop_rule;
+        if (own_dt) o["dt"] = p.dt; // --dt auto: the point's own step
+        if (own_scheme) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
+        append_members(o, long_excursion_json(p.estimates));
+        o["slope"] = {{"value", json_number(p.slope.value)}, {"stderr", json_number(p.slope.std_error)}};
+        o["nondimensional"] = {{"tau", p.tau / sc.time},
+                               {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},
+                               {"mobility", p.estimates.mobility.value / sc.velocity},
+                               {"mean_duration", p.estimates.mean_duration.value / sc.time}};
+        o["work"] = {{q.engine.engine == Engine::Pdmp ? "events" : "steps", p.work}, {"seconds", p.seconds}};
+        pts.push_back(o);
+    }
+    j["points"] = pts;
+    ordered_json ex = ordered_json::array();
+    for (const auto& e : r.exponents) {
+        ordered_json o;
+        o["tau"] = e.tau;
+        o["exponent"] = estimate_json(e.exponent);
+        o["chi2_per_dof"] = json_number(e.chi2_per_dof);
+        o["points"] = e.points;
+        ex.push_back(o);
+    }
+    j["exponents"] = ex;
+    ordered_json work = {{"seconds", r.seconds}};
+    if (r.resumed) work["resumed_samples"] = r.resumed;
+    add_report_tail(j, &work, r.warnings, r.interrupted);
+    return dump(j, indent);
+}
+
+std::string to_table(const SweepResult& r) {
+    const auto& q = r.request;
+    std::ostringstream os = report_stream();
+    os << engine_line("sweep", q.engine,
+                      ", " + std::to_string(q.excursions) + " excursions per point, estimator " +
+                          to_string(q.estimator));
+    os << "friction " << format_number(q.params.friction) << " m/s^2, relaxation "
+       << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias) << " m/s^2\n\n";
+    using number_text::fixed;
+    using number_text::pad;
+    os << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -25) << " " << pad("M0 [m/s]", -25)
+       << " " << pad("E[t1] [s]", -20) << " " << pad("dlogD/dlogGamma", -20) << "\n";
+    for (const auto& p : r.points) {
+        const std::string slope = std::isnan(p.slope.value)
+                                      ? std::string("-")
+                                      : pad(fixed(p.slope.value, 3), 7) + " +- " + pad(fixed(p.slope.std_error, 3), -7);
+        os << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10) << "  "
+           << estimate_cell(p.estimates.diffusivity) << " " << estimate_cell(p.estimates.mobility) << " "
+           << pad(format_number(p.estimates.mean_duration.value, 4), 10) << " +- "
+           << pad(format_number(p.estimates.mean_duration.std_error, 2), -7) << " " << slope;
+        if (dt_per_point(q.engine)) os << "  dt " << format_number(p.dt) << " s";
+        if (scheme_per_point(q.engine)) os << "  " << to_string(p.scheme);
+        os << "\n";
+    }
+    if (!r.exponents.empty()) {
+        os << "\nfitted D ~ noise^alpha per tau (weighted least squares in log-log):\n";
+        for (const auto& e : r.exponents) {
+            const std::string chi2 = std::isnan(e.chi2_per_dof) ? "-" : format_number(e.chi2_per_dof, 2);
+            os << "  tau " << pad(format_number(e.tau, 4), 10) << " s: alpha = " << fixed(e.exponent.value, 3)
+               << " +- " << fixed(e.exponent.std_error, 3) << " (chi2/dof " << chi2 << " over " << e.points
+               << " points)\n";
+        }
+    }
+    os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3) << " s (seed " << q.control.seed << ")\n"
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const SweepResult& r) {
+    std::ostringstream os = report_stream();
+    os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
+       << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"
+       << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
+       << "\n";
+    for (const auto& p : r.points) {
+        ModelParams mp = r.request.params;
+        mp.noise = p.noise;
+        mp.tau = p.tau;
+        const Scales sc = scales_of(mp);
+        os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << csv_estimate(p.estimates.diffusivity) << ","
+           << csv_estimate(p.estimates.mobility) << "," << csv_number(p.estimates.mean_duration.value) << ","
+           << csv_number(p.estimates.mean_duration.std_error) << "," << csv_number(p.slope.value) << ","
+           << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time) << ","
+           << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << ","
+           << p.estimates.excursions;
+        if (dt_per_point(r.request.engine)) os << "," << csv_number(p.dt);
+        if (scheme_per_point(r.request.engine)) os << "," << to_string(p.scheme);
+        os << "\n";
+    }
+    return os.str();
+}
+
+} // namespace stickslip

@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Reports of the exact white-noise references (report.hpp): JSON, table, CSV.
+#include <cmath>
+
+#include "core/format.hpp"
+#include "report/common.hpp"
+#include "stickslip/number_text.hpp"
+#include "stickslip/report.hpp"
+
+namespace stickslip {
+
+using namespace detail;
+
+// ---- white-noise references ---------------------------------------------------------------
+
+std::string to_json(const WhiteNoiseResult& r, int indent) {
+    const auto& q = r.request;
+    const Scales sc = scales_of(q.params);
+    ordered_json j;
+    j["quantity"] = "white_noise_reference";
+    j["mobility"] = r.reference.mobility;
+    j["diffusivity"] = r.reference.diffusivity;
+    j["variance"] = r.reference.variance;
+    if (!q.times.empty()) {
+        j["times"] = q.times;
+        j["v0"] = q.v0;
+        j["first_moment"] = r.first_moment;
+        j["autocorrelation"] = r.autocorrelation;
+        j["method"] = r.method;
+    }
+    if (!q.velocities.empty()) {
+        j["velocities"] = q.velocities;
+        j["stationary_density"] = r.stationary_density;
+        if (!q.times.empty()) j["transient_density"] = r.transient_density;
+    }
+    ordered_json params;
+    params["friction"] = q.params.friction;
+    params["noise"] = q.params.noise;
+    params["relaxation"] = json_number(q.params.relaxation);
+    params["bias"] = q.params.bias;
+    j["params"] = params;
+    const ModelParams nd = to_nondimensional(q.params);
+    j["nondimensional"] = {{"relaxation", json_number(nd.relaxation)},
+                           {"bias", nd.bias},
+                           {"mobility", r.reference.mobility / sc.velocity},
+                           {"diffusivity", r.reference.diffusivity / sc.diffusivity},
+                           {"variance", r.reference.variance / (sc.velocity * sc.velocity)},
+                           {"time_unit", sc.time},
+                           {"velocity_unit", sc.velocity},
+                           {"diffusivity_unit", sc.diffusivity}};
+    add_report_tail(j, nullptr, r.warnings);
+    return dump(j, indent);
+}
+
+std::string to_table(const WhiteNoiseResult& r) {
+    const auto& q = r.request;
+    const Scales sc = scales_of(q.params);
+    std::ostringstream os = report_stream();
+    os << "stickslip analytic: exact white-noise references\n";
+    os << "friction " << format_number(q.params.friction) << " m/s^2, noise " << format_number(q.params.noise)
+       << " m^2/s^3, relaxation " << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias)
+       << " m/s^2\n\n";
+    using number_text::pad;
+    const auto row = [&os](const char* name, double value, const char* unit, double nondim) {
+        os << pad(name, -16) << " " << pad(format_number(value, 10), 15) << " " << pad(unit, -8) << " "
+           << pad(format_number(nondim, 10), 15) << "\n";
+    };
+    row("mobility M0", r.reference.mobility, "m/s", r.reference.mobility / sc.velocity);
+    row("diffusivity D", r.reference.diffusivity, "m^2/s", r.reference.diffusivity / sc.diffusivity);
+    row("variance Var(V)", r.reference.variance, "m^2/s^2", r.reference.variance / (sc.velocity * sc.velocity));
+    os << "(last column: nondimensional)\n";
+    if (!q.times.empty()) {
+        os << "\n" << r.method << "; v0 = " << format_number(q.v0) << " m/s\n";
+        os << pad("t [s]", 14) << " " << pad("E[V(t)|v0] [m/s]", 18) << " " << pad("<V(t)V(0)> [m^2/s^2]", 22) << "\n";
+        for (std::size_t k = 0; k < q.times.size(); ++k)
+            os << pad(format_number(q.times[k]), 14) << " " << pad(format_number(r.first_moment[k], 10), 18) << " "
+               << pad(format_number(r.autocorrelation[k], 10), 22) << "\n";
+    }
+    os << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const WhiteNoiseResult& r) {
+    std::ostringstream os = report_stream();
+    const auto& q = r.request;
+    os << "mobility,diffusivity,variance";
+    if (!q.times.empty()) os << ",time,first_moment,autocorrelation";
+    os << "\n";
+    const std::string head = csv_number(r.reference.mobility) + "," + csv_number(r.reference.diffusivity) + "," +
+                             csv_number(r.reference.variance);
+    if (q.times.empty()) os << head << "\n";
+    for (std::size_t k = 0; k < q.times.size(); ++k)
+        os << head << "," << csv_number(q.times[k]) << "," << csv_number(r.first_moment[k]) << ","
+           << csv_number(r.autocorrelation[k]) << "\n";
+    return os.str();
+}
+
+} // namespace stickslip
