@@ -13,9 +13,9 @@
 //                                 uniform direction): the PDMP engine's limit of
 //                                 events/s.
 //   BM_PdmpDrawsScalar            the same from CounterRng.
-//   BM_InclusionSteps/<case>      inclusion_long_excursion, one excursion per
+//   BM_InclusionSteps/<case>      resolvent_long_excursion, one excursion per
 //                                 iteration (BatchedCounterRng); items = steps.
-//   BM_InclusionLanes/<case>      inclusion_long_excursions, the kernel the runner
+//   BM_InclusionLanes/<case>      resolvent_long_excursions, the kernel the runner
 //                                 uses (8 SIMD lanes with AVX-512), 64
 //                                 excursions per iteration; items = steps.
 //   BM_PdmpEvents/<case>          pdmp_long_excursion, grid 0.125
@@ -112,11 +112,11 @@ void report_work(benchmark::State& state, double sink, std::uint64_t work, std::
         benchmark::Counter(static_cast<double>(work) / static_cast<double>(excursions ? excursions : 1));
 }
 
-InclusionConstants inclusion_constants(const ModelParams& p, double dt) {
+ResolventConstants resolvent_constants(const ModelParams& p, double dt) {
     EngineSettings s;
     s.engine = Engine::Inclusion;
     s.dt = dt;
-    return make_inclusion_constants(p, s);
+    return make_resolvent_constants(p, s);
 }
 
 // One long excursion per iteration: excursion(index) runs excursion `index`
@@ -133,11 +133,11 @@ void time_excursions(benchmark::State& state, const char* per_excursion_name, Ex
     report_work(state, sink, work, index, per_excursion_name);
 }
 
-void run_inclusion(benchmark::State& state, const ModelParams& p, double dt) {
-    const InclusionConstants c = inclusion_constants(p, dt);
+void run_resolvent(benchmark::State& state, const ModelParams& p, double dt) {
+    const ResolventConstants c = resolvent_constants(p, dt);
     time_excursions(state, "steps_per_excursion", [&c](std::uint64_t k) {
         BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, k);
-        return inclusion_long_excursion(c, rng);
+        return resolvent_long_excursion(c, rng);
     });
 }
 
@@ -160,11 +160,11 @@ void time_blocks(benchmark::State& state, Block&& block) {
     report_work(state, sink, work, excursions, "steps_per_excursion");
 }
 
-// The kernel the runner uses (inclusion_long_excursions: 8 SIMD lanes where vectorised).
-void run_inclusion_lanes(benchmark::State& state, const ModelParams& p, double dt) {
-    const InclusionConstants c = inclusion_constants(p, dt);
+// The kernel the runner uses (resolvent_long_excursions: 8 SIMD lanes where vectorised).
+void run_resolvent_lanes(benchmark::State& state, const ModelParams& p, double dt) {
+    const ResolventConstants c = resolvent_constants(p, dt);
     time_blocks(state, [&c](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out) {
-        inclusion_long_excursions(c, kSeed, first, count, out);
+        resolvent_long_excursions(c, kSeed, first, count, out);
     });
 }
 
@@ -228,13 +228,13 @@ void BM_EventSteps_white(benchmark::State& st) { run_event(st, white_dry_params(
 void BM_EventSteps_white_auto(benchmark::State& st) { run_event(st, white_dry_params(), 0.0625); }
 void BM_EventLanes_fig2(benchmark::State& st) { run_event_lanes(st, fig2_params(), 1e-4); }
 void BM_EventLanes_fig2_auto(benchmark::State& st) { run_event_lanes(st, fig2_params(), 0.01675); }
-void BM_InclusionLanes_white(benchmark::State& st) { run_inclusion_lanes(st, white_dry_params(), 1e-2); }
-void BM_InclusionSteps_fig2(benchmark::State& st) { run_inclusion(st, fig2_params(), 1e-4); }
-void BM_InclusionSteps_dry(benchmark::State& st) { run_inclusion(st, dry_params(), 1e-3); }
-void BM_InclusionLanes_fig2(benchmark::State& st) { run_inclusion_lanes(st, fig2_params(), 1e-4); }
+void BM_InclusionLanes_white(benchmark::State& st) { run_resolvent_lanes(st, white_dry_params(), 1e-2); }
+void BM_InclusionSteps_fig2(benchmark::State& st) { run_resolvent(st, fig2_params(), 1e-4); }
+void BM_InclusionSteps_dry(benchmark::State& st) { run_resolvent(st, dry_params(), 1e-3); }
+void BM_InclusionLanes_fig2(benchmark::State& st) { run_resolvent_lanes(st, fig2_params(), 1e-4); }
 // The resolvent's own automatic step on the Fig. 2 case (relaxation/100).
-void BM_InclusionLanes_fig2_auto(benchmark::State& st) { run_inclusion_lanes(st, fig2_params(), 6.7e-4); }
-void BM_InclusionLanes_dry(benchmark::State& st) { run_inclusion_lanes(st, dry_params(), 1e-3); }
+void BM_InclusionLanes_fig2_auto(benchmark::State& st) { run_resolvent_lanes(st, fig2_params(), 6.7e-4); }
+void BM_InclusionLanes_dry(benchmark::State& st) { run_resolvent_lanes(st, dry_params(), 1e-3); }
 void BM_PdmpEvents_fig2(benchmark::State& st) { run_pdmp(st, fig2_params(), 0.125); }
 void BM_PdmpEvents_dry(benchmark::State& st) { run_pdmp(st, dry_params(), 0.125); }
 void BM_PdmpEventsLogWaits_fig2(benchmark::State& st) { run_pdmp<LogWaitRng>(st, fig2_params(), 0.125); }
@@ -268,7 +268,7 @@ int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::AddCustomContext("stickslip_rng_isa", stickslip::detail::rng_batch_isa());
-    benchmark::AddCustomContext("stickslip_inclusion_kernel", stickslip::inclusion_kernel_name());
+    benchmark::AddCustomContext("stickslip_inclusion_kernel", stickslip::resolvent_kernel_name());
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     return 0;

@@ -217,13 +217,13 @@ std::vector<Action> register_all(CLI::App& app) {
                     "each bin over a long excursion divided by its duration (renewal-reward ratio, delta-method "
                     "intervals). The atom at V = 0 (probability of being stuck, positive for colored noise) is "
                     "reported separately.",
-                    &compute_stationary_density, {"excursions", false}),
+                    &compute_density, {"excursions", false}),
         add_command(app,
                     "Transient statistics from V(0) = v0 with X(0) drawn from its stationary law N(0, 1/tau) (the "
                     "paper's Table I and Fig. 7 set-up): first and second moments E[V(t)|v0], E[V(t)^2|v0] and "
                     "P(V(t) = 0) at the given times, and with --density the histogram of V(t). Plain means over "
                     "independent trajectories.",
-                    &compute_transient, {"trajectories", false}),
+                    &compute_moments, {"trajectories", false}),
         add_command(app,
                     "Stationary autocorrelation <V(0)V(r)>, covariance h(r) = <V(0)V(r)> - M0^2 and normalised "
                     "covariance h(r)/h(0) (the paper's Figs. 5 and 8), as renewal-reward ratios over long excursions: "

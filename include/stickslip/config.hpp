@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // stickslip/config.hpp -- portability macros shared by every public header.
 //
-// The per-step and per-event kernels (inclusion.hpp, pdmp.hpp, noise.hpp,
+// The per-step and per-event kernels (resolvent.hpp, pdmp.hpp, noise.hpp,
 // rng.hpp) are meant to compile unchanged for the CPU and, later, for a CUDA
 // backend, in the style of HOOMD-blue's RandomNumbers.h. They therefore avoid
 // allocation, exceptions and virtual calls, and are marked STICKSLIP_HD so

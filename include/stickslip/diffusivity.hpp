@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/errors.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
 
@@ -123,23 +124,6 @@ struct DiffusivityResult {
     std::vector<std::string> warnings;
     /// The --check-dt comparison (request.check_dt), when it ran.
     std::optional<DiscretisationCheck> discretisation;
-};
-
-/// Thrown when a run finished but its numbers cannot be believed: every
-/// excursion ended within its first step (the estimates would be 0/0), or an
-/// estimate is not a finite number. The message says why and what to change.
-/// The command exits with status 3 on it; Python raises
-/// UntrustworthyResultError.
-struct UntrustworthyResult : std::runtime_error {
-    /// `m`: the message for the user.
-    explicit UntrustworthyResult(const std::string& m) : std::runtime_error(m) {}
-};
-
-/// Thrown when excursions hit the runaway guard and the request does not
-/// allow it, or fewer than 2 completed: an untrustworthy result of one kind.
-struct CappedExcursions : UntrustworthyResult {
-    /// `m`: the message for the user (how many were capped, what to do).
-    explicit CappedExcursions(const std::string& m) : UntrustworthyResult(m) {}
 };
 
 /// The request of the --check-dt run of `req`: `excursions` at 2 dt, from

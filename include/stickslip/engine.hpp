@@ -6,7 +6,7 @@
 // lattice of step `grid`, and `inclusion`, a time-stepping scheme of step `dt`
 // for the differential inclusion, with the noise's exact step law. The
 // per-run constants each engine derives from these settings are in pdmp.hpp
-// and inclusion.hpp.
+// and resolvent.hpp.
 #pragma once
 
 /// \file
@@ -123,6 +123,26 @@ void visit_settings(EngineSettings& s, Visitor&& v) {
 /// false), every other setting at its default: what a C++ caller who wants a
 /// given step sets (the defaults choose both the scheme and the step).
 EngineSettings fixed_step_settings(Scheme scheme, double dt);
+
+/// @name What the engine settings imply, for reports and checks
+/// The one place outside the engines' own code that knows which engine has
+/// which kind of numerics (ARCHITECTURE.md, "Add an engine").
+/// @{
+
+/// What the work of a run counts: "steps" (inclusion engine) or "events" (PDMP).
+const char* work_unit(const EngineSettings& s);
+/// Whether the engine advances by a time step dt (the inclusion engine, both
+/// schemes); otherwise its resolution is the lattice step `grid` (PDMP).
+bool has_time_step(const EngineSettings& s);
+/// Whether the engine knows its paths at its own steps only, so that they are
+/// sampled there and --sample-dt does not apply (the resolvent scheme).
+bool samples_at_steps(const EngineSettings& s);
+/// Whether the engine can sample paths of the model with noise correlation
+/// time tau [s] on a time grid: all but the event scheme with white noise
+/// (tau = 0), whose V between events is a Brownian bridge that interpolation
+/// would flatten.
+bool samples_on_grid(const EngineSettings& s, double tau);
+/// @}
 
 /// Throws InvalidParameter for a non-positive or non-finite dt or grid, a
 /// negative lattice bound or white level, or a zero work cap. Both step

@@ -1,10 +1,29 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// stickslip/excursion.hpp -- kept so that code written against stickslip 0.3 still
-// compiles: the header moved to stickslip/kernels/excursion.hpp (the tree by layer,
-// ARCHITECTURE.md). New code includes the new path.
+// stickslip/excursion.hpp -- the outcome of one long excursion.
+//
+// A long excursion (theory.md, section 6) is a +HLE followed by a -HLE, each
+// started exactly at its threshold state. Excursions are i.i.d. and are the
+// units of the renewal-reward estimators in estimators.hpp. This header holds
+// what both engines' samplers (resolvent.hpp, pdmp.hpp) return.
 #pragma once
 
 /// \file
-/// Forwarding header: see stickslip/kernels/excursion.hpp.
+/// ExcursionOutcome: what one long excursion (or trajectory) yields. The
+/// comment at the top of this header explains the design.
 
-#include "stickslip/kernels/excursion.hpp"
+#include <cstdint>
+
+#include "stickslip/engine.hpp"
+
+namespace stickslip {
+
+/// Outcome of one long excursion (or one brute-force trajectory).
+struct ExcursionOutcome {
+    double displacement = 0.0; ///< U [m]
+    double duration = 0.0;     ///< t [s]
+    std::uint64_t work = 0;    ///< steps or events used
+    bool capped = false;       ///< hit max_work_per_excursion; U, t meaningless
+    double first_half = 0.0;   ///< long excursions: duration of the +HLE [s]
+};
+
+} // namespace stickslip

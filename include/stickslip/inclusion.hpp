@@ -8,3 +8,8 @@
 /// Forwarding header: see stickslip/kernels/resolvent.hpp.
 
 #include "stickslip/kernels/resolvent.hpp"
+
+namespace stickslip {
+/// The resolvent scheme's constants under their name of stickslip 0.3.
+using InclusionConstants = ResolventConstants;
+} // namespace stickslip

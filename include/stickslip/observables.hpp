@@ -41,7 +41,7 @@
 
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/stats/estimators.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/run.hpp"
 #include "stickslip/runner.hpp"
@@ -91,7 +91,7 @@ struct VelocityHistogram {
 /// A stationary-density run (`stickslip density`): the histogram of V over
 /// long excursions (renewal-reward ratios, no burn-in), P(V = 0), the
 /// stationary mean and variance, and D, M0, E[t1] of the same excursions.
-struct StationaryDensityRequest : RunSettings, ExcursionSettings {
+struct DensityRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "density"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     /// The histogram's bins; automatic range by default (a pilot run of 256
@@ -108,7 +108,7 @@ inline constexpr SettingInfo sample_dt_info{
 /// The request's settings: RunSettings', ExcursionSettings', --bins,
 /// --range and --sample-dt.
 template <class Visitor>
-void visit_settings(StationaryDensityRequest& r, Visitor&& v) {
+void visit_settings(DensityRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), v);
     visit_settings(static_cast<ExcursionSettings&>(r), v);
     visit_settings(r.bins, v,
@@ -116,11 +116,11 @@ void visit_settings(StationaryDensityRequest& r, Visitor&& v) {
     v(r.sample_dt, sample_dt_info);
 }
 
-/// What compute_stationary_density returns; report.hpp writes it.
-struct StationaryDensityResult {
+/// What compute_density returns; report.hpp writes it.
+struct DensityResult {
     /// The request, with the bins resolved (an automatic range replaced by
     /// the one used).
-    StationaryDensityRequest request;
+    DensityRequest request;
     /// The engine's resolved details.
     ResolvedEngine resolved;
     /// The stationary density of V [s/m] with P(V = 0) and the tails.
@@ -139,11 +139,11 @@ struct StationaryDensityResult {
 /// shared settings, excursions >= 2, the bins (1 to 100000; a finite range
 /// with lo < hi, or automatic), sample_dt finite and >= 0, and that
 /// excursions can end within the work cap.
-void validate(const StationaryDensityRequest& req);
+void validate(const DensityRequest& req);
 /// Validates the request (once) and runs it: a pilot of 256 excursions when
 /// the range is automatic, then the excursions of the histogram. Throws
 /// CappedExcursions as compute_diffusivity does.
-StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req);
+DensityResult compute_density(const DensityRequest& req);
 
 // ---- stationary autocorrelation ---------------------------------------------
 
@@ -204,7 +204,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req);
 /// A transient run (`stickslip moments`): E[V(t)|v0], E[V(t)^2|v0],
 /// P(V(t) = 0) and optionally the density of V(t), as plain means over
 /// independent trajectories from V(0) = v0.
-struct TransientRequest : RunSettings {
+struct MomentsRequest : RunSettings {
     static constexpr const char* command = "moments"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     /// Initial velocity v_i [m/s]; NaN: one velocity unit, noise/friction.
@@ -226,7 +226,7 @@ struct TransientRequest : RunSettings {
 /// The request's settings: RunSettings', --v0, --x0, --times,
 /// --trajectories, --density, --bins and --range.
 template <class Visitor>
-void visit_settings(TransientRequest& r, Visitor&& v) {
+void visit_settings(MomentsRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), v);
     v(OptionalNumber{r.v0}, SettingInfo{"v0", "m/s", "initial velocity v0; default: 1 velocity unit, noise/friction"});
     v(OptionalNumber{r.x0}, SettingInfo{"x0", "s^-1/2", "initial noise X(0); default: drawn from N(0, 1/tau) per trajectory"});
@@ -242,13 +242,13 @@ void visit_settings(TransientRequest& r, Visitor&& v) {
 /// (noise/friction^2): the default times of a transient request.
 inline constexpr double table_one_times[] = {0.05, 0.125, 0.25, 0.5, 1.0, 2.5};
 
-/// What compute_transient returns; report.hpp writes it. Every series is
+/// What compute_moments returns; report.hpp writes it. Every series is
 /// aligned with `time`.
-struct TransientResult {
+struct MomentsResult {
     /// The request, with its defaults resolved: v0, the times (as given, or
     /// Table I's in seconds; those used, rounded and sorted, are in `time`)
     /// and the density's bins.
-    TransientRequest request;
+    MomentsRequest request;
     /// The engine's resolved details.
     ResolvedEngine resolved;
     std::vector<double> time;          ///< times actually used [s] (inclusion: whole steps), sorted
@@ -267,9 +267,9 @@ struct TransientResult {
 /// shared settings, trajectories >= 2, at most 10000 times, each finite and
 /// >= 0, a finite start, the bins with with_density (and times x bins at most
 /// 2e6), and the inclusion engine's largest time within 1e13 steps.
-void validate(const TransientRequest& req);
+void validate(const MomentsRequest& req);
 /// Validates the request (once) and runs the trajectories.
-TransientResult compute_transient(const TransientRequest& req);
+MomentsResult compute_moments(const MomentsRequest& req);
 
 // ---- sample paths ------------------------------------------------------------
 
@@ -347,5 +347,19 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req);
 
 /// The bins actually used for a request (resolves automatic ranges).
 VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b);
+
+/// @name The names of stickslip 0.3
+/// The requests and results of `density` and `moments` under the names they
+/// had before they were named after their commands.
+/// @{
+using StationaryDensityRequest = DensityRequest; ///< DensityRequest under its 0.3 name
+using StationaryDensityResult = DensityResult;   ///< DensityResult under its 0.3 name
+using TransientRequest = MomentsRequest;         ///< MomentsRequest under its 0.3 name
+using TransientResult = MomentsResult;           ///< MomentsResult under its 0.3 name
+/// compute_density under its 0.3 name.
+inline DensityResult compute_stationary_density(const DensityRequest& r) { return compute_density(r); }
+/// compute_moments under its 0.3 name.
+inline MomentsResult compute_transient(const MomentsRequest& r) { return compute_moments(r); }
+/// @}
 
 } // namespace stickslip

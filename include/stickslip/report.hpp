@@ -46,17 +46,17 @@ std::string to_csv(const DiffusivityResult& r);
 std::string to_csv(const BruteForceResult& r);
 
 /// The stationary density as one JSON object (`indent` as above).
-std::string to_json(const StationaryDensityResult& r, int indent = 2);
+std::string to_json(const DensityResult& r, int indent = 2);
 /// The stationary density as a table: one row per bin, then P(V = 0), the
 /// mass outside the range, the mean, the variance and D.
-std::string to_table(const StationaryDensityResult& r);
-std::string to_csv(const StationaryDensityResult& r); ///< one row per bin, then stuck/below/above rows
+std::string to_table(const DensityResult& r);
+std::string to_csv(const DensityResult& r); ///< one row per bin, then stuck/below/above rows
 
 /// The transient statistics as one JSON object (`indent` as above).
-std::string to_json(const TransientResult& r, int indent = 2);
+std::string to_json(const MomentsResult& r, int indent = 2);
 /// The transient statistics as a table, one row per time.
-std::string to_table(const TransientResult& r);
-std::string to_csv(const TransientResult& r); ///< one row per time (with density: per time and bin)
+std::string to_table(const MomentsResult& r);
+std::string to_csv(const MomentsResult& r); ///< one row per time (with density: per time and bin)
 
 /// The autocorrelation as one JSON object (`indent` as above).
 std::string to_json(const CorrelationResult& r, int indent = 2);

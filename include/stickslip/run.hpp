@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // stickslip/run.hpp -- what every run shares: the model, the engine, the run
 // control and the confidence level (RunSettings), the number of excursions
-// (ExcursionSettings), and the engine constants a run is prepared with.
+// (ExcursionSettings), and how a run's engine is resolved and prepared (the
+// prepared constants themselves are in prepared_engine.hpp, so that the
+// requests include no kernel).
 //
 // Every request of the library (diffusivity.hpp, bruteforce.hpp,
 // observables.hpp, sweep.hpp) is a RunSettings, and the long-excursion ones an
@@ -19,14 +21,13 @@
 #include <vector>
 
 #include "stickslip/engine.hpp"
-#include "stickslip/kernels/event_scheme.hpp"
-#include "stickslip/kernels/resolvent.hpp"
 #include "stickslip/params.hpp"
-#include "stickslip/kernels/pdmp.hpp"
 #include "stickslip/runner.hpp"
 #include "stickslip/setting.hpp"
 
 namespace stickslip {
+
+struct PreparedEngine; // prepared_engine.hpp: the engine constants a run is prepared with
 
 /// The settings of every run: model, engine, run control and interval level.
 /// Of the run control, seed and threads are settings; the progress callback,
@@ -85,26 +86,6 @@ struct ResolvedEngine {
     /// (ModelParams::upper_threshold, lower_threshold); 0 for white noise.
     double upper_threshold = 0, lower_threshold = 0; ///< x*, x-* [s^-1/2] (colored)
     /// @}
-};
-
-/// The engine of a run, prepared once: the chosen engine's (and scheme's)
-/// constants, the others left empty, and the details a report shows.
-struct PreparedEngine {
-    /// The model it was prepared for (SI units).
-    ModelParams params;
-    /// The engine settings it was prepared from, with --dt auto resolved (the
-    /// other resolved choices, e.g. the stop rule, are in `resolved` and the
-    /// constants).
-    EngineSettings settings;
-    InclusionConstants inclusion{}; ///< inclusion engine, resolvent scheme
-    EventConstants event{};         ///< inclusion engine, event scheme
-    /// PDMP engine constants (engine pdmp).
-    PdmpConstants pdmp{};
-    /// What was chosen for the run, for the reports.
-    ResolvedEngine resolved;
-    /// Notes on the settings found when preparing (a step too coarse for a
-    /// trustworthy D): every report of a run on this engine carries them.
-    std::vector<std::string> notes;
 };
 
 /// The step [s] that --dt auto chooses for the inclusion engine's `scheme` on

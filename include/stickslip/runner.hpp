@@ -23,8 +23,9 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/errors.hpp"
 #include "stickslip/stats/estimators.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/stats/moment_sums.hpp"
 #include "stickslip/params.hpp"
 
@@ -97,13 +98,6 @@ struct RunControl {
     /// @}
 };
 
-/// Thrown when a run was cancelled: RunControl::progress returned false or
-/// RunControl::cancel was set. Nothing of the run is returned (compare
-/// RunControl::stop, which returns what is done).
-struct RunCancelled : std::runtime_error {
-    RunCancelled() : std::runtime_error("run cancelled") {}
-};
-
 /// Samples per block: the unit of work and of deterministic merging.
 inline constexpr std::uint64_t block_size = 64;
 
@@ -132,13 +126,7 @@ struct RunTotals {
     std::uint64_t resumed = 0; ///< samples restored from a checkpoint rather than computed
 };
 
-struct PreparedEngine; // run.hpp
-
-/// Thrown when a run was stopped (RunControl::stop) before it had anything to
-/// report (fewer than two samples, or during a pilot run).
-struct RunInterrupted : std::runtime_error {
-    RunInterrupted() : std::runtime_error("interrupted before any result") {}
-};
+struct PreparedEngine; // prepared_engine.hpp
 
 /// Throws InvalidParameter for a thread count above 4096.
 void check_run_control(const RunControl& ctl);

@@ -33,22 +33,9 @@
 #include <utility>
 #include <vector>
 
+#include "stickslip/errors.hpp"
+
 namespace stickslip {
-
-/// Thrown for invalid input. `parameter()` is the name of the offending
-/// parameter as spelled on the command line (e.g. "friction", "dt").
-class InvalidParameter : public std::invalid_argument {
-public:
-    /// `parameter`: the setting's name ("friction"); `message`: the whole
-    /// sentence a user reads (what()), which front ends prefix with --parameter.
-    InvalidParameter(std::string parameter, const std::string& message)
-        : std::invalid_argument(message), parameter_(std::move(parameter)) {}
-    /// The offending setting's name, as SettingInfo::name spells it.
-    const std::string& parameter() const noexcept { return parameter_; }
-
-private:
-    std::string parameter_;
-};
 
 /// How a setting is named and explained wherever it appears.
 struct SettingInfo {

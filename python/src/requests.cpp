@@ -308,9 +308,9 @@ Result run_journaled(Request& req, std::function<Result()> compute, Monitor& mon
 /// What the progress line counts for each request.
 const char* samples_of(const DiffusivityRequest&) { return "excursions"; }
 const char* samples_of(const BruteForceRequest&) { return "trajectories"; }
-const char* samples_of(const StationaryDensityRequest&) { return "excursions"; }
+const char* samples_of(const DensityRequest&) { return "excursions"; }
 const char* samples_of(const CorrelationRequest&) { return "excursions"; }
-const char* samples_of(const TransientRequest&) { return "trajectories"; }
+const char* samples_of(const MomentsRequest&) { return "trajectories"; }
 const char* samples_of(const TrajectoryRequest&) { return "paths"; }
 
 /// Forgets what points into a run's monitor and journal, about to go.
@@ -401,9 +401,9 @@ void bind_requests(py::module_& m) {
 
     bind_request<DiffusivityRequest>(m, "DiffusivityRequest", "The settings of a diffusivity run.");
     bind_request<BruteForceRequest>(m, "BruteForceRequest", "The settings of a brute-force run.");
-    bind_request<StationaryDensityRequest>(m, "DensityRequest", "The settings of a stationary density run.");
+    bind_request<DensityRequest>(m, "DensityRequest", "The settings of a stationary density run.");
     bind_request<CorrelationRequest>(m, "CorrelationRequest", "The settings of an autocorrelation run.");
-    bind_request<TransientRequest>(m, "MomentsRequest", "The settings of a transient moments run.");
+    bind_request<MomentsRequest>(m, "MomentsRequest", "The settings of a transient moments run.");
     bind_request<TrajectoryRequest>(m, "TrajectoryRequest", "The settings of a sample-path run.");
     bind_request<SweepRequest>(m, "SweepRequest", "The settings of a sweep over noise and tau.");
     bind_request<WhiteNoiseRequest>(m, "WhiteNoiseRequest", "The settings of the exact white-noise references.");
@@ -429,8 +429,8 @@ void bind_requests(py::module_& m) {
             py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
             "run",
-            [](const StationaryDensityRequest& r, bool p, const Path& c, double e, const Path& res) {
-                return run_resumable(r, &compute_stationary_density, p, c, e, res);
+            [](const DensityRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_density, p, c, e, res);
             },
             py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
             py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
@@ -443,8 +443,8 @@ void bind_requests(py::module_& m) {
             py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
             "run",
-            [](const TransientRequest& r, bool p, const Path& c, double e, const Path& res) {
-                return run_resumable(r, &compute_transient, p, c, e, res);
+            [](const MomentsRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_moments, p, c, e, res);
             },
             py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
             py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())

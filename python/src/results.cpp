@@ -232,7 +232,7 @@ void bind_results(py::module_& m) {
 
     // ---- stationary density -------------------------------------------------------------------
     {
-        using R = StationaryDensityResult;
+        using R = DensityResult;
         py::class_<R> c(m, "DensityResult",
                         "Stationary velocity density with error bars (stickslip.density): a histogram of the "
                         "continuous part of the law of V plus the atom P(V = 0), and D, M0, E[t1] of the same "
@@ -301,7 +301,7 @@ void bind_results(py::module_& m) {
 
     // ---- moments (transient) -----------------------------------------------------------------
     {
-        using R = TransientResult;
+        using R = MomentsResult;
         py::class_<R> c(m, "MomentsResult",
                         "Transient statistics from V(0) = v0 (stickslip.moments): E[V(t)|v0], E[V(t)^2|v0] and "
                         "P(V(t) = 0) at the times `time`, and with density=True one Histogram per time. "

@@ -2,7 +2,7 @@
 // x86_levels.hpp -- one source compiled per x86-64 level, chosen at run time.
 //
 // Why: the batched random numbers (rng_batch.cpp) and the SIMD lanes
-// (inclusion_lanes.cpp) are loops the compiler vectorises; built once for
+// (resolvent_lanes.cpp) are loops the compiler vectorises; built once for
 // baseline x86-64 they would get SSE2 only. With GCC's target_clones each is
 // compiled for x86-64-v4 (AVX-512), x86-64-v3 (AVX2) and baseline, and the
 // loader picks one for the CPU. Every clone computes the same integers and the

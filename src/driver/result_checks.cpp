@@ -2,11 +2,14 @@
 #include "driver/result_checks.hpp"
 
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "core/format.hpp"
 #include "driver/step_check.hpp"
+#include "engines/visit_engine.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/prepared_engine.hpp"
 
 namespace stickslip::detail {
 
@@ -20,7 +23,7 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
     if (totals.capped > 0) {
         const std::string msg = std::to_string(totals.capped) + " of " + std::to_string(totals.requested) +
                                 " excursions hit the runaway guard of " + std::to_string(s.max_work_per_excursion) +
-                                (s.engine == Engine::Pdmp ? " events" : " steps") +
+                                " " + work_unit(s) +
                                 " and were dropped: the estimates are biased towards short excursions";
         if (!allow_capped) throw CappedExcursions(msg + " (raise --max-steps, or pass --allow-capped)");
         warnings.push_back(msg);
@@ -32,7 +35,7 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
         const ModelParams nd0 = to_nondimensional(p);
         std::string why = "every excursion ended within its first step (mean duration 0 s), so the estimates "
                           "would be 0/0: ";
-        if (s.engine == Engine::Inclusion && !p.white() && nd0.tau < 0.1)
+        if (has_time_step(s) && !p.white() && nd0.tau < 0.1)
             why += "at tau' = " + format_number(nd0.tau) + " the noise crosses the static band faster than dt = " +
                    format_number(s.dt) + " s resolves; the noise is practically white: use --tau 0, or a much "
                                          "smaller --dt";
@@ -40,24 +43,22 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
             why += "the step does not resolve this model; use a much smaller --dt or the pdmp engine";
         throw UntrustworthyResult(why);
     }
-    if (s.engine == Engine::Pdmp && resolved.truncated_mass > 1e-9)
-        warnings.push_back("the pdmp lattice is truncated at L = " + format_number(resolved.lattice_bound) +
-                           " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
-                           format_number(resolved.truncated_mass) + "; use a finer grid");
+    // What each engine notes of its own numerics (engines/<engine>/<engine>_engine.hpp).
+    const auto [lattice, duration, coarse] = visit_engine(e, [&](const auto& engine) {
+        return std::tuple{engine.lattice_note(resolved, true), engine.mean_duration_note(p),
+                          engine.coarse_against_tau(p)};
+    });
+    if (!lattice.empty()) warnings.push_back(lattice);
     if (done < few_excursions)
         warnings.push_back("only " + std::to_string(done) +
                            " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
                            "themselves uncertain; use 10000 or more for reliable intervals");
     const ModelParams nd = to_nondimensional(p);
-    if (s.engine == Engine::Pdmp && !p.white())
-        warnings.push_back("pdmp mean_duration runs between the lattice points beyond the thresholds: it exceeds the "
-                           "continuum E[t1] by a few % (about 12% at tau = 1 s, grid 0.125); halve --grid to see it "
-                           "converge. D and M0 are not affected");
+    if (!duration.empty()) warnings.push_back(duration);
     if (p.white())
         warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
                            format_number(resolved.white_level) + " m/s, not a stick-slip excursion");
-    else if (nd.tau < 0.1 ||
-             (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent && s.dt > 0.01 * p.tau))
+    else if (nd.tau < 0.1 || coarse)
         warnings.push_back("mean_duration depends on the discretisation and the stop rule when tau' < 0.1 or dt "
                            "is not << tau; report it with that caveat, not as a check");
 }
@@ -115,8 +116,7 @@ void check_start(const ModelParams& p, double x0, double v0) {
 
 double default_start_noise(const PreparedEngine& e) {
     if (e.params.white()) return 0.0;
-    if (e.settings.engine == Engine::Pdmp) return (e.pdmp.k_plus + 1) * e.pdmp.delta;
-    return e.params.upper_threshold();
+    return visit_engine(e, [&](const auto& engine) { return engine.default_start_noise(e.params); });
 }
 
 } // namespace stickslip::detail

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/format.hpp"
+#include "engines/visit_engine.hpp"
 
 namespace stickslip::detail {
 
@@ -98,8 +99,7 @@ double excursion_work_lower_bound(const PreparedEngine& e, double sample_dt) {
     // interpolated and binned), so it counts as one: `density --sample-dt
     // 5e-324` sampled every 5e-324 s and ran for ever.
     const double samples = sample_dt > 0 ? t / sample_dt : 0.0;
-    if (e.settings.engine == Engine::Pdmp) return t * e.pdmp.rate + samples;
-    return t / e.settings.dt + samples;
+    return visit_engine(e, [t](const auto& engine) { return engine.work_for(t); }) + samples;
 }
 
 double resolvent_bias(const ModelParams& p, double dt) {
@@ -127,10 +127,6 @@ double auto_step(const ModelParams& p, Scheme scheme) {
     return dt;
 }
 
-namespace {
-
-/// The event scheme's step against its measured reach (see the constants
-/// above): refused far beyond it, noted beyond it.
 void check_event_step(const ModelParams& p, double dt, std::vector<std::string>& notes) {
     const Scales sc = scales_of(p);
     const std::string at = "dt = " + format_number(dt) + " s is ";
@@ -174,40 +170,37 @@ void check_event_step(const ModelParams& p, double dt, std::vector<std::string>&
     if (!note.empty()) notes.push_back(note + where + "; " + cure);
 }
 
-} // namespace
+void check_resolvent_step(const ModelParams& p, double dt, std::vector<std::string>& notes) {
+    const Scales sc = scales_of(p);
+    const double step = dt / sc.time;
+    const double bias = resolvent_bias(p, dt);
+    const double fine = resolvent_step_for_bias(p, kWarnBias);
+    const std::string what =
+        step > 1.0 ? "dt = " + format_number(dt) + " s is longer than the friction time noise/friction^2 = " +
+                         format_number(sc.time) + " s: the resolvent step cannot resolve the stick-slip dynamics"
+                   : "dt = " + format_number(dt) + " s is " + rounded(step) +
+                         " friction times (noise/friction^2 = " + format_number(sc.time) +
+                         " s): the resolvent step's bias of D is about " + (bias > 0 ? "+" : "") +
+                         rounded(100 * bias) + "% there";
+    const std::string cure = "use --dt " + rounded(fine) + " or smaller for 2%" +
+                             (p.white() ? "" : ", or --scheme event or --engine pdmp");
+    if (std::fabs(bias) > kRefuseBias || step > 1.0)
+        throw InvalidParameter("dt", what + " (measured: docs/validation.md, \"Step checks\"); " + cure);
+    if (std::fabs(bias) > kWarnBias) notes.push_back(what + "; " + cure);
+    // The law above ignores the explicit drift step, whose error grows as
+    // dt approaches the relaxation time: measured, the Fig. 2 case is
+    // +3.1% at dt = 0.45 relaxation (as the law says) but -5% at 0.9
+    // (the law says +6%).
+    if (std::isfinite(p.relaxation) && dt > 0.5 * p.relaxation)
+        notes.push_back("dt = " + format_number(dt) + " s is " + rounded(dt / p.relaxation) +
+                        " relaxation times: the explicit drift step's own error adds to the bias, in either "
+                        "direction (Fig. 2 case at 0.9 relaxation times: D -5%); use --dt " +
+                        rounded(0.3 * p.relaxation) + " or smaller" +
+                        (p.white() ? "" : ", or --scheme event or --engine pdmp"));
+}
 
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes) {
-    const ModelParams& p = e.params;
-    const EngineSettings& s = e.settings;
-    if (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent) {
-        const Scales sc = scales_of(p);
-        const double step = s.dt / sc.time;
-        const double bias = resolvent_bias(p, s.dt);
-        const double fine = resolvent_step_for_bias(p, kWarnBias);
-        const std::string what =
-            step > 1.0 ? "dt = " + format_number(s.dt) + " s is longer than the friction time noise/friction^2 = " +
-                             format_number(sc.time) + " s: the resolvent step cannot resolve the stick-slip dynamics"
-                       : "dt = " + format_number(s.dt) + " s is " + rounded(step) +
-                             " friction times (noise/friction^2 = " + format_number(sc.time) +
-                             " s): the resolvent step's bias of D is about " + (bias > 0 ? "+" : "") +
-                             rounded(100 * bias) + "% there";
-        const std::string cure = "use --dt " + rounded(fine) + " or smaller for 2%" +
-                                 (p.white() ? "" : ", or --scheme event or --engine pdmp");
-        if (std::fabs(bias) > kRefuseBias || step > 1.0)
-            throw InvalidParameter("dt", what + " (measured: docs/validation.md, \"Step checks\"); " + cure);
-        if (std::fabs(bias) > kWarnBias) notes.push_back(what + "; " + cure);
-        // The law above ignores the explicit drift step, whose error grows as
-        // dt approaches the relaxation time: measured, the Fig. 2 case is
-        // +3.1% at dt = 0.45 relaxation (as the law says) but -5% at 0.9
-        // (the law says +6%).
-        if (std::isfinite(p.relaxation) && s.dt > 0.5 * p.relaxation)
-            notes.push_back("dt = " + format_number(s.dt) + " s is " + rounded(s.dt / p.relaxation) +
-                            " relaxation times: the explicit drift step's own error adds to the bias, in either "
-                            "direction (Fig. 2 case at 0.9 relaxation times: D -5%); use --dt " +
-                            rounded(0.3 * p.relaxation) + " or smaller" +
-                            (p.white() ? "" : ", or --scheme event or --engine pdmp"));
-    }
-    if (s.engine == Engine::Inclusion && s.scheme == Scheme::Event) check_event_step(p, s.dt, notes);
+    visit_engine(e, [&](const auto& engine) { engine.check_step(e.params, notes); });
 }
 
 void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
@@ -228,7 +221,7 @@ void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
     if (work >= static_cast<double>(s.max_work_per_excursion)) {
         const double sd = p.white() ? 0.0 : std::sqrt(p.tau);
         const double h = std::max(std::fabs(p.upper_threshold()), std::fabs(p.lower_threshold())) * sd;
-        const char* unit = s.engine == Engine::Pdmp ? "events" : "steps";
+        const char* unit = work_unit(s);
         const std::string takes =
             std::isfinite(work) ? "which takes at least " + duration_text(excursion_duration_lower_bound(p)) +
                                       " on average, about " + rounded(work) + " " + unit + " per excursion"
@@ -246,7 +239,7 @@ void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
 void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes, double sample_dt) {
     const double work = excursion_work_lower_bound(e, sample_dt) * static_cast<double>(samples);
     if (!(work > kLongRun)) return;
-    const char* unit = e.settings.engine == Engine::Pdmp ? "events" : "steps";
+    const char* unit = work_unit(e.settings);
     notes.push_back("a long run: at least about " + rounded(work) + " " + unit + " in all (" +
                     std::to_string(samples) + " excursions of at least " +
                     duration_text(excursion_duration_lower_bound(e.params)) + " each), about " +

@@ -72,6 +72,15 @@ double auto_step(const ModelParams& p, Scheme scheme);
 /// bias exceeds 2% and an event step beyond its measured reach.
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
 
+/// The event scheme's step dt [s] on model p against its measured reach
+/// (docs/validation.md, "The event scheme at coarse steps" and "... at fine
+/// steps"): InvalidParameter ("dt") far beyond it, a note beyond it.
+void check_event_step(const ModelParams& p, double dt, std::vector<std::string>& notes);
+/// The resolvent scheme's step dt [s] on model p against its measured bias
+/// law: InvalidParameter ("dt") beyond 20% predicted bias of D or a step
+/// longer than the friction time, a note beyond 2% or half a relaxation time.
+void check_resolvent_step(const ModelParams& p, double dt, std::vector<std::string>& notes);
+
 /// Refuses (InvalidParameter "max-steps") a run of long excursions that
 /// cannot end under the runaway guard (see the top of the file), and
 /// (InvalidParameter "sample-dt") one whose samples every sample_dt > 0 [s]

@@ -84,4 +84,16 @@ const char* setting_form(const Engine&) { return "inclusion|pdmp"; }
 const char* setting_form(const Scheme&) { return "auto|event|resolvent"; }
 const char* setting_form(const StopRule&) { return "auto|bridge|stuck"; }
 
+const char* work_unit(const EngineSettings& s) { return s.engine == Engine::Pdmp ? "events" : "steps"; }
+
+bool has_time_step(const EngineSettings& s) { return s.engine == Engine::Inclusion; }
+
+bool samples_at_steps(const EngineSettings& s) {
+    return s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent;
+}
+
+bool samples_on_grid(const EngineSettings& s, double tau) {
+    return !(s.engine == Engine::Inclusion && s.scheme == Scheme::Event && tau == 0);
+}
+
 } // namespace stickslip

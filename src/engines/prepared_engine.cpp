@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/run.hpp"
 
+#include "stickslip/prepared_engine.hpp"
+
 #include <cmath>
 
 #include "stickslip/stats/estimators.hpp"
@@ -37,20 +39,21 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
     // and how they fit together.
     ResolvedEngine& r = e.resolved;
     if (s.engine == Engine::Pdmp) {
-        e.pdmp = make_pdmp_constants(p, s);
-        const PdmpConstants& c = e.pdmp;
+        const PdmpConstants c = make_pdmp_constants(p, s);
+        e.constants = c;
         r.stop_rule = "exact";
         r.lattice_bound = c.n_max * c.delta;
         r.lattice_points = 2 * c.n_max + 1;
         r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
         r.jump_rate = c.rate;
     } else if (s.scheme == Scheme::Event) {
-        e.event = make_event_constants(p, s);
-        r.stop_rule = e.event.white ? "velocity-levels" : "exact";
-        if (e.event.white) r.white_level = e.event.level;
+        const EventConstants c = make_event_constants(p, s);
+        e.constants = c;
+        r.stop_rule = c.white ? "velocity-levels" : "exact";
+        if (c.white) r.white_level = c.level;
     } else {
-        e.inclusion = make_inclusion_constants(p, s);
-        const InclusionConstants& c = e.inclusion;
+        const ResolventConstants c = make_resolvent_constants(p, s);
+        e.constants = c;
         if (c.white) {
             r.stop_rule = "velocity-levels";
             r.white_level = c.level;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/bruteforce.hpp"
+#include "stickslip/prepared_engine.hpp"
 
 #include <cmath>
 
@@ -25,7 +26,7 @@ PreparedEngine prepare_request(const BruteForceRequest& req_in) {
         throw InvalidParameter("trajectories",
                                "trajectories must be >= 2 (got " + std::to_string(req.trajectories) + ")");
     detail::check_start(req.params, req.x0, req.v0);
-    if (req.engine.engine == Engine::Inclusion) bruteforce_steps(req.horizon, req.engine.dt);
+    if (has_time_step(req.engine)) bruteforce_steps(req.horizon, req.engine.dt);
     return engine;
 }
 

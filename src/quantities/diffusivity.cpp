@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/prepared_engine.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,7 +25,7 @@ PreparedEngine prepare(const DiffusivityRequest& req_in) {
                                                      std::to_string(req.max_excursions) + ")");
     detail::check_excursions_can_end(engine);
     if (req.check_dt) {
-        if (req.engine.engine != Engine::Inclusion)
+        if (!has_time_step(req.engine))
             throw InvalidParameter("check-dt", "check-dt needs the inclusion engine (the pdmp has no time step)");
         const std::uint64_t most = req.rel_precision > 0 ? req.max_excursions : req.excursions;
         if (req.control.first_index >= check_dt_first_index || most > check_dt_first_index)

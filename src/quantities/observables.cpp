@@ -1,24 +1,25 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Velocity statistics from both engines (observables.hpp explains the
+// Velocity statistics from every engine (observables.hpp explains the
 // estimators). Every observable is a path functional accumulated by an observer
 // passed to the engines' own kernels, so the excursions are exactly those of
-// `diffusivity`.
+// `diffusivity`; each command is written once, over the engine adapter that
+// detail::visit_engine hands it (engines/visit_engine.hpp).
 #include "stickslip/observables.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
-#include "driver/block_driver.hpp"
 #include "core/format.hpp"
+#include "driver/block_driver.hpp"
 #include "driver/result_checks.hpp"
 #include "driver/step_check.hpp"
+#include "engines/visit_engine.hpp"
 #include "stickslip/analytic.hpp"
-#include "stickslip/kernels/resolvent.hpp"
-#include "stickslip/kernels/pdmp.hpp"
+#include "stickslip/prepared_engine.hpp"
 #include "stickslip/random/rng.hpp"
-#include "stickslip/random/rng_batch.hpp"
 
 namespace stickslip {
 
@@ -47,14 +48,14 @@ void check_bins(const VelocityBins& b) {
 /// The sampling interval that adds work of its own (an explicit --sample-dt
 /// of the event scheme or the PDMP), 0 otherwise: the cost model's input.
 double extra_sampling(const EngineSettings& s, double sample_dt) {
-    return s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent ? 0.0 : sample_dt;
+    return samples_at_steps(s) ? 0.0 : sample_dt;
 }
 
 double sampling_interval(const EngineSettings& s, double sample_dt) {
     if (!std::isfinite(sample_dt) || sample_dt < 0)
         throw InvalidParameter("sample-dt", "sample-dt must be a finite number >= 0 (s), got " +
                                                 detail::format_number(sample_dt));
-    if (s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent) return s.dt;
+    if (samples_at_steps(s)) return s.dt;
     return sample_dt > 0 ? sample_dt : s.dt;
 }
 
@@ -95,106 +96,6 @@ VelocityHistogram make_histogram(const VelocityBins& b, const RatioMoments& m, s
     return h;
 }
 
-/// Samples a PDMP path on the grid phase + n * dt (n = 0, 1, ...): f(x, mode,
-/// v, u) at every grid time inside each observed segment. `offset` is the
-/// absolute time of the path's own time 0 (for continuing a path after a
-/// regeneration). With a phase uniform in [0, dt), independent of the path,
-/// the Riemann sum dt * sum g(phase + n dt) over a duration T is an unbiased
-/// estimate of int_0^T g and E[#samples] = T/dt exactly, so the renewal-reward
-/// ratios carry no O(dt) bias (with phase 0 every excursion would be sampled
-/// at its start, where V = 0).
-template <class F>
-struct PdmpGridSampler {
-    const PdmpConstants& c;
-    double dt;
-    F f;
-    double phase = 0.0;
-    std::uint64_t next = 0;
-    double offset = 0.0;
-    std::uint64_t stop_at = ~std::uint64_t{0}; ///< no samples at or beyond this index
-
-    void operator()(const PdmpState& s, double t0, double u0, double dur) {
-        const double end = offset + t0 + dur;
-        while (next < stop_at) {
-            const double g = phase + static_cast<double>(next) * dt;
-            if (!(g < end)) break;
-            double v = 0.0, u = u0;
-            pdmp_flow(c, s.i, s.y, s.v, g - offset - t0, v, u);
-            f(c.delta * s.i, s.y, v, u);
-            ++next;
-        }
-    }
-};
-
-template <class F>
-PdmpGridSampler<F> grid_sampler(const PdmpConstants& c, double dt, F f, double phase = 0.0) {
-    return PdmpGridSampler<F>{c, dt, std::move(f), phase};
-}
-
-/// The event scheme's path sampled on the grid phase + n * dt, like
-/// PdmpGridSampler. Within a sliding piece V is the cubic Hermite
-/// interpolant of its exact ends and of its slopes there, dV/dt = bias + a X
-/// - phase friction - V/tauL (0 throughout a stuck piece): linear
-/// interpolation left out the curvature that the noise's drift over the
-/// piece gives V, and so lifted the normalised covariance at lags of one or
-/// two steps (z = 3.95 at lag 0.025 s, Fig. 5 case at tau = 0.25 s and the
-/// automatic step 0.0156 s; docs/validation.md). X and U are interpolated
-/// linearly. The random phase makes the Riemann sums unbiased on that grid.
-/// `offset` [s] continues a path after a regeneration.
-template <class F>
-struct EventGridSampler {
-    const EventConstants& c;
-    double dt;
-    F f;
-    double phase = 0.0;
-    std::uint64_t next = 0;
-    double offset = 0.0;
-    std::uint64_t stop_at = ~std::uint64_t{0};
-
-    /// V [m/s] at fraction q of a piece of length len [s]: the event scheme's
-    /// own cubic of the piece (detail::cubic_ends, the one its landing test
-    /// bounds), never of the wrong sign.
-    double velocity(const EventPiece& p, double len, double q) const {
-        if (p.phase == 0) return 0.0;
-        const double s = p.phase;
-        const double sv = detail::cubic_through(detail::cubic_ends(c.amp, c.inv_relaxation, len, p.x0, p.v0, p.x1,
-                                                                   p.v1, s, c.bias - s * c.friction))
-                              .at(q);
-        return sv > 0.0 ? s * sv : 0.0;
-    }
-
-    void operator()(const EventPiece& p) {
-        const double t0 = offset + c.leaf * static_cast<double>(p.t0), t1 = offset + c.leaf * static_cast<double>(p.t1);
-        while (next < stop_at) {
-            const double g = phase + static_cast<double>(next) * dt;
-            if (!(g < t1)) break;
-            const double q = t1 > t0 ? (g - t0) / (t1 - t0) : 0.0;
-            f(p.x0 + (p.x1 - p.x0) * q, p.phase, velocity(p, t1 - t0, q), p.u0 + (p.u1 - p.u0) * q);
-            ++next;
-        }
-    }
-};
-
-template <class F>
-EventGridSampler<F> event_sampler(const EventConstants& c, double dt, F f, double phase = 0.0) {
-    return EventGridSampler<F>{c, dt, std::move(f), phase};
-}
-
-/// Runs the event walk w on (a new long excursion from s+ after each
-/// regeneration) until `more()` is false: the continuation of a path past
-/// the end of its excursion. Returns the work done.
-template <class Rng, class RefRng, class Observer, class More>
-std::uint64_t event_continue(const EventConstants& c, Rng& rng, RefRng& ref, Observer& observe, More more) {
-    EventWalk w;
-    event_start_half(c, w, +1);
-    while (more()) {
-        const EventStatus st = event_step(c, w, 0, rng, ref, observe);
-        if (st == EventStatus::Capped) break;
-        if (st == EventStatus::HalfDone) event_start_half(c, w, -w.dir);
-    }
-    return w.steps + w.midpoints;
-}
-
 /// The random grid phase of excursion k, from its own stream (the excursion's
 /// draws are untouched, so D stays that of `diffusivity`).
 double sampling_phase(std::uint64_t seed, std::uint64_t k, double dt) {
@@ -208,54 +109,24 @@ double sampling_phase(std::uint64_t seed, std::uint64_t k, double dt) {
 /// low at dt' = 1/16). Refused for the stationary observables, which sample
 /// paths on a grid (InvalidParameter "scheme").
 void check_event_sampling(const RunSettings& r) {
-    if (r.engine.engine == Engine::Inclusion && r.engine.scheme == Scheme::Event && r.params.white())
+    if (!samples_on_grid(r.engine, r.params.tau))
         throw InvalidParameter("scheme", "the event scheme does not sample white-noise paths on a grid (V between "
                                          "its events is a Brownian bridge); use --scheme resolvent, or `stickslip "
                                          "analytic` for the exact white-noise density and variance");
 }
 
-std::string event_sampling_note(double dt) {
-    return "event-scheme path sampled every " + detail::format_number(dt) +
-           " s (--sample-dt) with a random phase per excursion, V interpolated within pieces";
+/// Long excursion k of `engine` (the one `diffusivity` runs) sampled every dt
+/// [s] from `phase`: on_v(v) at every sample.
+template <class Engine, class OnV>
+ExcursionOutcome sampled_excursion(const Engine& engine, std::uint64_t seed, std::uint64_t k, double dt,
+                                   double phase, OnV&& on_v) {
+    return engine.sampled_excursion(seed, k, dt, phase, on_v, [] { return std::optional<std::uint64_t>{}; });
 }
 
-std::string pdmp_sampling_note(double dt) {
-    return "pdmp path sampled every " + detail::format_number(dt) +
-           " s (--sample-dt) with a random phase per excursion: unbiased Riemann sums on that grid";
+/// A report's note on how the path was sampled, if the engine has one.
+void add_sampling_note(const std::string& note, std::vector<std::string>& warnings) {
+    if (!note.empty()) warnings.push_back(note);
 }
-
-/// The stationary observables' view of an engine: runs long excursion k and
-/// calls on_v(v) for every velocity sample of it -- every step of the
-/// inclusion engine, or the PDMP path on a grid of spacing dt (phase 0, or the
-/// excursion's random phase when random_phase). The constants are made once.
-class SampledEngine {
-public:
-    explicit SampledEngine(const PreparedEngine& e) : e_(e) {}
-
-    template <class OnV>
-    ExcursionOutcome run(std::uint64_t seed, std::uint64_t k, double dt, bool random_phase, OnV&& on_v) const {
-        if (e_.settings.engine == Engine::Pdmp) {
-            BatchedUniformRng rng(seed, StreamPurpose::LongExcursion, k); // uniforms only: no ziggurat
-            auto sampler = grid_sampler(e_.pdmp, dt, [&](double, int, double v, double) { on_v(v); },
-                                        random_phase ? sampling_phase(seed, k, dt) : 0.0);
-            return pdmp_long_excursion(e_.pdmp, rng, sampler);
-        }
-        if (e_.settings.scheme == Scheme::Event) {
-            BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-            BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
-            auto sampler = event_sampler(e_.event, dt, [&](double, int, double v, double) { on_v(v); },
-                                         random_phase ? sampling_phase(seed, k, dt) : 0.0);
-            return event_long_excursion(e_.event, rng, ref, sampler);
-        }
-        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-        return inclusion_long_excursion(e_.inclusion, rng, [&](double, double v) { on_v(v); });
-    }
-
-private:
-    const PreparedEngine& e_;
-};
-
-int mode_of(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
 /// Standard deviation used by automatic ranges [m/s].
 void auto_range(const ModelParams& p, double& lo, double& hi) {
@@ -284,8 +155,8 @@ VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b) {
 
 namespace {
 
-PreparedEngine prepare_request(const StationaryDensityRequest& req_in) {
-    const StationaryDensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
+PreparedEngine prepare_request(const DensityRequest& req_in) {
+    const DensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     check_bins(req.bins);
@@ -297,14 +168,15 @@ PreparedEngine prepare_request(const StationaryDensityRequest& req_in) {
 
 } // namespace
 
-void validate(const StationaryDensityRequest& req) { prepare_request(req); }
+void validate(const DensityRequest& req) { prepare_request(req); }
 
 namespace {
 
 /// Velocity range seen by the first excursions (a deterministic pilot of the
 /// same streams): automatic histogram ranges that fit colored noise, whose
 /// velocities are far smaller than the white-noise spread.
-bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engine, double dt, double& lo, double& hi) {
+template <class Engine>
+bool pilot_range(const DensityRequest& req, const Engine& engine, double dt, double& lo, double& hi) {
     // Minimum and maximum are order-free as they are. The pilot runs whole on
     // every process of a distributed run, so all of them get the same range.
     struct Range {
@@ -335,7 +207,7 @@ bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engin
     detail::run_blocks<Range>(
         n, ctl, [] { return Range{}; },
         [&](std::uint64_t k, Range& r) {
-            return engine.run(seed, k, dt, false, [&](double v) {
+            return sampled_excursion(engine, seed, k, dt, 0.0, [&](double v) {
                 r.lo = std::min(r.lo, v);
                 r.hi = std::max(r.hi, v);
             });
@@ -350,13 +222,12 @@ bool pilot_range(const StationaryDensityRequest& req, const SampledEngine& engin
 
 } // namespace
 
-StationaryDensityResult compute_stationary_density(const StationaryDensityRequest& req_in) {
-    const StationaryDensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
-    const PreparedEngine prepared = prepare_request(req);
-    const std::vector<std::string> notes =
-        detail::start_notes(prepared, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
-    const SampledEngine engine(prepared);
-    StationaryDensityResult out;
+namespace {
+
+template <class Engine>
+DensityResult density_of(const Engine& engine, const DensityRequest& req, const PreparedEngine& prepared,
+                         const std::vector<std::string>& notes) {
+    DensityResult out;
     out.request = req;
     out.resolved = prepared.resolved;
     const double dt = sampling_interval(req.engine, req.sample_dt);
@@ -405,7 +276,7 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
             y.assign(nh, 0.0);
             double m[2] = {0.0, 0.0};
             std::uint64_t samples = 0;
-            const ExcursionOutcome o = engine.run(seed, k, dt, true, [&](double v) {
+            const ExcursionOutcome o = sampled_excursion(engine, seed, k, dt, sampling_phase(seed, k, dt), [&](double v) {
                 y[static_cast<std::size_t>(index(v))] += 1.0;
                 m[0] += v;
                 m[1] += v * v;
@@ -425,18 +296,26 @@ StationaryDensityResult compute_stationary_density(const StationaryDensityReques
     const double r1 = total.mom.ratio(0), r2 = total.mom.ratio(1);
     out.variance = make_interval(r2 - r1 * r1, std::sqrt(total.mom.delta_variance({{0, -2 * r1}, {1, 1.0}})),
                                  req.level);
-    if (req.engine.engine == Engine::Inclusion && req.engine.scheme == Scheme::Resolvent &&
-        (req.params.white() || req.engine.dt > 0.01 * req.params.tau))
+    if (engine.coarse_against_tau(req.params))
         out.warnings.push_back("dt is not << tau: P(V = 0) includes the scheme's O(dt) quantisation of V near 0 "
                                "(a few 1e-3 at dt' = 1e-3); refine dt to see the physical atom");
     const double outside = out.histogram.below.value + out.histogram.above.value;
     if (outside > 1e-3)
         out.warnings.push_back("probability " + detail::format_number(outside) +
                                " of V lies outside the histogram range; widen --range");
-    if (req.engine.engine == Engine::Pdmp) out.warnings.push_back(pdmp_sampling_note(dt));
-    else if (req.engine.scheme == Scheme::Event) out.warnings.push_back(event_sampling_note(dt));
+    add_sampling_note(engine.sampling_note(dt), out.warnings);
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
+}
+
+} // namespace
+
+DensityResult compute_density(const DensityRequest& req_in) {
+    const DensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
+    const PreparedEngine prepared = prepare_request(req);
+    const std::vector<std::string> notes =
+        detail::start_notes(prepared, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
+    return detail::visit_engine(prepared, [&](const auto& engine) { return density_of(engine, req, prepared, notes); });
 }
 
 // ---- autocorrelation -------------------------------------------------------------
@@ -521,82 +400,26 @@ CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
         st.m = 0;
         st.limit = ~0ull;
     };
-    if (req.engine.engine == Engine::Pdmp) {
-        const PdmpConstants& c = prepared.pdmp;
-        out.totals = detail::run_blocks<RatioMoments>(
+    out.totals = detail::visit_engine(prepared, [&](const auto& engine) {
+        return detail::run_blocks<RatioMoments>(
             req.excursions, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local LagState st;
                 reset(st);
-                auto sampler =
-                    grid_sampler(c, dt, [&](double, int, double v, double) { push(st, v); }, sampling_phase(seed, k, dt));
-                BatchedUniformRng rng(seed, StreamPurpose::LongExcursion, k);
-                const ExcursionOutcome o = pdmp_long_excursion(c, rng, sampler);
+                const ExcursionOutcome o = engine.sampled_excursion(
+                    seed, k, dt, sampling_phase(seed, k, dt), [&](double v) { push(st, v); },
+                    [&]() -> std::optional<std::uint64_t> {
+                        if (st.m == 0) return std::nullopt;
+                        // Continue past the excursion's end until every lag of every start is seen.
+                        st.limit = st.m;
+                        return lmax;
+                    });
                 if (o.capped || st.m == 0) return o;
-                // Continue from the regeneration state s+ until every lag of every start is seen.
-                st.limit = st.m;
-                sampler.offset = o.duration;
-                sampler.stop_at = st.limit + lmax;
-                PdmpState s{c.k_plus + 1, +1, 0.0};
-                const double horizon = sampler.phase + static_cast<double>(st.limit + lmax + 1) * dt - o.duration;
-                const ExcursionOutcome more = pdmp_path(c, s, horizon, rng, sampler);
-                ExcursionOutcome res = o;
-                res.work += more.work;
                 acc.add(st.y.data(), static_cast<double>(st.limit));
-                return res;
+                return o;
             },
             exact);
-    } else if (req.engine.scheme == Scheme::Event) {
-        const EventConstants& c = prepared.event;
-        out.totals = detail::run_blocks<RatioMoments>(
-            req.excursions, req.control, make,
-            [&](std::uint64_t k, RatioMoments& acc) {
-                thread_local LagState st;
-                reset(st);
-                auto sampler =
-                    event_sampler(c, dt, [&](double, int, double v, double) { push(st, v); }, sampling_phase(seed, k, dt));
-                BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-                BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
-                const ExcursionOutcome o = event_long_excursion(c, rng, ref, sampler);
-                if (o.capped || st.m == 0) return o;
-                // Continue from the regeneration state s+ until every lag of every start is seen.
-                st.limit = st.m;
-                sampler.offset = o.duration;
-                sampler.stop_at = st.limit + lmax;
-                ExcursionOutcome res = o;
-                res.work += event_continue(c, rng, ref, sampler, [&] { return sampler.next < sampler.stop_at; });
-                acc.add(st.y.data(), static_cast<double>(st.limit));
-                return res;
-            },
-            exact);
-    } else {
-        const InclusionConstants& c = prepared.inclusion;
-        out.totals = detail::run_blocks<RatioMoments>(
-            req.excursions, req.control, make,
-            [&](std::uint64_t k, RatioMoments& acc) {
-                thread_local LagState st;
-                reset(st);
-                BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, k);
-                auto observe = [&](double, double v) { push(st, v); };
-                const ExcursionOutcome o = inclusion_long_excursion(c, rng, observe);
-                if (o.capped || st.m == 0) return o;
-                st.limit = st.m;
-                // Continue with the process itself: the following long
-                // excursions (same kernel: threshold restarts and skipped
-                // detecting steps included), cut after lmax more samples.
-                InclusionConstants more = c;
-                std::uint64_t remaining = lmax;
-                while (remaining > 0) {
-                    more.max_steps = remaining;
-                    remaining -= std::min(remaining, inclusion_long_excursion(more, rng, observe).work);
-                }
-                ExcursionOutcome res = o;
-                res.work += lmax;
-                acc.add(st.y.data(), static_cast<double>(st.limit));
-                return res;
-            },
-            exact);
-    }
+    });
     const RatioMoments total = exact.moments();
     detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.totals.moments, req.level);
@@ -618,8 +441,8 @@ CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
                    : total.delta_variance({{j, 1 / h0}, {0, -hj / (h0 * h0)}, {iu, 2 * m * (hj - h0) / (h0 * h0)}});
         out.normalised.push_back(make_interval(hj / h0, std::sqrt(var_r), req.level));
     }
-    if (req.engine.engine == Engine::Pdmp) out.warnings.push_back(pdmp_sampling_note(dt));
-    else if (req.engine.scheme == Scheme::Event) out.warnings.push_back(event_sampling_note(dt));
+    add_sampling_note(detail::visit_engine(prepared, [dt](const auto& engine) { return engine.sampling_note(dt); }),
+                      out.warnings);
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
 }
@@ -629,7 +452,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
 namespace {
 
 /// The times of a transient request [s]: its own, or Table I's.
-std::vector<double> transient_times(const TransientRequest& req) {
+std::vector<double> transient_times(const MomentsRequest& req) {
     if (!req.times.empty()) return req.times;
     std::vector<double> times;
     const double unit = scales_of(req.params).time;
@@ -637,8 +460,8 @@ std::vector<double> transient_times(const TransientRequest& req) {
     return times;
 }
 
-PreparedEngine prepare_request(const TransientRequest& req_in) {
-    const TransientRequest req = with_resolved_engine(req_in);
+PreparedEngine prepare_request(const MomentsRequest& req_in) {
+    const MomentsRequest req = with_resolved_engine(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     if (req.trajectories < 2)
         throw InvalidParameter("trajectories",
@@ -655,23 +478,23 @@ PreparedEngine prepare_request(const TransientRequest& req_in) {
     if (req.with_density && static_cast<double>(times.size()) * (req.bins.count + 3) > 2e6)
         throw InvalidParameter("bins", "times x bins must be at most 2e6 for --density (use fewer times or bins)");
     const double tmax = *std::max_element(times.begin(), times.end());
-    if (req.engine.engine == Engine::Inclusion && tmax / req.engine.dt > 1e13)
+    if (has_time_step(req.engine) && tmax / req.engine.dt > 1e13)
         throw InvalidParameter("times", "largest time / dt exceeds 1e13 steps");
     return engine;
 }
 
 } // namespace
 
-void validate(const TransientRequest& req) { prepare_request(req); }
+void validate(const MomentsRequest& req) { prepare_request(req); }
 
-TransientResult compute_transient(const TransientRequest& req_in) {
+MomentsResult compute_moments(const MomentsRequest& req_in) {
     const PreparedEngine prepared = prepare_request(req_in);
     const std::vector<std::string> notes = detail::start_notes(prepared, 0, req_in.control);
     // The defaults that depend on the model, resolved once: the report shows them.
-    TransientRequest req = with_resolved_engine(req_in);
+    MomentsRequest req = with_resolved_engine(req_in);
     if (std::isnan(req.v0)) req.v0 = scales_of(req.params).velocity;
     req.times = transient_times(req);
-    TransientResult out;
+    MomentsResult out;
     out.request = req;
     out.resolved = prepared.resolved;
     out.resolved.stop_rule = "none";
@@ -706,100 +529,24 @@ TransientResult compute_transient(const TransientRequest& req_in) {
     };
     auto make = [dim] { return RatioMoments(dim, false); };
     ExactRatioSums exact(dim, {});
-    if (req.engine.engine == Engine::Pdmp) {
-        const PdmpConstants& c = prepared.pdmp;
-        out.time = times;
-        const double horizon = times.back();
-        out.totals = detail::run_blocks<RatioMoments>(
+    const auto start_x = [&](BatchedCounterRng& rng) {
+        return draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
+    };
+    out.totals = detail::visit_engine(prepared, [&](const auto& engine) {
+        // The times the engine's clock can stop at (rounded to its step or leaf).
+        out.time = engine.clock_times(times, out.warnings);
+        return detail::run_blocks<RatioMoments>(
             req.trajectories, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
                 thread_local std::vector<double> y;
                 y.assign(dim, 0.0);
-                BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
-                const double x0 = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
-                PdmpState s = pdmp_initial_state(c, x0, req.v0);
-                std::size_t j = 0;
-                while (j < nt && times[j] == 0.0) record(y, j++, req.v0);
-                ExcursionOutcome o;
-                o.duration = horizon;
-                if (horizon > 0) {
-                    o = pdmp_path(c, s, horizon, rng, [&](const PdmpState& st, double t0, double, double dur) {
-                        while (j < nt && times[j] < t0 + dur) {
-                            double v = 0.0, du = 0.0;
-                            pdmp_flow(c, st.i, st.y, st.v, times[j] - t0, v, du);
-                            record(y, j++, v);
-                        }
-                    });
-                }
-                while (j < nt) record(y, j++, s.v);
+                const ExcursionOutcome o = engine.path_at_times(seed, k, start_x, req.v0, times,
+                                                                [&](std::size_t j, double v) { record(y, j, v); });
                 acc.add(y.data(), 1.0);
                 return o;
             },
             exact);
-    } else if (req.engine.scheme == Scheme::Event) {
-        // Exact times (to a leaf): the walk advances to each time in turn.
-        const EventConstants& c = prepared.event;
-        std::vector<std::uint64_t> at(nt);
-        for (std::size_t j = 0; j < nt; ++j) at[j] = static_cast<std::uint64_t>(std::llround(times[j] / c.leaf));
-        for (std::size_t j = 0; j < nt; ++j) out.time.push_back(static_cast<double>(at[j]) * c.leaf);
-        out.totals = detail::run_blocks<RatioMoments>(
-            req.trajectories, req.control, make,
-            [&](std::uint64_t k, RatioMoments& acc) {
-                thread_local std::vector<double> y;
-                y.assign(dim, 0.0);
-                BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
-                BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
-                const double x = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
-                EventWalk w = event_walk_from(c, x, req.v0);
-                NoPieceObserver none;
-                ExcursionOutcome o;
-                for (std::size_t j = 0; j < nt; ++j) {
-                    if (event_advance_to(c, w, at[j], rng, ref, none) == EventStatus::Capped) {
-                        o.capped = true;
-                        break;
-                    }
-                    record(y, j, w.v);
-                }
-                o.duration = c.leaf * static_cast<double>(w.t);
-                o.displacement = w.u;
-                o.work = w.steps + w.midpoints;
-                acc.add(y.data(), 1.0);
-                return o;
-            },
-            exact);
-    } else {
-        const InclusionConstants& c = prepared.inclusion;
-        std::vector<std::uint64_t> steps(nt);
-        for (std::size_t j = 0; j < nt; ++j) steps[j] = static_cast<std::uint64_t>(std::llround(times[j] / c.h));
-        for (std::size_t j = 0; j < nt; ++j) out.time.push_back(static_cast<double>(steps[j]) * c.h);
-        if (std::adjacent_find(steps.begin(), steps.end()) != steps.end())
-            out.warnings.push_back("some times round to the same step of dt; their rows are identical");
-        for (std::size_t j = 0; j < nt; ++j)
-            if (std::fabs(out.time[j] - times[j]) > 1e-9 * std::max(times[j], c.h)) {
-                out.warnings.push_back("times rounded to whole steps of dt = " + detail::format_number(c.h) + " s");
-                break;
-            }
-        const std::uint64_t nmax = steps.back();
-        out.totals = detail::run_blocks<RatioMoments>(
-            req.trajectories, req.control, make,
-            [&](std::uint64_t k, RatioMoments& acc) {
-                thread_local std::vector<double> y;
-                y.assign(dim, 0.0);
-                BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
-                double x = draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
-                double v = req.v0;
-                std::size_t j = 0;
-                std::uint64_t n = 0;
-                const ExcursionOutcome o = inclusion_path(c, x, v, nmax, rng, [&](double, double vn) {
-                    while (j < nt && steps[j] == n) record(y, j++, vn);
-                    ++n;
-                });
-                while (j < nt) record(y, j++, v);
-                acc.add(y.data(), 1.0);
-                return o;
-            },
-            exact);
-    }
+    });
     detail::note_interruption(out.totals, "trajectories", out.warnings);
     const RatioMoments total = exact.moments();
     for (std::size_t j = 0; j < nt; ++j) {
@@ -808,9 +555,9 @@ TransientResult compute_transient(const TransientRequest& req_in) {
         out.stuck.push_back(total.estimate(2 * nt + j, req.level));
         if (nh) out.density.push_back(make_histogram(bins, total, 3 * nt + j * nh, req.level));
     }
-    if (req.engine.engine == Engine::Pdmp && out.resolved.truncated_mass > 1e-9)
-        out.warnings.push_back("the pdmp lattice is truncated at L = " + detail::format_number(out.resolved.lattice_bound) +
-                               " s^-1/2; use a finer grid");
+    const std::string lattice = detail::visit_engine(
+        prepared, [&](const auto& engine) { return engine.lattice_note(out.resolved, false); });
+    if (!lattice.empty()) out.warnings.push_back(lattice);
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;
 }
@@ -841,7 +588,7 @@ PreparedEngine prepare_request(const TrajectoryRequest& req_in) {
         if (req.horizon / every > static_cast<double>(req.max_points))
             throw InvalidParameter("every", "time / every exceeds " + std::to_string(req.max_points) +
                                                 " points per path; record less often");
-        if (req.engine.engine == Engine::Inclusion && req.horizon / req.engine.dt > 1e13)
+        if (has_time_step(req.engine) && req.horizon / req.engine.dt > 1e13)
             throw InvalidParameter("time", "time / dt exceeds 1e13 steps");
     }
     return engine;
@@ -874,61 +621,18 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
     if (req.paths == 0) {
         // One long excursion, the one `diffusivity` runs as number `index`.
         SamplePath path;
-        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, req.index);
         try {
-            if (req.engine.engine == Engine::Pdmp) {
-                const PdmpConstants& c = prepared.pdmp;
-                if (req.every > 0) {
-                    auto sampler = grid_sampler(c, req.every, [&](double x, int y, double v, double u) {
-                        guard(path);
-                        append(path, static_cast<double>(path.t.size()) * req.every, x, y, v, u);
-                    });
-                    out.excursion = pdmp_long_excursion(c, rng, sampler);
-                } else {
-                    out.excursion = pdmp_long_excursion(c, rng, [&](const PdmpState& s, double t0, double u0, double) {
-                        guard(path);
-                        append(path, t0, c.delta * s.i, s.y, s.v, u0);
-                    });
+            const auto add = [&](const detail::PathPoint& q) {
+                guard(path);
+                append(path, q.t, q.x, q.mode, q.v, q.u);
+            };
+            detail::visit_engine(prepared, [&](const auto& engine) {
+                out.excursion = engine.excursion_path(seed, req.index, req.every, add);
+                if (!out.excursion.capped) { // the regeneration state that ends it
+                    const detail::PathPoint q = engine.regeneration_point(out.excursion);
+                    append(path, q.t, q.x, q.mode, q.v, q.u);
                 }
-                if (!out.excursion.capped) // the regeneration state that ends it
-                    append(path, out.excursion.duration, c.delta * (c.k_plus + 1), 1, 0.0, out.excursion.displacement);
-            } else if (req.engine.scheme == Scheme::Event) {
-                // Every piece's start, so events are in the path at their times (or a grid with --every).
-                const EventConstants& c = prepared.event;
-                BatchedCounterRng ref(seed, StreamPurpose::Refinement, req.index);
-                if (req.every > 0) {
-                    auto sampler = event_sampler(c, req.every, [&](double x, int y, double v, double u) {
-                        guard(path);
-                        append(path, static_cast<double>(path.t.size()) * req.every, x, y, v, u);
-                    });
-                    out.excursion = event_long_excursion(c, rng, ref, sampler);
-                } else {
-                    out.excursion = event_long_excursion(c, rng, ref, [&](const EventPiece& p) {
-                        guard(path);
-                        append(path, c.leaf * static_cast<double>(p.t0), p.x0, p.phase, p.v0, p.u0);
-                    });
-                }
-                if (!out.excursion.capped) // the regeneration state that ends it
-                    append(path, out.excursion.duration, c.white ? 0.0 : c.x_up, 1, c.white ? c.level : 0.0,
-                           out.excursion.displacement);
-            } else {
-                const InclusionConstants& c = prepared.inclusion;
-                const auto stride =
-                    std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(req.every / c.h)));
-                std::uint64_t n = 0;
-                double u = 0.0;
-                out.excursion = inclusion_long_excursion(c, rng, [&](double x, double v) {
-                    if (n % stride == 0) {
-                        guard(path);
-                        append(path, static_cast<double>(n) * c.h, x, mode_of(v), v, u);
-                    }
-                    u += c.h * v;
-                    ++n;
-                });
-                if (!out.excursion.capped)
-                    append(path, out.excursion.duration, c.white ? 0.0 : c.x_up, c.white ? 1 : 0,
-                           c.white ? c.level : 0.0, out.excursion.displacement);
-            }
+            });
         } catch (const TooManyPoints&) {
             throw InvalidParameter("every", "the excursion has more than " + std::to_string(req.max_points) +
                                                 " recorded points; record less often (--every)");
@@ -945,49 +649,11 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
     const auto npoints = static_cast<std::uint64_t>(std::floor(req.horizon / every * (1 + 1e-12))) + 1;
     for (std::uint64_t k = 0; k < req.paths; ++k) {
         SamplePath path;
-        BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);
-        if (req.engine.engine == Engine::Pdmp) {
-            const PdmpConstants& c = prepared.pdmp;
-            PdmpState s = pdmp_initial_state(c, x0, req.v0);
-            auto sampler = grid_sampler(c, every, [&](double x, int y, double v, double u) {
-                append(path, static_cast<double>(path.t.size()) * every, x, y, v, u);
-            });
-            sampler.stop_at = npoints;
-            const double horizon = static_cast<double>(npoints - 1) * every;
-            const ExcursionOutcome o = pdmp_path(c, s, horizon, rng, sampler);
-            if (path.t.size() < npoints) append(path, horizon, c.delta * s.i, s.y, s.v, o.displacement);
-        } else if (req.engine.scheme == Scheme::Event) {
-            const EventConstants& c = prepared.event;
-            BatchedCounterRng ref(seed, StreamPurpose::Refinement, k);
-            EventWalk w = event_walk_from(c, x0, req.v0);
-            NoPieceObserver none;
-            for (std::uint64_t i = 0; i < npoints; ++i) {
-                const auto at = static_cast<std::uint64_t>(std::llround(static_cast<double>(i) * every / c.leaf));
-                if (event_advance_to(c, w, at, rng, ref, none) == EventStatus::Capped) break;
-                append(path, c.leaf * static_cast<double>(w.t), w.x, w.phase, w.v, w.u);
-            }
-            // The walk's clock counts leaves (dt / 2^event_depth), so a grid
-            // time that is not a whole number of them is rounded to the nearest.
-            const double leaves = every / c.leaf;
-            if (k == 0 && std::fabs(leaves - std::round(leaves)) > 1e-9 * leaves)
-                out.warnings.push_back("recorded times rounded to the event scheme's clock, dt/" +
-                                       std::to_string(std::llround(c.h / c.leaf)) + " = " +
-                                       detail::format_number(c.leaf) + " s (at most half that off)");
-        } else {
-            const InclusionConstants& c = prepared.inclusion;
-            const auto stride = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(every / c.h)));
-            const std::uint64_t nsteps = (npoints - 1) * stride;
-            double x = x0, v = req.v0, u = 0.0;
-            std::uint64_t n = 0;
-            inclusion_path(c, x, v, nsteps, rng, [&](double xn, double vn) {
-                if (n % stride == 0) append(path, static_cast<double>(n) * c.h, xn, mode_of(vn), vn, u);
-                u += c.h * vn;
-                ++n;
-            });
-            append(path, static_cast<double>(nsteps) * c.h, x, mode_of(v), v, u);
-            if (k == 0 && std::fabs(static_cast<double>(stride) * c.h - every) > 1e-9 * every)
-                out.warnings.push_back("recording interval rounded to " + std::to_string(stride) + " steps of dt");
-        }
+        detail::visit_engine(prepared, [&](const auto& engine) {
+            engine.path_on_grid(seed, k, x0, req.v0, every, npoints,
+                                [&](const detail::PathPoint& q) { append(path, q.t, q.x, q.mode, q.v, q.u); },
+                                out.warnings);
+        });
         out.paths.push_back(std::move(path));
     }
     return out;

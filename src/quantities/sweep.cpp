@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/sweep.hpp"
+#include "stickslip/prepared_engine.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -81,7 +82,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
     out.request.noises = prepared.noises;
     out.request.taus = prepared.taus;
     // With --dt auto each point has its own step (SweepPoint::dt), none the sweep's.
-    if (out.request.engine.dt_auto && out.request.engine.engine == Engine::Inclusion)
+    if (out.request.engine.dt_auto && has_time_step(out.request.engine))
         out.request.engine.dt = std::numeric_limits<double>::quiet_NaN();
     const auto& noises = out.request.noises;
     const auto& taus = out.request.taus;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// lane_streams.hpp -- what the two SIMD lane kernels (inclusion_lanes.cpp,
+// lane_streams.hpp -- what the two SIMD lane kernels (resolvent_lanes.cpp,
 // event_lanes.cpp) share: handing out a run's sample indices to lanes, and
 // each lane's main-stream normals buffered by (half, step, lane).
 //

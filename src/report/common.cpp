@@ -66,7 +66,7 @@ ordered_json params_json(const RunSettings& r) {
     j["tau"] = p.tau;
     j["relaxation"] = json_number(p.relaxation);
     j["bias"] = p.bias;
-    if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid;
+    if (!has_time_step(r.engine)) j["grid"] = r.engine.grid;
     else {
         j["dt"] = r.engine.dt;
         if (r.engine.dt_auto) j["dt_auto"] = true; // the step --dt auto chose (inclusion engine)
@@ -82,7 +82,7 @@ ordered_json nondimensional_json(const RunSettings& r) {
     j["tau"] = nd.tau;
     j["relaxation"] = json_number(nd.relaxation);
     j["bias"] = nd.bias;
-    if (r.engine.engine == Engine::Pdmp) j["grid"] = r.engine.grid / sc.noise_level;
+    if (!has_time_step(r.engine)) j["grid"] = r.engine.grid / sc.noise_level;
     else j["dt"] = r.engine.dt / sc.time;
     j["time_unit"] = sc.time;
     j["length_unit"] = sc.length;
@@ -97,7 +97,7 @@ ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) 
         j["upper_threshold"] = e.upper_threshold;
         j["lower_threshold"] = e.lower_threshold;
     }
-    if (r.engine.engine == Engine::Pdmp) {
+    if (!has_time_step(r.engine)) {
         j["lattice_bound"] = e.lattice_bound;
         j["lattice_points"] = e.lattice_points;
         j["truncated_mass"] = e.truncated_mass;
@@ -112,7 +112,7 @@ ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) 
 
 ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
     ordered_json work;
-    work[s.engine == Engine::Pdmp ? "events" : "steps"] = t.work;
+    work[work_unit(s)] = t.work;
     work["seconds"] = t.seconds;
     work["threads"] = t.threads;
     if (!t.threads_from.empty()) work["threads_from"] = t.threads_from; // docs/guide.md, "Threads"
@@ -150,8 +150,8 @@ std::string relaxation_text(double relaxation) {
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra) {
     std::ostringstream os = report_stream();
     os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
-       << (s.engine == Engine::Pdmp ? "grid " + format_number(s.grid) + " s^-1/2" : (s.dt_auto && std::isnan(s.dt) ? std::string("dt auto, per point") : "dt " + format_number(s.dt) + " s" + (s.dt_auto ? " (auto)" : "")))
-       << (s.engine != Engine::Inclusion ? std::string()
+       << (!has_time_step(s) ? "grid " + format_number(s.grid) + " s^-1/2" : (s.dt_auto && std::isnan(s.dt) ? std::string("dt auto, per point") : "dt " + format_number(s.dt) + " s" + (s.dt_auto ? " (auto)" : "")))
+       << (!has_time_step(s) ? std::string()
            : s.scheme == Scheme::Auto   ? std::string(", scheme auto, per point") // a sweep's
                                         : ", " + to_string(s.scheme) + " scheme")
        << extra << "\n";
@@ -168,7 +168,7 @@ std::string param_line(const ModelParams& p, const EngineSettings& s) {
     os << "nondimensional: tau' " << format_number(nd.tau) << ", relaxation' "
        << (std::isinf(nd.relaxation) ? std::string("inf") : format_number(nd.relaxation)) << ", bias' "
        << format_number(nd.bias);
-    if (s.engine == Engine::Pdmp) os << ", grid' " << format_number(s.grid / sc.noise_level);
+    if (!has_time_step(s)) os << ", grid' " << format_number(s.grid / sc.noise_level);
     else os << ", dt' " << format_number(s.dt / sc.time);
     os << "  (time unit " << format_number(sc.time) << " s, length unit " << format_number(sc.length) << " m)\n";
     return os.str();
@@ -178,7 +178,7 @@ std::string work_line(std::uint64_t samples, const char* what, std::uint64_t see
                       const RunTotals& t, const std::string& extra) {
     std::ostringstream os = report_stream();
     os << samples << " " << what << " (seed " << seed << "), " << t.work
-       << (s.engine == Engine::Pdmp ? " events" : " steps") << ", " << format_number(t.seconds, 3) << " s on "
+       << " " << work_unit(s) << ", " << format_number(t.seconds, 3) << " s on "
        << t.threads << " thread" << (t.threads > 1 ? "s" : "") << extra << "\n";
     return os.str();
 }

@@ -37,14 +37,14 @@ ordered_json histogram_json(const VelocityHistogram& h) {
 
 // ---- stationary density ----------------------------------------------------------
 
-std::string to_json(const StationaryDensityResult& r, int indent) {
+std::string to_json(const DensityResult& r, int indent) {
     const auto& q = r.request;
     ordered_json j = report_head("stationary_density", q.engine, nullptr, &r.resolved.stop_rule);
     auto params = params_json(q);
     params["excursions"] = q.excursions;
     params["bins"] = q.bins.count;
     params["range"] = {q.bins.lo, q.bins.hi};
-    if (q.engine.engine == Engine::Pdmp) params["sample_dt"] = q.sample_dt > 0 ? q.sample_dt : q.engine.dt;
+    if (!has_time_step(q.engine)) params["sample_dt"] = q.sample_dt > 0 ? q.sample_dt : q.engine.dt;
     params["level"] = q.level;
     j["params"] = params;
     j["nondimensional"] = nondimensional_json(q);
@@ -59,7 +59,7 @@ std::string to_json(const StationaryDensityResult& r, int indent) {
     return dump(j, indent);
 }
 
-std::string to_table(const StationaryDensityResult& r) {
+std::string to_table(const DensityResult& r) {
     const auto& q = r.request;
     std::ostringstream os = report_stream();
     os << engine_line("density", q.engine, ", stationary velocity density by long excursions (renewal-reward)");
@@ -78,7 +78,7 @@ std::string to_table(const StationaryDensityResult& r) {
     return os.str();
 }
 
-std::string to_csv(const StationaryDensityResult& r) {
+std::string to_csv(const DensityResult& r) {
     std::ostringstream os = report_stream();
     os << "kind,v_lo,v_hi,value,stderr,lo,hi\n";
     for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
@@ -92,7 +92,7 @@ std::string to_csv(const StationaryDensityResult& r) {
 
 // ---- transient ------------------------------------------------------------------------
 
-std::string to_json(const TransientResult& r, int indent) {
+std::string to_json(const MomentsResult& r, int indent) {
     const auto& q = r.request;
     ordered_json j = report_head("transient", q.engine, nullptr, nullptr);
     auto params = params_json(q);
@@ -127,7 +127,7 @@ std::string to_json(const TransientResult& r, int indent) {
     return dump(j, indent);
 }
 
-std::string to_table(const TransientResult& r) {
+std::string to_table(const MomentsResult& r) {
     const auto& q = r.request;
     std::ostringstream os = report_stream();
     os << engine_line("moments", q.engine,
@@ -149,7 +149,7 @@ std::string to_table(const TransientResult& r) {
     return os.str();
 }
 
-std::string to_csv(const TransientResult& r) {
+std::string to_csv(const MomentsResult& r) {
     std::ostringstream os = report_stream();
     if (r.density.empty()) {
         os << "time," << csv_estimate_header("first_moment") << "," << csv_estimate_header("second_moment") << ","
@@ -178,7 +178,7 @@ std::string to_json(const CorrelationResult& r, int indent) {
     params["excursions"] = q.excursions;
     params["max_lag"] = q.max_lag;
     params["lags"] = q.lags;
-    if (q.engine.engine == Engine::Pdmp) params["sample_dt"] = q.sample_dt > 0 ? q.sample_dt : q.engine.dt;
+    if (!has_time_step(q.engine)) params["sample_dt"] = q.sample_dt > 0 ? q.sample_dt : q.engine.dt;
     params["level"] = q.level;
     j["params"] = params;
     j["nondimensional"] = nondimensional_json(q);

@@ -16,10 +16,10 @@ using namespace detail;
 namespace {
 
 /// --dt auto on the inclusion engine: every point has its own step (SweepPoint::dt).
-bool dt_per_point(const EngineSettings& s) { return s.dt_auto && s.engine == Engine::Inclusion; }
+bool dt_per_point(const EngineSettings& s) { return s.dt_auto && has_time_step(s); }
 
 /// --scheme auto on the inclusion engine: every point has its own scheme (SweepPoint::scheme).
-bool scheme_per_point(const EngineSettings& s) { return s.scheme == Scheme::Auto && s.engine == Engine::Inclusion; }
+bool scheme_per_point(const EngineSettings& s) { return s.scheme == Scheme::Auto && has_time_step(s); }
 
 } // namespace
 
@@ -55,7 +55,7 @@ std::string to_json(const SweepResult& r, int indent) {
                                {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},
                                {"mobility", p.estimates.mobility.value / sc.velocity},
                                {"mean_duration", p.estimates.mean_duration.value / sc.time}};
-        o["work"] = {{q.engine.engine == Engine::Pdmp ? "events" : "steps", p.work}, {"seconds", p.seconds}};
+        o["work"] = {{work_unit(q.engine), p.work}, {"seconds", p.seconds}};
         pts.push_back(o);
     }
     j["points"] = pts;

@@ -273,8 +273,8 @@ std::vector<DryCommand> register_dry(CLI::App& app) {
     return {
         add_dry(app, &compute_diffusivity),
         add_dry(app, &compute_bruteforce),
-        add_dry(app, &compute_stationary_density),
-        add_dry(app, &compute_transient),
+        add_dry(app, &compute_density),
+        add_dry(app, &compute_moments),
         add_dry(app, &compute_correlation),
         add_dry(app, &compute_trajectory),
         add_dry(app, &compute_white_noise),

@@ -20,6 +20,7 @@
 #include "stickslip/kernels/resolvent_lanes.hpp"
 #include "stickslip/random/rng_batch.hpp"
 #include "stickslip/run.hpp"
+#include "stickslip/prepared_engine.hpp"
 #include "stickslip/runner.hpp"
 
 namespace ss = stickslip;
@@ -62,9 +63,9 @@ std::vector<ss::ExcursionOutcome> device_loop(const ss::PreparedEngine& e, std::
             return reverse && k < n ? n - 1 - k : k;
         };
         if (e.settings.scheme == ss::Scheme::Event)
-            ss::device_event_worker(e.event, kSeed, first, n, next, out.data());
+            ss::device_event_worker(std::get<ss::EventConstants>(e.constants), kSeed, first, n, next, out.data());
         else
-            ss::device_inclusion_worker(e.inclusion, kSeed, first, n, next, out.data());
+            ss::device_resolvent_worker(std::get<ss::ResolventConstants>(e.constants), kSeed, first, n, next, out.data());
     };
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
@@ -82,10 +83,10 @@ std::vector<ss::ExcursionOutcome> cpu_engine(const ss::PreparedEngine& e, std::u
         for (std::uint64_t k = 0; k < n; ++k) {
             ss::BatchedCounterRng rng(kSeed, ss::StreamPurpose::LongExcursion, first + k);
             ss::CounterRng ref(kSeed, ss::StreamPurpose::Refinement, first + k);
-            out[k] = ss::event_long_excursion(e.event, rng, ref);
+            out[k] = ss::event_long_excursion(std::get<ss::EventConstants>(e.constants), rng, ref);
         }
     } else {
-        EXPECT_TRUE(ss::inclusion_long_excursions(e.inclusion, kSeed, first, n, out.data()));
+        EXPECT_TRUE(ss::resolvent_long_excursions(std::get<ss::ResolventConstants>(e.constants), kSeed, first, n, out.data()));
     }
     return out;
 }
@@ -140,7 +141,7 @@ Tally expect_same(const ss::PreparedEngine& e, std::uint64_t first, std::uint64_
 
 TEST(GpuHost, Fig2BridgeRuleMatchesCpuEngine) {
     const ss::PreparedEngine e = engine(fig2());
-    ASSERT_EQ(e.inclusion.rule, ss::StopRule::Bridge); // dt = 1e-4 <= tau / 10
+    ASSERT_EQ(std::get<ss::ResolventConstants>(e.constants).rule, ss::StopRule::Bridge); // dt = 1e-4 <= tau / 10
     const Tally t = expect_same(e, 0, 300);
     EXPECT_EQ(t.capped, 0u);
     EXPECT_GT(t.work, 300u * 1000u);
@@ -153,13 +154,13 @@ TEST(GpuHost, Fig2BridgeRuleOddFirstIndexPartialBlocksAnyOrder) {
 
 TEST(GpuHost, Fig2StuckRuleMatchesCpuEngine) {
     const ss::PreparedEngine e = engine(fig2(), ss::Scheme::Resolvent, ss::StopRule::Stuck);
-    ASSERT_EQ(e.inclusion.rule, ss::StopRule::Stuck);
+    ASSERT_EQ(std::get<ss::ResolventConstants>(e.constants).rule, ss::StopRule::Stuck);
     expect_same(e, 64, 200);
 }
 
 TEST(GpuHost, WhiteNoiseMatchesCpuEngine) {
     const ss::PreparedEngine e = engine(fig2_white());
-    ASSERT_TRUE(e.inclusion.white);
+    ASSERT_TRUE(std::get<ss::ResolventConstants>(e.constants).white);
     expect_same(e, 0, 300);
 }
 
@@ -204,7 +205,7 @@ struct FixedSide {
 TEST(GpuHost, BridgeTestDecidesAsBefore) {
     // bridge_crossed must be, on the host, exactly the former test
     // p = bridge_crossing_probability(...); p > 0 && u < p.
-    const ss::InclusionConstants& c = engine(fig2()).inclusion;
+    const ss::ResolventConstants c = std::get<ss::ResolventConstants>(engine(fig2()).constants);
     ss::CounterRng rng(kSeed, ss::StreamPurpose::Test, 1);
     int crossings = 0;
     for (int k = 0; k < 200000; ++k) {

@@ -29,16 +29,16 @@ namespace {
 
 using namespace sstest;
 
-ss::TransientResult transient(const ss::ModelParams& p, const ss::EngineSettings& e, double v0,
+ss::MomentsResult transient(const ss::ModelParams& p, const ss::EngineSettings& e, double v0,
                               std::vector<double> times, std::uint64_t paths, std::uint64_t seed) {
-    ss::TransientRequest r;
+    ss::MomentsRequest r;
     r.params = p;
     r.engine = e;
     r.v0 = v0;
     r.times = std::move(times);
     r.trajectories = paths;
     r.control.seed = seed;
-    return ss::compute_transient(r);
+    return ss::compute_moments(r);
 }
 
 ss::EngineSettings scheme(ss::Scheme s, double dt) {
@@ -49,7 +49,7 @@ ss::EngineSettings scheme(ss::Scheme s, double dt) {
 }
 
 /// Compares every moment of a against b at every time; returns the number of failures.
-int compare_moments(const ss::TransientResult& a, const ss::TransientResult& b, const std::string& what,
+int compare_moments(const ss::MomentsResult& a, const ss::MomentsResult& b, const std::string& what,
                     double stuck_allowance) {
     int failures = 0;
     for (std::size_t i = 0; i < a.time.size(); ++i) {

@@ -43,14 +43,14 @@ TEST(EventSchemeStatistics, Fig4CaseAgreesWithPdmpAtACoarseStep) {
 
 TEST(EventSchemeStatistics, StuckFractionAgreesWithPdmp) {
     auto stuck = [](const ss::EngineSettings& e, std::uint64_t seed) {
-        ss::StationaryDensityRequest r;
+        ss::DensityRequest r;
         r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.engine = e;
         r.excursions = 6000;
         r.bins.count = 4;
         r.sample_dt = 1e-3;
         r.control.seed = seed;
-        return ss::compute_stationary_density(r).histogram.stuck;
+        return ss::compute_density(r).histogram.stuck;
     };
     ss::EngineSettings pdmp = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     pdmp.engine = ss::Engine::Pdmp;
@@ -69,7 +69,7 @@ TEST(EventSchemeStatistics, StuckFractionHasNoStepPartAtTauOverTen) {
     // Allowance 0.001 (the target). Measured: 0.0802 +- 0.0001 over
     // 1e6 excursions; 0.0907 before every refined piece was observed on its
     // own (a step from a launch to a landing read as stuck throughout).
-    ss::StationaryDensityRequest r;
+    ss::DensityRequest r;
     r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params.friction = 3.84;
     r.params.noise = 1;
@@ -80,7 +80,7 @@ TEST(EventSchemeStatistics, StuckFractionHasNoStepPartAtTauOverTen) {
     r.excursions = 100000;
     r.bins.count = 4;
     r.control.seed = 17;
-    const auto stuck = ss::compute_stationary_density(r).histogram.stuck;
+    const auto stuck = ss::compute_density(r).histogram.stuck;
     EXPECT_TRUE(check(compare(stuck.value, stuck.std_error, 0.0800, 0.0002, 0.001, 3.0),
                       "P(V = 0), event dt = tau/10 vs its dt -> 0 limit"));
 }

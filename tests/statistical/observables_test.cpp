@@ -25,7 +25,7 @@ ss::ModelParams dry(double tau) { return {.friction = 1, .noise = 1, .tau = tau,
 // issue asks for |ours - EF| <= 0.005; the run's stderr is about 1.1e-3, so
 // the test also bounds |z| by 4.
 TEST(Transient, TableIFirstMomentMatchesTouchette) {
-    ss::TransientRequest r;
+    ss::MomentsRequest r;
     r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = dry(0.5e-5);
     r.engine.dt = 2.5e-3; // every Table I time is a whole number of steps
@@ -33,7 +33,7 @@ TEST(Transient, TableIFirstMomentMatchesTouchette) {
     r.times = {0.05, 0.125, 0.25, 0.5, 1, 2.5};
     r.trajectories = 400000;
     r.control.seed = 2010;
-    const auto res = ss::compute_transient(r);
+    const auto res = ss::compute_moments(r);
     const double paper_ef[] = {0.950, 0.875, 0.757, 0.568, 0.336, 0.090};
     for (std::size_t k = 0; k < r.times.size(); ++k) {
         ASSERT_DOUBLE_EQ(res.time[k], r.times[k]);
@@ -50,14 +50,14 @@ TEST(Transient, TableIFirstMomentMatchesTouchette) {
 // the renewal-reward histogram must match Hayakawa bin by bin. dt = tau so the
 // step resolves the noise; the stuck atom (an O(dt) artefact here) is small.
 TEST(StationaryDensity, FigureSixMatchesHayakawa) {
-    ss::StationaryDensityRequest r;
+    ss::DensityRequest r;
     r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = {.friction = 3.84, .noise = 0.16, .tau = 1e-5, .relaxation = 0.067, .bias = 0.342};
     r.engine.dt = 1e-5;
     r.excursions = 4000;
     r.bins = {-0.09, 0.1, 38};
     r.control.seed = 6;
-    const auto res = ss::compute_stationary_density(r);
+    const auto res = ss::compute_density(r);
     const ss::HayakawaDensity hay(r.params);
     const auto& h = res.histogram;
     double max_z = 0;
@@ -108,14 +108,14 @@ TEST(Correlation, NearWhiteNoiseMatchesTouchette) {
 TEST(StationaryDensity, StuckProbabilityVanishesForWhiteNoiseAndGrowsWithTau) {
     std::vector<ss::Estimate> stuck;
     for (double tau : {0.0, 0.01, 0.1, 1.0}) {
-        ss::StationaryDensityRequest r;
+        ss::DensityRequest r;
         r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.params = dry(tau);
         r.engine.dt = 1e-3;
         r.excursions = tau == 1.0 ? 300 : 1000;
         r.bins = {-4, 4, 16};
         r.control.seed = 11;
-        const auto res = ss::compute_stationary_density(r);
+        const auto res = ss::compute_density(r);
         std::cout << "[measured] tau' = " << tau << ": P(V = 0) = " << res.histogram.stuck.value << " +- "
                   << res.histogram.stuck.std_error << std::endl;
         stuck.push_back(res.histogram.stuck);
@@ -131,16 +131,16 @@ TEST(StationaryDensity, StuckProbabilityVanishesForWhiteNoiseAndGrowsWithTau) {
 
 // Both engines estimate the same stationary law (Fig. 2 case, PDMP grid 0.125).
 TEST(StationaryDensity, PdmpAndInclusionAgree) {
-    ss::StationaryDensityRequest r;
+    ss::DensityRequest r;
     r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.excursions = 3000;
     r.bins = {-0.4, 0.4, 16};
     r.control.seed = 5;
     r.engine.dt = 1e-3;
-    const auto inc = ss::compute_stationary_density(r);
+    const auto inc = ss::compute_density(r);
     r.engine.engine = ss::Engine::Pdmp;
     r.sample_dt = 1e-3;
-    const auto pd = ss::compute_stationary_density(r);
+    const auto pd = ss::compute_density(r);
     EXPECT_TRUE(check(compare(inc.histogram.stuck.value, inc.histogram.stuck.std_error, pd.histogram.stuck.value,
                               pd.histogram.stuck.std_error),
                       "Fig. 2 case P(V = 0): inclusion vs pdmp"));
@@ -180,13 +180,13 @@ TEST(Correlation, PdmpAndInclusionAgree) {
 // White noise with relaxation and bias: the regeneration at velocity levels
 // gives Hayakawa's mean and variance.
 TEST(StationaryDensity, WhiteNoiseWithDragAndBiasMatchesHayakawa) {
-    ss::StationaryDensityRequest r;
+    ss::DensityRequest r;
     r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.params = {.friction = 1, .noise = 1, .tau = 0, .relaxation = 0.5, .bias = 0.3};
     r.engine.dt = 1e-3;
     r.excursions = 3000;
     r.control.seed = 19;
-    const auto res = ss::compute_stationary_density(r);
+    const auto res = ss::compute_density(r);
     const ss::HayakawaDensity hay(r.params);
     // Discretisation bias of the scheme at dt' = 1e-3: about 1% of the standard
     // deviation for the mean; for the variance -2.4% +- 0.3% (three seeds of 3e4

@@ -60,8 +60,8 @@ TEST(RatioMoments, MergeEqualsSequentialAndMatchesDirectFormulas) {
     EXPECT_THROW(diag.ratio_covariance(0, 1), std::logic_error);
 }
 
-ss::StationaryDensityRequest small_density(ss::Engine engine) {
-    ss::StationaryDensityRequest r;
+ss::DensityRequest small_density(ss::Engine engine) {
+    ss::DensityRequest r;
     r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     r.engine.engine = engine;
     r.engine.dt = 1e-3;
@@ -73,7 +73,7 @@ ss::StationaryDensityRequest small_density(ss::Engine engine) {
 
 TEST(StationaryDensity, ProbabilitiesAddUpToOne) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
-        const auto res = ss::compute_stationary_density(small_density(engine));
+        const auto res = ss::compute_density(small_density(engine));
         const auto& h = res.histogram;
         double total = h.stuck.value + h.below.value + h.above.value;
         for (std::size_t k = 0; k < h.density.size(); ++k) total += h.density[k].value * (h.edges[k + 1] - h.edges[k]);
@@ -86,9 +86,9 @@ TEST(StationaryDensity, SameExcursionsAsDiffusivityAndThreadInvariant) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
         auto r = small_density(engine);
         r.control.threads = 1;
-        const auto one = ss::compute_stationary_density(r);
+        const auto one = ss::compute_density(r);
         r.control.threads = 2;
-        const auto two = ss::compute_stationary_density(r);
+        const auto two = ss::compute_density(r);
         for (std::size_t k = 0; k < one.histogram.density.size(); ++k)
             EXPECT_EQ(one.histogram.density[k].value, two.histogram.density[k].value);
         EXPECT_EQ(one.variance.value, two.variance.value);
@@ -108,7 +108,7 @@ TEST(StationaryDensity, SameExcursionsAsDiffusivityAndThreadInvariant) {
 
 TEST(Correlation, LagZeroIsTheSecondMomentOfTheSameExcursions) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
-        const auto dens = ss::compute_stationary_density(small_density(engine));
+        const auto dens = ss::compute_density(small_density(engine));
         ss::CorrelationRequest c;
         c.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         c.engine = dens.request.engine;
@@ -131,7 +131,7 @@ TEST(Correlation, LagZeroIsTheSecondMomentOfTheSameExcursions) {
 
 TEST(Transient, TimeZeroIsTheStartAndThreadsDoNotMatter) {
     for (auto engine : {ss::Engine::Inclusion, ss::Engine::Pdmp}) {
-        ss::TransientRequest r;
+        ss::MomentsRequest r;
         r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.engine.engine = engine;
         r.engine.dt = 1e-3;
@@ -141,7 +141,7 @@ TEST(Transient, TimeZeroIsTheStartAndThreadsDoNotMatter) {
         r.with_density = true;
         r.bins = {-0.5, 0.5, 10};
         r.control.threads = 1;
-        const auto one = ss::compute_transient(r);
+        const auto one = ss::compute_moments(r);
         ASSERT_EQ(one.time, (std::vector<double>{0.0, 0.1, 0.5}));
         EXPECT_EQ(one.first_moment[0].value, 0.25);
         EXPECT_EQ(one.first_moment[0].std_error, 0.0);
@@ -153,7 +153,7 @@ TEST(Transient, TimeZeroIsTheStartAndThreadsDoNotMatter) {
             EXPECT_NEAR(total, 1.0, 1e-12);
         }
         r.control.threads = 2;
-        const auto two = ss::compute_transient(r);
+        const auto two = ss::compute_moments(r);
         for (std::size_t k = 0; k < one.time.size(); ++k)
             EXPECT_EQ(one.first_moment[k].value, two.first_moment[k].value);
     }
@@ -242,13 +242,13 @@ TEST(Observables, InvalidRequestsThrowNamingTheParameter) {
         ss::validate(r);
     }, "max-lag");
     expect([] {
-        ss::TransientRequest r;
+        ss::MomentsRequest r;
         r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.times = {1, -0.5};
         ss::validate(r);
     }, "times");
     expect([] {
-        ss::TransientRequest r;
+        ss::MomentsRequest r;
         r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
         r.times = {1};
         r.v0 = inf;
@@ -277,7 +277,7 @@ TEST(Observables, InvalidRequestsThrowNamingTheParameter) {
     }, "tau");
     // The defaults that depend on the model are valid: a transient request
     // without times uses Table I's, without v0 one velocity unit.
-    EXPECT_NO_THROW(ss::validate(ss::TransientRequest{}));
+    EXPECT_NO_THROW(ss::validate(ss::MomentsRequest{}));
 }
 
 TEST(Sweep, PointsHaveIndependentStreamsAndSortedGrid) {

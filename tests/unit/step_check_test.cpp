@@ -9,6 +9,7 @@
 
 #include "../../src/driver/step_check.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/prepared_engine.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/run.hpp"
 

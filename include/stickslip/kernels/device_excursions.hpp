@@ -5,7 +5,7 @@
 // Why: the CUDA kernels (src/engines/cuda/long_excursions.cu) must compute the same
 // long excursions as the CPU engine, bit for bit. Everything they do per
 // thread is here, as STICKSLIP_HD code over the engine's own step kernels
-// (inclusion.hpp, event_scheme.hpp) and random streams (CounterRng, one
+// (resolvent.hpp, event_scheme.hpp) and random streams (CounterRng, one
 // stream per excursion index), so that the host tests (tests/gpu_host, label
 // gpu-host) compile exactly this loop as host code and check it against the
 // CPU engine on every machine, with or without CUDA: the kernels stay one code.
@@ -16,7 +16,7 @@
 // the indices run out. Excursions have very unequal lengths, so a thread that
 // finishes early starts the next one at once instead of idling until its
 // warp's longest excursion ends, and the two halves of an excursion share one
-// step loop (a state machine, as the SIMD lanes of inclusion_lanes.hpp do),
+// step loop (a state machine, as the SIMD lanes of resolvent_lanes.hpp do),
 // so a warp's threads stay on the same instructions whatever half each is in.
 // An outcome depends only on its index, so neither the order in which
 // excursions are taken nor the thread that runs one can change a bit; the
@@ -38,7 +38,7 @@
 
 #include "stickslip/config.hpp"
 #include "stickslip/kernels/event_scheme.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/kernels/resolvent.hpp"
 #include "stickslip/random/rng.hpp"
 
@@ -48,42 +48,42 @@ namespace stickslip {
 /// of the inclusion engine (resolvent scheme, step kind K, c's): while next()
 /// gives an i < count, excursion first + i on the stream (seed,
 /// LongExcursion, first + i) into out[i], bitwise
-/// inclusion_long_excursion(c, CounterRng(seed, LongExcursion, first + i)).
+/// resolvent_long_excursion(c, CounterRng(seed, LongExcursion, first + i)).
 /// next() must hand out 0, 1, 2, ... across all threads, each value once.
 template <StepKind K, class Next>
-STICKSLIP_HD inline void device_inclusion_worker(const InclusionConstants& c, std::uint64_t seed,
+STICKSLIP_HD inline void device_resolvent_worker(const ResolventConstants& c, std::uint64_t seed,
                                                  std::uint64_t first, std::uint64_t count, Next& next,
                                                  ExcursionOutcome* out) {
     std::uint64_t i = next();
     if (i >= count) return;
     CounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
-    InclusionWalk w;
-    inclusion_walk_start_half(c, w, +1);
+    ResolventWalk w;
+    resolvent_walk_start_half(c, w, +1);
     NoPathObserver none;
     for (;;) {
-        const WalkStatus st = inclusion_walk_step_as<K>(c, w, rng, none);
+        const WalkStatus st = resolvent_walk_step_as<K>(c, w, rng, none);
         if (st == WalkStatus::Running) continue;
         if (st == WalkStatus::HalfDone && w.dir > 0) { // the +HLE is over: the -HLE follows
             w.first = w.steps;
-            inclusion_walk_start_half(c, w, -1);
+            resolvent_walk_start_half(c, w, -1);
             continue;
         }
-        out[i] = inclusion_walk_outcome(c, w, st == WalkStatus::Capped);
+        out[i] = resolvent_walk_outcome(c, w, st == WalkStatus::Capped);
         i = next();
         if (i >= count) return;
         rng = CounterRng(seed, StreamPurpose::LongExcursion, first + i);
-        w = InclusionWalk{};
-        inclusion_walk_start_half(c, w, +1);
+        w = ResolventWalk{};
+        resolvent_walk_start_half(c, w, +1);
     }
 }
 
-/// device_inclusion_worker for c's step kind (with_step_kind): for host code;
+/// device_resolvent_worker for c's step kind (with_step_kind): for host code;
 /// the CUDA backend launches one kernel per kind.
 template <class Next>
-STICKSLIP_HD inline void device_inclusion_worker(const InclusionConstants& c, std::uint64_t seed,
+STICKSLIP_HD inline void device_resolvent_worker(const ResolventConstants& c, std::uint64_t seed,
                                                  std::uint64_t first, std::uint64_t count, Next& next,
                                                  ExcursionOutcome* out) {
-    with_step_kind(c, [&](auto kind) { device_inclusion_worker<kind.value>(c, seed, first, count, next, out); });
+    with_step_kind(c, [&](auto kind) { device_resolvent_worker<kind.value>(c, seed, first, count, next, out); });
 }
 
 /// The same for the event scheme: excursion first + i on the streams (seed,

@@ -11,7 +11,7 @@
 // sliding lanes, their side draws) are generated 32 draws at a time
 // (rng_batch.hpp).
 //
-// How: as inclusion_lanes.hpp. The eight excursions advance in lockstep, one
+// How: as resolvent_lanes.hpp. The eight excursions advance in lockstep, one
 // draw per step each. Each vector step applies the whole step to every lane
 // where it is quiet (detail::stuck_step_is_quiet, detail::slide_step_is_quiet:
 // sufficient conditions of event_colored_step's own decisions, the first one
@@ -26,7 +26,7 @@
 // Coloured noise only; white noise runs the one-excursion kernel, and so do
 // steps longer than relaxation/16 (many of them are not quiet: measured
 // slower in lanes, see event_long_excursions) and every machine where the
-// lane step is not vectorised (inclusion_lanes_vectorised). Host only.
+// lane step is not vectorised (resolvent_lanes_vectorised). Host only.
 #pragma once
 
 /// \file
@@ -37,7 +37,7 @@
 #include <cstdint>
 
 #include "stickslip/kernels/event_scheme.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 
 namespace stickslip {
 

@@ -2,7 +2,7 @@
 // stickslip/kernels/event_scheme.hpp -- the event scheme of the inclusion engine: exact
 // Gaussian steps within a phase, events at their times (theory.md, section 10).
 //
-// Why: the resolvent step (inclusion.hpp) is exact for the noise but first
+// Why: the resolvent step (resolvent.hpp) is exact for the noise but first
 // order for everything else -- the displacement by the left-point rule, the
 // drift taken explicitly, and above all the events (V landing on 0, X leaving
 // the static band) placed on the grid of steps. Within a phase the dynamics is
@@ -65,7 +65,7 @@
 
 #include "stickslip/config.hpp"
 #include "stickslip/engine.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/kernels/phase_law.hpp"
 #include "stickslip/random/portable_math.hpp"

@@ -9,7 +9,7 @@
 // Y = -1 / 0 / +1 for negative-dynamic / static / positive-dynamic.
 //
 // Kernels are inline, allocation-free and STICKSLIP_HD (GPU-ready), like
-// inclusion.hpp. X is carried as its integer lattice index, so the regeneration
+// resolvent.hpp. X is carried as its integer lattice index, so the regeneration
 // state s- = (x_{k- - 1}, -1, 0) is recognised exactly.
 #pragma once
 
@@ -22,7 +22,7 @@
 #include <limits>
 
 #include "stickslip/config.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {

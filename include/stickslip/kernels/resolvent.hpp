@@ -12,7 +12,7 @@
 //
 // Everything here is a small inline function without allocation, exceptions or
 // virtual calls, marked STICKSLIP_HD, so the same code can be compiled for a GPU.
-// The constants are computed once per run by make_inclusion_constants, which
+// The constants are computed once per run by make_resolvent_constants, which
 // validates its input; the kernels trust them.
 #pragma once
 
@@ -25,7 +25,7 @@
 #include <type_traits>
 
 #include "stickslip/config.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/kernels/noise.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/random/portable_math.hpp"
@@ -33,9 +33,9 @@
 namespace stickslip {
 
 /// Per-run constants of the inclusion engine (SI units). Built once by
-/// make_inclusion_constants; every per-step quantity is precomputed here so the
+/// make_resolvent_constants; every per-step quantity is precomputed here so the
 /// step has no division or exponential.
-struct InclusionConstants {
+struct ResolventConstants {
     double h;          ///< time step [s]
     double keep;       ///< 1 - h/relaxation: free-flight factor on V
     double h_bias;     ///< h * bias [m/s]
@@ -54,7 +54,7 @@ struct InclusionConstants {
 };
 
 /// Validates p and s (throws InvalidParameter) and precomputes the constants.
-InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSettings& s);
+ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSettings& s);
 
 /// Default white-noise regeneration level c [m/s]: half the smaller of the
 /// dry-friction velocity scale 0.7*noise/friction and the viscous one
@@ -78,7 +78,7 @@ inline constexpr double bridge_exponent_cutoff = 50.0;
 
 /// Probability that a Brownian bridge with variance rate 2/tau^2 between x0 and
 /// x1 (both on the same side of `level`) touches `level` within the step.
-STICKSLIP_HD inline double bridge_crossing_probability(const InclusionConstants& c, double x0,
+STICKSLIP_HD inline double bridge_crossing_probability(const ResolventConstants& c, double x0,
                                                        double x1, double level) {
     const double e = (x0 - level) * (x1 - level) * c.bridge_rate;
     return e > bridge_exponent_cutoff ? 0.0 : std::exp(-e);
@@ -90,7 +90,7 @@ STICKSLIP_HD inline double bridge_crossing_probability(const InclusionConstants&
 /// (portable_math.hpp): std::exp on the host, as bridge_crossing_probability;
 /// on a CUDA device so that the decision is the correctly rounded exp's.
 template <class Rng>
-STICKSLIP_HD inline bool bridge_crossed(const InclusionConstants& c, double x0, double x1, double level, Rng& rng) {
+STICKSLIP_HD inline bool bridge_crossed(const ResolventConstants& c, double x0, double x1, double level, Rng& rng) {
     const double e = (x0 - level) * (x1 - level) * c.bridge_rate;
     return !(e > bridge_exponent_cutoff) && kernel_below_exp(rng.side_uniform(), -e);
 }
@@ -101,7 +101,7 @@ STICKSLIP_HD inline bool bridge_crossed(const InclusionConstants& c, double x0, 
 /// folded into two precomputed weights and added last as one sum. The sums are
 /// grouped so that the chains carried from step to step (X and V) are one
 /// multiply and one add each; the random terms are computed off the chain.
-STICKSLIP_HD inline void inclusion_colored_step(const InclusionConstants& c, double x, double v,
+STICKSLIP_HD inline void resolvent_colored_step(const ResolventConstants& c, double x, double v,
                                                 double z1, double z2, double& x_next, double& f) {
     x_next = c.ou.end_coef * x + (c.ou.l21 * z1 + c.ou.l22 * z2);
     f = c.keep * v + ((c.h_bias + c.f_x * x) + c.f_z * z1);
@@ -109,7 +109,7 @@ STICKSLIP_HD inline void inclusion_colored_step(const InclusionConstants& c, dou
 
 /// One white-noise step from v with the standard normal z: the velocity at the
 /// end of the step [m/s] (the free flight, then the friction's resolvent).
-STICKSLIP_HD inline double inclusion_white_step(const InclusionConstants& c, double v, double z) {
+STICKSLIP_HD inline double resolvent_white_step(const ResolventConstants& c, double v, double z) {
     return soft_threshold(c.keep * v + (c.h_bias + c.h_amp * z), c.h_friction);
 }
 
@@ -121,9 +121,9 @@ struct NoPathObserver {
 };
 
 /// A long excursion of the inclusion engine between two steps. The kernels
-/// advance it one step at a time (inclusion_walk_step_as), so the same step serves
-/// the one-excursion kernel below and the interleaved one (inclusion_lanes.hpp).
-struct InclusionWalk {
+/// advance it one step at a time (resolvent_walk_step_as), so the same step serves
+/// the one-excursion kernel below and the interleaved one (resolvent_lanes.hpp).
+struct ResolventWalk {
     double x = 0.0;          ///< noise X at the start of the next step [s^-1/2] (0 for white noise)
     double v = 0.0;          ///< velocity at the start of the next step [m/s]
     double vsum = 0.0;       ///< sum of V over the applied steps [m/s]
@@ -146,7 +146,7 @@ enum class StepKind { White, ColoredBridge, ColoredStuck };
 
 /// Calls f(std::integral_constant<StepKind, K>{}) with K the step kind of c.
 template <class F>
-STICKSLIP_HD inline decltype(auto) with_step_kind(const InclusionConstants& c, F&& f) {
+STICKSLIP_HD inline decltype(auto) with_step_kind(const ResolventConstants& c, F&& f) {
     if (c.white) return f(std::integral_constant<StepKind, StepKind::White>{});
     if (c.rule == StopRule::Bridge) return f(std::integral_constant<StepKind, StepKind::ColoredBridge>{});
     return f(std::integral_constant<StepKind, StepKind::ColoredStuck>{});
@@ -154,7 +154,7 @@ STICKSLIP_HD inline decltype(auto) with_step_kind(const InclusionConstants& c, F
 
 /// Puts w at the start of half `dir`. Colored noise: +1 starts from (x*, 0), -1
 /// from (x-*, 0); white noise: from V = dir * c.level.
-STICKSLIP_HD inline void inclusion_walk_start_half(const InclusionConstants& c, InclusionWalk& w, int dir) {
+STICKSLIP_HD inline void resolvent_walk_start_half(const ResolventConstants& c, ResolventWalk& w, int dir) {
     w.dir = dir;
     w.prev_stuck = false;
     w.spare_ok = false;
@@ -179,7 +179,7 @@ STICKSLIP_HD inline void inclusion_walk_start_half(const InclusionConstants& c, 
 /// so that the kernels test the noise and the stop rule once per excursion,
 /// not once per step.)
 template <StepKind K, class Rng, class Observer>
-STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& c, InclusionWalk& w, Rng& rng,
+STICKSLIP_HD inline WalkStatus resolvent_walk_step_as(const ResolventConstants& c, ResolventWalk& w, Rng& rng,
                                                       Observer& observe) {
     if (w.steps >= c.max_steps) return WalkStatus::Capped;
     if constexpr (K == StepKind::White) {
@@ -193,7 +193,7 @@ STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& 
             w.spare = p.y;
             w.spare_ok = true;
         }
-        const double v_next = inclusion_white_step(c, w.v, z);
+        const double v_next = resolvent_white_step(c, w.v, z);
         if (w.dir > 0 ? v_next <= -c.level : v_next >= c.level) return WalkStatus::HalfDone;
         observe(0.0, w.v);
         w.vsum += w.v;
@@ -203,7 +203,7 @@ STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& 
     }
     const auto z = rng.normal2();
     double x_next, f;
-    inclusion_colored_step(c, w.x, w.v, z.x, z.y, x_next, f);
+    resolvent_colored_step(c, w.x, w.v, z.x, z.y, x_next, f);
     if (w.v == 0.0) {
         if constexpr (K == StepKind::ColoredBridge) {
             if (w.x >= c.x_down && w.x <= c.x_up) { // stuck at the start of the step
@@ -227,7 +227,7 @@ STICKSLIP_HD inline WalkStatus inclusion_walk_step_as(const InclusionConstants& 
 }
 
 /// The outcome of a finished (or capped) walk.
-STICKSLIP_HD inline ExcursionOutcome inclusion_walk_outcome(const InclusionConstants& c, const InclusionWalk& w,
+STICKSLIP_HD inline ExcursionOutcome resolvent_walk_outcome(const ResolventConstants& c, const ResolventWalk& w,
                                                             bool capped) {
     ExcursionOutcome o;
     o.first_half = c.h * static_cast<double>(w.first);
@@ -238,30 +238,30 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_walk_outcome(const InclusionConst
     return o;
 }
 
-/// inclusion_long_excursion for step kind K, c's (as with_step_kind chooses it).
+/// resolvent_long_excursion for step kind K, c's (as with_step_kind chooses it).
 template <StepKind K, class Rng, class Observer>
-STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion_as(const InclusionConstants& c, Rng& rng,
+STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion_as(const ResolventConstants& c, Rng& rng,
                                                                  Observer& observe) {
-    InclusionWalk w;
-    inclusion_walk_start_half(c, w, +1);
+    ResolventWalk w;
+    resolvent_walk_start_half(c, w, +1);
     WalkStatus st;
-    while ((st = inclusion_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
+    while ((st = resolvent_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
     }
     if (st == WalkStatus::HalfDone) {
         w.first = w.steps;
-        inclusion_walk_start_half(c, w, -1);
-        while ((st = inclusion_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
+        resolvent_walk_start_half(c, w, -1);
+        while ((st = resolvent_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
         }
     }
-    return inclusion_walk_outcome(c, w, st == WalkStatus::Capped);
+    return resolvent_walk_outcome(c, w, st == WalkStatus::Capped);
 }
 
 /// One long excursion (+HLE then -HLE) of the inclusion engine; `observe(x, v)`
 /// sees every applied step (x = 0 for white noise).
 template <class Rng, class Observer = NoPathObserver>
-STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion(const InclusionConstants& c, Rng& rng,
+STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion(const ResolventConstants& c, Rng& rng,
                                                               Observer&& observe = Observer{}) {
-    return with_step_kind(c, [&](auto kind) { return inclusion_long_excursion_as<kind.value>(c, rng, observe); });
+    return with_step_kind(c, [&](auto kind) { return resolvent_long_excursion_as<kind.value>(c, rng, observe); });
 }
 
 /// Brute-force trajectory (Algorithm 2 with time stepping): from noise x0
@@ -270,7 +270,7 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_long_excursion(const InclusionCon
 /// `observe(x, v)` sees the state at the start of each of the nsteps steps;
 /// on return x0 and v0 hold the final state, so a path can be continued.
 template <class Rng, class Observer = NoPathObserver>
-STICKSLIP_HD inline ExcursionOutcome inclusion_path(const InclusionConstants& c, double& x0, double& v0,
+STICKSLIP_HD inline ExcursionOutcome resolvent_path(const ResolventConstants& c, double& x0, double& v0,
                                                     std::uint64_t nsteps, Rng& rng,
                                                     Observer&& observe = Observer{}) {
     double vsum = 0.0, v = v0, x = x0;
@@ -282,14 +282,14 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_path(const InclusionConstants& c,
             for (int k = 0; k < 2 && n < nsteps; ++k, ++n) {
                 observe(0.0, v);
                 vsum += v;
-                v = inclusion_white_step(c, v, zz[k]);
+                v = resolvent_white_step(c, v, zz[k]);
             }
         }
     } else {
         for (; n < nsteps; ++n) {
             const auto z = rng.normal2();
             double x_next, f;
-            inclusion_colored_step(c, x, v, z.x, z.y, x_next, f);
+            resolvent_colored_step(c, x, v, z.x, z.y, x_next, f);
             observe(x, v);
             vsum += v;
             v = soft_threshold(f, c.h_friction);
@@ -305,11 +305,11 @@ STICKSLIP_HD inline ExcursionOutcome inclusion_path(const InclusionConstants& c,
     return o;
 }
 
-/// Brute-force trajectory: inclusion_path from (x0, v0) without an observer.
+/// Brute-force trajectory: resolvent_path from (x0, v0) without an observer.
 template <class Rng>
-STICKSLIP_HD inline ExcursionOutcome inclusion_trajectory(const InclusionConstants& c, double x0,
+STICKSLIP_HD inline ExcursionOutcome resolvent_trajectory(const ResolventConstants& c, double x0,
                                                           double v0, std::uint64_t nsteps, Rng& rng) {
-    return inclusion_path(c, x0, v0, nsteps, rng);
+    return resolvent_path(c, x0, v0, nsteps, rng);
 }
 
 } // namespace stickslip

@@ -15,8 +15,8 @@
 // to every lane where it is certain to be what the one-excursion kernel does;
 // a lane where anything else can happen -- the half ends, the bridge test
 // needs its uniform, the step cap -- is left untouched and redone by
-// inclusion_walk_step_as itself. A finished lane takes the next excursion.
-// The outcomes are therefore bitwise those of inclusion_long_excursion with
+// resolvent_walk_step_as itself. A finished lane takes the next excursion.
+// The outcomes are therefore bitwise those of resolvent_long_excursion with
 // CounterRng (tests/unit/inclusion_lanes_test.cpp), on any instruction set:
 // the file is compiled with -ffp-contract=off, once per x86-64 level.
 //
@@ -32,38 +32,38 @@
 #include <atomic>
 #include <cstdint>
 
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/kernels/resolvent.hpp"
 
 namespace stickslip {
 
-/// Excursions in flight per thread in inclusion_long_excursions.
-inline constexpr int inclusion_lanes = 8;
+/// Excursions in flight per thread in resolvent_long_excursions.
+inline constexpr int lane_count = 8;
 
 /// Runs the long excursions of sample indices first .. first+count-1, streams
 /// (seed, LongExcursion, index), and writes excursion first+i to out[i]:
-/// bitwise what inclusion_long_excursion(c, CounterRng(seed, LongExcursion,
+/// bitwise what resolvent_long_excursion(c, CounterRng(seed, LongExcursion,
 /// first+i)) returns. Stops starting new excursions once *cancel is set and
 /// then returns false (out is incomplete); returns true when all are done
 /// (also when the cancel comes after the last excursion has started).
-bool inclusion_long_excursions(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
+bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                std::uint64_t count, ExcursionOutcome* out,
                                const std::atomic<bool>* cancel = nullptr);
 
-/// Whether inclusion_long_excursions runs SIMD lanes on this machine (x86-64
+/// Whether resolvent_long_excursions runs SIMD lanes on this machine (x86-64
 /// with AVX-512 and a GCC build); otherwise it runs the one-excursion kernel,
 /// with the same results.
-bool inclusion_lanes_vectorised();
+bool resolvent_lanes_vectorised();
 
 /// A short description of the colored-noise kernel in use, for reports.
-const char* inclusion_kernel_name();
+const char* resolvent_kernel_name();
 
 namespace detail {
-/// inclusion_long_excursions with the lanes forced on any machine (white
+/// resolvent_long_excursions with the lanes forced on any machine (white
 /// noise still runs the one-excursion kernel): the same results, slower where
 /// the lane step is not vectorised. For tests, so that the lane code is
 /// checked on every instruction set, not only where it is the default.
-bool inclusion_long_excursions_in_lanes(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
+bool resolvent_long_excursions_in_lanes(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                         std::uint64_t count, ExcursionOutcome* out,
                                         const std::atomic<bool>* cancel = nullptr);
 } // namespace detail

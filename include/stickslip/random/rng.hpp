@@ -24,7 +24,7 @@
 // test) takes it from the side block of its draw, counter {j lo, 2^30 | j hi,
 // index, purpose}, so every colored-noise step consumes exactly one block of
 // the main stream (a white-noise step uses one normal, half a block) and
-// excursions can advance in lockstep (inclusion_lanes.hpp). The PDMP engine
+// excursions can advance in lockstep (resolvent_lanes.hpp). The PDMP engine
 // takes an exponential (the exponential ziggurat, rejected words resolved from
 // the same retry substream as a normal's first word) and a uniform per draw. This needs
 // j < 2^47 draws per stream (max_draws); the engines cap their work far below.

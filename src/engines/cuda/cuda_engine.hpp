@@ -11,7 +11,7 @@
 #include <string>
 
 #include "stickslip/kernels/event_scheme.hpp"
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/kernels/resolvent.hpp"
 
 namespace stickslip::cuda {
@@ -43,10 +43,10 @@ struct DeviceTiming {
 
 /// Long excursions first .. first+count-1 of the inclusion engine (resolvent
 /// scheme) on the device: out[i] is bitwise what
-/// inclusion_long_excursion(c, CounterRng(seed, LongExcursion, first + i))
+/// resolvent_long_excursion(c, CounterRng(seed, LongExcursion, first + i))
 /// gives, up to the transcendental functions (portable_math.hpp). `threads`
 /// limits the device threads (0: as many as fit on the device at once).
-DeviceTiming inclusion_long_excursions(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
+DeviceTiming resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                        std::uint64_t count, ExcursionOutcome* out, unsigned threads = 0);
 
 /// The same for the event scheme (streams LongExcursion and Refinement).

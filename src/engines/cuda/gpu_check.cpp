@@ -42,6 +42,7 @@
 #include "stickslip/kernels/resolvent_lanes.hpp"
 #include "stickslip/random/rng_batch.hpp"
 #include "stickslip/run.hpp"
+#include "stickslip/prepared_engine.hpp"
 #include "stickslip/runner.hpp"
 
 namespace ss = stickslip;
@@ -116,10 +117,10 @@ std::vector<ss::ExcursionOutcome> cpu_outcomes(const ss::PreparedEngine& e, std:
                 for (std::uint64_t k = lo; k < lo + cnt; ++k) {
                     ss::BatchedCounterRng rng(seed, ss::StreamPurpose::LongExcursion, first + k);
                     ss::CounterRng ref(seed, ss::StreamPurpose::Refinement, first + k);
-                    out[k] = ss::event_long_excursion(e.event, rng, ref);
+                    out[k] = ss::event_long_excursion(std::get<ss::EventConstants>(e.constants), rng, ref);
                 }
             } else {
-                ss::inclusion_long_excursions(e.inclusion, seed, first + lo, cnt, out.data() + lo);
+                ss::resolvent_long_excursions(std::get<ss::ResolventConstants>(e.constants), seed, first + lo, cnt, out.data() + lo);
             }
         }
     };
@@ -138,8 +139,8 @@ ss::cuda::DeviceTiming emulated(const ss::PreparedEngine& e, std::uint64_t seed,
     std::atomic<std::uint64_t> counter{0};
     auto work = [&] {
         auto next = [&]() -> std::uint64_t { return counter.fetch_add(1); };
-        if (e.settings.scheme == ss::Scheme::Event) ss::device_event_worker(e.event, seed, first, n, next, out);
-        else ss::device_inclusion_worker(e.inclusion, seed, first, n, next, out);
+        if (e.settings.scheme == ss::Scheme::Event) ss::device_event_worker(std::get<ss::EventConstants>(e.constants), seed, first, n, next, out);
+        else ss::device_resolvent_worker(std::get<ss::ResolventConstants>(e.constants), seed, first, n, next, out);
     };
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
@@ -157,8 +158,8 @@ ss::cuda::DeviceTiming gpu_outcomes(const ss::PreparedEngine& e, std::uint64_t s
                                     std::uint64_t n, unsigned threads, ss::ExcursionOutcome* out) {
     if (g_emulate) return emulated(e, seed, first, n, threads ? threads : 2, out);
     if (e.settings.scheme == ss::Scheme::Event)
-        return ss::cuda::event_long_excursions(e.event, seed, first, n, out, threads);
-    return ss::cuda::inclusion_long_excursions(e.inclusion, seed, first, n, out, threads);
+        return ss::cuda::event_long_excursions(std::get<ss::EventConstants>(e.constants), seed, first, n, out, threads);
+    return ss::cuda::resolvent_long_excursions(std::get<ss::ResolventConstants>(e.constants), seed, first, n, out, threads);
 }
 
 std::uint64_t total_work(const std::vector<ss::ExcursionOutcome>& v) {
@@ -213,7 +214,7 @@ int main(int argc, char** argv) {
                     dev.minor, dev.multiprocessors, dev.memory_gib, ss::cuda::build_info().c_str());
     }
     std::printf("CPU: %u threads, colored-noise kernel: %s; CPU exp/log/log1p: %s\n", o.cpu_threads,
-                ss::inclusion_kernel_name(),
+                ss::resolvent_kernel_name(),
                 STICKSLIP_KERNEL_MATH_PORTABLE ? "portable (STICKSLIP_PORTABLE_MATH)" : "glibc");
     std::printf("seed %llu\n\n", static_cast<unsigned long long>(o.seed));
     std::printf("%-15s %7s %9s %6s %11s %11s %11s %11s %8s %s\n", "case", "N", "steps/exc", "capped", "CPU exc/s",

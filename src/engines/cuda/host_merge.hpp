@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "stickslip/kernels/excursion.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/stats/moment_sums.hpp"
 #include "stickslip/runner.hpp"
 

@@ -2,7 +2,7 @@
 // The CUDA backend: long excursions of the inclusion engine, one per device
 // thread at a time, from the same header kernels as the CPU engine.
 //
-// The per-thread loop is device_inclusion_worker / device_event_worker
+// The per-thread loop is device_resolvent_worker / device_event_worker
 // (stickslip/kernels/device_excursions.hpp), the code the gpu-host tests run on the
 // host; this file only launches it and moves the outcomes. The kernels take
 // the index of their next excursion from a counter in device memory (one
@@ -44,10 +44,10 @@ struct DeviceNext {
 };
 
 template <StepKind K>
-__global__ void inclusion_kernel(InclusionConstants c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+__global__ void resolvent_kernel(ResolventConstants c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                                  unsigned long long* counter, ExcursionOutcome* out) {
     DeviceNext next{counter};
-    device_inclusion_worker<K>(c, seed, first, count, next, out);
+    device_resolvent_worker<K>(c, seed, first, count, next, out);
 }
 
 __global__ void event_kernel(const EventConstants* c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
@@ -146,22 +146,22 @@ std::string build_info() {
 
 namespace {
 template <StepKind K>
-DeviceTiming run_inclusion(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+DeviceTiming run_resolvent(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                            ExcursionOutcome* out, unsigned threads) {
-    return run(inclusion_kernel<K>, count, out, threads,
+    return run(resolvent_kernel<K>, count, out, threads,
                [&](unsigned grid, int block, unsigned long long* counter, ExcursionOutcome* dev_out) {
-                   inclusion_kernel<K><<<grid, block>>>(c, seed, first, count, counter, dev_out);
+                   resolvent_kernel<K><<<grid, block>>>(c, seed, first, count, counter, dev_out);
                });
 }
 } // namespace
 
-DeviceTiming inclusion_long_excursions(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
+DeviceTiming resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                        std::uint64_t count, ExcursionOutcome* out, unsigned threads) {
     // One kernel per step kind (as with_step_kind chooses it), so that none
     // carries the registers of the others.
-    if (c.white) return run_inclusion<StepKind::White>(c, seed, first, count, out, threads);
-    if (c.rule == StopRule::Bridge) return run_inclusion<StepKind::ColoredBridge>(c, seed, first, count, out, threads);
-    return run_inclusion<StepKind::ColoredStuck>(c, seed, first, count, out, threads);
+    if (c.white) return run_resolvent<StepKind::White>(c, seed, first, count, out, threads);
+    if (c.rule == StopRule::Bridge) return run_resolvent<StepKind::ColoredBridge>(c, seed, first, count, out, threads);
+    return run_resolvent<StepKind::ColoredStuck>(c, seed, first, count, out, threads);
 }
 
 DeviceTiming event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uint64_t first,

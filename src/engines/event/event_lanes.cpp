@@ -13,7 +13,7 @@ namespace stickslip {
 
 namespace {
 
-constexpr int L = inclusion_lanes;
+constexpr int L = lane_count;
 constexpr int B = detail::rng_batch_size;
 
 /// The draw's numbers as one step of event_colored_step sees them: its normal
@@ -310,7 +310,7 @@ bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uin
     // at relaxation/8, relaxation/4 (the automatic step). Without drag the
     // lanes win at every step measured (1.55, 1.19, 1.05 at tau/100, tau/10,
     // tau/2).
-    if (!inclusion_lanes_vectorised() || !(c.h <= c.relaxation / 16.0))
+    if (!resolvent_lanes_vectorised() || !(c.h <= c.relaxation / 16.0))
         return one_at_a_time(c, seed, first, count, out, cancel);
     return detail::event_long_excursions_in_lanes(c, seed, first, count, out, cancel);
 }

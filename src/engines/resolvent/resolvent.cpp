@@ -14,11 +14,11 @@ double white_level_default(const ModelParams& p) {
     return 0.5 * scale;
 }
 
-InclusionConstants make_inclusion_constants(const ModelParams& p, const EngineSettings& s) {
+ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSettings& s) {
     validate(p);
     validate(s);
     require_stationary_state(p);
-    InclusionConstants c{};
+    ResolventConstants c{};
     c.h = s.dt;
     c.keep = 1.0 - s.dt * p.inverse_relaxation();
     if (c.keep < 0)

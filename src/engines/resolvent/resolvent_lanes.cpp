@@ -10,10 +10,10 @@ namespace stickslip {
 
 namespace {
 
-constexpr int L = inclusion_lanes;
+constexpr int L = lane_count;
 constexpr int B = detail::rng_batch_size;
 
-/// The draw's numbers as one step of inclusion_walk_step_as sees them: its
+/// The draw's numbers as one step of resolvent_walk_step_as sees them: its
 /// normal pair and, if the bridge test asks, its side uniform.
 struct LaneStepRng {
     double z1, z2;
@@ -45,7 +45,7 @@ struct LaneGroup {
 template <StepKind K>
 class LaneRunner {
 public:
-    LaneRunner(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+    LaneRunner(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                ExcursionOutcome* out, const std::atomic<bool>* cancel)
         : c_(c), key_(CounterRng::make_key(seed)), first_(first), out_(out), dealer_(count, cancel) {}
 
@@ -72,8 +72,8 @@ private:
     void refill(int l, int from) { detail::refill_lane_normals(g_, key_, l, from); }
 
     void start_half(int l, int dir) {
-        InclusionWalk w;
-        inclusion_walk_start_half(c_, w, dir);
+        ResolventWalk w;
+        resolvent_walk_start_half(c_, w, dir);
         g_.x[l] = w.x;
         g_.v[l] = w.v;
         g_.dir[l] = dir;
@@ -114,12 +114,12 @@ private:
 
     /// Step p of every lane where the outcome is the plain step; marks the
     /// others in g_.attention. Returns whether any lane was marked. The step is
-    /// inclusion_colored_step and soft_threshold themselves, so the applied
+    /// resolvent_colored_step and soft_threshold themselves, so the applied
     /// lanes get the one-excursion kernel's bits.
     bool vector_step(int p) {
         // A local copy: the stores to g_ below cannot alias it, so the
         // constants stay in registers and the loop vectorises.
-        const InclusionConstants c = c_;
+        const ResolventConstants c = c_;
         const double band = c.h_friction, xd = c.x_down, xu = c.x_up, rate = c.bridge_rate;
         const auto cap = static_cast<std::int64_t>(c.max_steps);
         std::int64_t any = 0;
@@ -130,7 +130,7 @@ private:
             const double z1 = g_.z[0][p][l], z2 = g_.z[1][p][l];
             const double x0 = g_.x[l], v0 = g_.v[l];
             double xn, f;
-            inclusion_colored_step(c, x0, v0, z1, z2, xn, f);
+            resolvent_colored_step(c, x0, v0, z1, z2, xn, f);
             const double vn = soft_threshold(f, band);
             const std::int64_t stuck = v0 == 0.0 ? 1 : 0;
             std::int64_t flag = g_.steps[l] >= cap ? 1 : 0;
@@ -161,7 +161,7 @@ private:
     /// Step p of lane l by the one-excursion kernel itself. Returns false when
     /// the lane has no excursion left to run.
     bool scalar_step(int l, int p) {
-        InclusionWalk w;
+        ResolventWalk w;
         w.x = g_.x[l];
         w.v = g_.v[l];
         w.vsum = g_.vsum[l];
@@ -172,7 +172,7 @@ private:
         LaneStepRng rng{g_.z[0][p][l], g_.z[1][p][l], &key_, g_.c2[l], g_.c3[l],
                         g_.base[l] + static_cast<std::uint64_t>(p)};
         NoPathObserver none;
-        const WalkStatus st = inclusion_walk_step_as<K>(c_, w, rng, none);
+        const WalkStatus st = resolvent_walk_step_as<K>(c_, w, rng, none);
         g_.x[l] = w.x;
         g_.v[l] = w.v;
         g_.vsum[l] = w.vsum;
@@ -184,11 +184,11 @@ private:
             start_half(l, -1);
             return true;
         }
-        out_[g_.slot[l]] = inclusion_walk_outcome(c_, w, st == WalkStatus::Capped);
+        out_[g_.slot[l]] = resolvent_walk_outcome(c_, w, st == WalkStatus::Capped);
         return load(l, p + 1);
     }
 
-    const InclusionConstants& c_;
+    const ResolventConstants& c_;
     const CounterRng::Philox::key_type key_;
     const std::uint64_t first_;
     ExcursionOutcome* const out_;
@@ -200,37 +200,37 @@ private:
 // inlined into each clone.
 
 STICKSLIP_X86_CLONES_FLATTEN
-bool run_lanes_bridge(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+bool run_lanes_bridge(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                       ExcursionOutcome* out, const std::atomic<bool>* cancel) {
     return LaneRunner<StepKind::ColoredBridge>(c, seed, first, count, out, cancel).run();
 }
 
 STICKSLIP_X86_CLONES_FLATTEN
-bool run_lanes_stuck(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+bool run_lanes_stuck(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                      ExcursionOutcome* out, const std::atomic<bool>* cancel) {
     return LaneRunner<StepKind::ColoredStuck>(c, seed, first, count, out, cancel).run();
 }
 
 
-bool one_at_a_time(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+bool one_at_a_time(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                    ExcursionOutcome* out, const std::atomic<bool>* cancel) {
     for (std::uint64_t i = 0; i < count; ++i) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return false;
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
-        out[i] = inclusion_long_excursion(c, rng);
+        out[i] = resolvent_long_excursion(c, rng);
     }
     return true;
 }
 
 } // namespace
 
-bool inclusion_long_excursions(const InclusionConstants& c, std::uint64_t seed, std::uint64_t first,
+bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel) {
-    if (!inclusion_lanes_vectorised()) return one_at_a_time(c, seed, first, count, out, cancel);
-    return detail::inclusion_long_excursions_in_lanes(c, seed, first, count, out, cancel);
+    if (!resolvent_lanes_vectorised()) return one_at_a_time(c, seed, first, count, out, cancel);
+    return detail::resolvent_long_excursions_in_lanes(c, seed, first, count, out, cancel);
 }
 
-bool detail::inclusion_long_excursions_in_lanes(const InclusionConstants& c, std::uint64_t seed,
+bool detail::resolvent_long_excursions_in_lanes(const ResolventConstants& c, std::uint64_t seed,
                                                 std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
                                                 const std::atomic<bool>* cancel) {
     if (c.white) return one_at_a_time(c, seed, first, count, out, cancel);
@@ -238,7 +238,7 @@ bool detail::inclusion_long_excursions_in_lanes(const InclusionConstants& c, std
                                       : run_lanes_stuck(c, seed, first, count, out, cancel);
 }
 
-bool inclusion_lanes_vectorised() {
+bool resolvent_lanes_vectorised() {
 #ifdef STICKSLIP_PER_X86_LEVEL
     // GCC 12 vectorises the lane step for AVX-512 only; elsewhere the lanes
     // would run as scalar code, slower than one excursion at a time.
@@ -251,8 +251,8 @@ bool inclusion_lanes_vectorised() {
 #endif
 }
 
-const char* inclusion_kernel_name() {
-    return inclusion_lanes_vectorised() ? "8 SIMD lanes (AVX-512)" : "one excursion at a time";
+const char* resolvent_kernel_name() {
+    return resolvent_lanes_vectorised() ? "8 SIMD lanes (AVX-512)" : "one excursion at a time";
 }
 
 } // namespace stickslip

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Differential-inclusion engine (inclusion.hpp, theory.md, section 5): the
+// Differential-inclusion engine (resolvent.hpp, theory.md, section 5): the
 // resolvent, the constants and their validation, one hand-computed step, and
 // the Brownian-bridge crossing probability of stop rule Q.
 #include <gtest/gtest.h>
@@ -29,7 +29,7 @@ ss::EngineSettings with_dt(double dt) {
 
 void expect_bad_dt(const ss::ModelParams& p, double dt) {
     try {
-        ss::make_inclusion_constants(p, with_dt(dt));
+        ss::make_resolvent_constants(p, with_dt(dt));
         ADD_FAILURE() << "no error for dt = " << dt << " (relaxation " << p.relaxation << ")";
     } catch (const ss::InvalidParameter& e) {
         EXPECT_EQ(e.parameter(), "dt") << "dt = " << dt << ": " << e.what();
@@ -57,12 +57,12 @@ TEST(SoftThreshold, ZeroInsideTheBandShiftedOutside) {
     EXPECT_EQ(ss::soft_threshold(-0.7, 0.0), -0.7);
 }
 
-TEST(InclusionConstants, AutoStopRuleResolution) {
+TEST(ResolventConstants, AutoStopRuleResolution) {
     ss::ModelParams p; // Fig. 2: tau = 0.5, relaxation 0.067
     auto rule = [&](double dt, ss::StopRule r) {
         ss::EngineSettings s = with_dt(dt);
         s.stop_rule = r;
-        return ss::make_inclusion_constants(p, s).rule;
+        return ss::make_resolvent_constants(p, s).rule;
     };
     EXPECT_EQ(rule(1e-4, ss::StopRule::Auto), ss::StopRule::Bridge);
     EXPECT_EQ(rule(0.05, ss::StopRule::Auto), ss::StopRule::Bridge);  // dt == 0.1 tau
@@ -77,10 +77,10 @@ TEST(InclusionConstants, AutoStopRuleResolution) {
     EXPECT_EQ(rule(1e-6, ss::StopRule::Auto), ss::StopRule::Bridge);
 }
 
-TEST(InclusionConstants, ColoredConstants) {
+TEST(ResolventConstants, ColoredConstants) {
     ss::ModelParams p;
     const double dt = 1e-3;
-    const ss::InclusionConstants c = ss::make_inclusion_constants(p, with_dt(dt));
+    const ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(dt));
     EXPECT_FALSE(c.white);
     EXPECT_EQ(c.h, dt);
     EXPECT_NEAR(c.keep, 1.0 - dt / p.relaxation, 1e-16);
@@ -96,14 +96,14 @@ TEST(InclusionConstants, ColoredConstants) {
     EXPECT_EQ(c.max_steps, ss::EngineSettings{}.max_work_per_excursion);
     // No viscous drag: V is kept as is by the free flight.
     p.relaxation = kInf;
-    EXPECT_EQ(ss::make_inclusion_constants(p, with_dt(dt)).keep, 1.0);
+    EXPECT_EQ(ss::make_resolvent_constants(p, with_dt(dt)).keep, 1.0);
 }
 
-TEST(InclusionConstants, WhiteNoiseFlagAndLevel) {
+TEST(ResolventConstants, WhiteNoiseFlagAndLevel) {
     ss::ModelParams p;
     p.tau = 0.0;
     const double dt = 1e-4;
-    ss::InclusionConstants c = ss::make_inclusion_constants(p, with_dt(dt));
+    ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(dt));
     EXPECT_TRUE(c.white);
     EXPECT_NEAR(c.h_amp, std::sqrt(p.noise * dt), 1e-16);
     // Default level: half the smaller of 0.7 noise/friction and sqrt(noise relaxation/2).
@@ -113,14 +113,14 @@ TEST(InclusionConstants, WhiteNoiseFlagAndLevel) {
     EXPECT_GT(c.level, 0.0);
     // Without viscous drag only the dry-friction scale counts.
     p.relaxation = kInf;
-    EXPECT_NEAR(ss::make_inclusion_constants(p, with_dt(dt)).level, 0.5 * 0.7 * 5.0 / 3.84, 1e-15);
+    EXPECT_NEAR(ss::make_resolvent_constants(p, with_dt(dt)).level, 0.5 * 0.7 * 5.0 / 3.84, 1e-15);
     // An explicit level wins.
     ss::EngineSettings s = with_dt(dt);
     s.white_level = 0.3;
-    EXPECT_EQ(ss::make_inclusion_constants(p, s).level, 0.3);
+    EXPECT_EQ(ss::make_resolvent_constants(p, s).level, 0.3);
 }
 
-TEST(InclusionConstants, ValidationNamesDt) {
+TEST(ResolventConstants, ValidationNamesDt) {
     ss::ModelParams p; // relaxation 0.067
     expect_bad_dt(p, 0.0);
     expect_bad_dt(p, -1e-4);
@@ -128,7 +128,7 @@ TEST(InclusionConstants, ValidationNamesDt) {
     expect_bad_dt(p, kInf);
     expect_bad_dt(p, 0.1);   // dt > relaxation
     expect_bad_dt(p, 0.0671);
-    EXPECT_NO_THROW(ss::make_inclusion_constants(p, with_dt(0.067))); // keep = 0 is allowed
+    EXPECT_NO_THROW(ss::make_resolvent_constants(p, with_dt(0.067))); // keep = 0 is allowed
     ss::ModelParams w = p;
     w.tau = 0.0;
     expect_bad_dt(w, 0.0);
@@ -138,7 +138,7 @@ TEST(InclusionConstants, ValidationNamesDt) {
     ss::ModelParams bad = p;
     bad.friction = -1;
     try {
-        ss::make_inclusion_constants(bad, with_dt(1e-4));
+        ss::make_resolvent_constants(bad, with_dt(1e-4));
         ADD_FAILURE() << "no error for friction -1";
     } catch (const ss::InvalidParameter& e) {
         EXPECT_EQ(e.parameter(), "friction");
@@ -147,7 +147,7 @@ TEST(InclusionConstants, ValidationNamesDt) {
     runaway.relaxation = kInf;
     runaway.bias = -4.0;
     try {
-        ss::make_inclusion_constants(runaway, with_dt(1e-4));
+        ss::make_resolvent_constants(runaway, with_dt(1e-4));
         ADD_FAILURE() << "no error for |bias| > friction without drag";
     } catch (const ss::InvalidParameter& e) {
         EXPECT_EQ(e.parameter(), "bias");
@@ -190,7 +190,7 @@ HandStep hand_step(const ss::ModelParams& p, double h_d, double x_d, double v_d,
 
 } // namespace
 
-TEST(InclusionStep, HandComputedColoredStep) {
+TEST(ResolventStep, HandComputedColoredStep) {
     struct Case {
         double tau, relaxation, dt, x, v, z1, z2;
     };
@@ -205,9 +205,9 @@ TEST(InclusionStep, HandComputedColoredStep) {
         ss::ModelParams p;
         p.tau = k.tau;
         p.relaxation = k.relaxation;
-        const ss::InclusionConstants c = ss::make_inclusion_constants(p, with_dt(k.dt));
+        const ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(k.dt));
         double x_next = 0, f = 0;
-        ss::inclusion_colored_step(c, k.x, k.v, k.z1, k.z2, x_next, f);
+        ss::resolvent_colored_step(c, k.x, k.v, k.z1, k.z2, x_next, f);
         const HandStep ref = hand_step(p, k.dt, k.x, k.v, k.z1, k.z2);
         // Relative 2e-15 of the terms' magnitudes: a few roundings of a short sum.
         EXPECT_NEAR(x_next, ref.x_next, 2e-15 * ref.x_scale) << "tau " << k.tau << " dt " << k.dt;
@@ -217,27 +217,27 @@ TEST(InclusionStep, HandComputedColoredStep) {
     }
 }
 
-TEST(InclusionStep, StickingStepGivesExactlyZero) {
+TEST(ResolventStep, StickingStepGivesExactlyZero) {
     ss::ModelParams p;
     const double dt = 1e-3;
-    const ss::InclusionConstants c = ss::make_inclusion_constants(p, with_dt(dt));
+    const ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(dt));
     // At rest with X inside the band and no kick: |f| = h |bias + a xbar| < h friction.
     double x_next, f;
-    ss::inclusion_colored_step(c, 0.0, 0.0, 0.0, 0.0, x_next, f);
+    ss::resolvent_colored_step(c, 0.0, 0.0, 0.0, 0.0, x_next, f);
     EXPECT_EQ(x_next, 0.0);
     EXPECT_NEAR(f, dt * p.bias, 1e-18);
     EXPECT_EQ(ss::soft_threshold(f, c.h_friction), 0.0);
     // Just above x*: the mean of X over the step still exceeds x* when X starts well above it,
     // and the object leaves with velocity f - h friction > 0.
-    ss::inclusion_colored_step(c, c.x_up + 1.0, 0.0, 0.0, 0.0, x_next, f);
+    ss::resolvent_colored_step(c, c.x_up + 1.0, 0.0, 0.0, 0.0, x_next, f);
     EXPECT_GT(ss::soft_threshold(f, c.h_friction), 0.0);
     EXPECT_EQ(ss::soft_threshold(f, c.h_friction), f - c.h_friction);
 }
 
-TEST(InclusionStep, BridgeCrossingProbability) {
+TEST(ResolventStep, BridgeCrossingProbability) {
     ss::ModelParams p;
     for (double dt : {1e-4, 1e-3}) {
-        const ss::InclusionConstants c = ss::make_inclusion_constants(p, with_dt(dt));
+        const ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(dt));
         const double level = c.x_down;
         for (double d0 : {1e-4, 1e-3, 0.01, 0.05}) {
             for (double d1 : {0.0, 1e-3, 0.02}) {
@@ -277,13 +277,13 @@ struct ScriptedNormals {
 };
 } // namespace
 
-TEST(InclusionStep, TrajectoryIsTheLeftPointSumOfSteps) {
+TEST(ResolventStep, TrajectoryIsTheLeftPointSumOfSteps) {
     ss::ModelParams p;
     const double dt = 1e-3;
-    const ss::InclusionConstants c = ss::make_inclusion_constants(p, with_dt(dt));
+    const ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(dt));
     ScriptedNormals rng{{{3.0, 0.5}, {2.5, -1.0}, {-0.3, 0.2}, {-4.0, 1.0}, {0.1, 0.1}}};
     const double x0 = 2.8, v0 = 0.1;
-    const ss::ExcursionOutcome o = ss::inclusion_trajectory(c, x0, v0, 5, rng);
+    const ss::ExcursionOutcome o = ss::resolvent_trajectory(c, x0, v0, 5, rng);
     // Manual recursion with the hand formulas (50 digits): U = h * (V_0 + ... + V_4).
     double x = x0, v = v0, u = 0.0;
     for (const auto& z : rng.z) {

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The interleaved inclusion kernel (inclusion_lanes.hpp) against the
+// The interleaved inclusion kernel (resolvent_lanes.hpp) against the
 // one-excursion kernel: every outcome must be bitwise the same, for both stop
 // rules, white noise, capped excursions, partial lane groups and any first
 // index; and the cancel flag must stop it. On machines without AVX-512 the
 // public function runs the one-excursion kernel itself, so the lanes are also
-// run forced (detail::inclusion_long_excursions_in_lanes) on every machine.
+// run forced (detail::resolvent_long_excursions_in_lanes) on every machine.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -39,10 +39,10 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 // Runs `count` excursions from `first` by the public entry point, by the lanes
 // forced on (so that the lane code is checked on machines without AVX-512,
 // where it is not the default), and one at a time; counts the differences.
-int mismatches(const ss::InclusionConstants& c, std::uint64_t first, std::uint64_t count, int* capped = nullptr) {
+int mismatches(const ss::ResolventConstants& c, std::uint64_t first, std::uint64_t count, int* capped = nullptr) {
     std::vector<ss::ExcursionOutcome> lanes(count), forced(count);
-    EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, first, count, lanes.data()));
-    EXPECT_TRUE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, first, count, forced.data()));
+    EXPECT_TRUE(ss::resolvent_long_excursions(c, kSeed, first, count, lanes.data()));
+    EXPECT_TRUE(ss::detail::resolvent_long_excursions_in_lanes(c, kSeed, first, count, forced.data()));
     int bad = 0;
     for (std::uint64_t i = 0; i < count; ++i) {
         const bool same = same_bits(lanes[i].displacement, forced[i].displacement) &&
@@ -54,7 +54,7 @@ int mismatches(const ss::InclusionConstants& c, std::uint64_t first, std::uint64
     }
     for (std::uint64_t i = 0; i < count; ++i) {
         ss::CounterRng rng(kSeed, ss::StreamPurpose::LongExcursion, first + i);
-        const ss::ExcursionOutcome o = ss::inclusion_long_excursion(c, rng);
+        const ss::ExcursionOutcome o = ss::resolvent_long_excursion(c, rng);
         const ss::ExcursionOutcome& l = lanes[i];
         const bool same = same_bits(o.displacement, l.displacement) && same_bits(o.duration, l.duration) &&
                           same_bits(o.first_half, l.first_half) && o.work == l.work && o.capped == l.capped;
@@ -69,44 +69,44 @@ int mismatches(const ss::InclusionConstants& c, std::uint64_t first, std::uint64
     return bad;
 }
 
-ss::InclusionConstants constants(const ss::ModelParams& p, double dt, ss::StopRule rule,
+ss::ResolventConstants constants(const ss::ModelParams& p, double dt, ss::StopRule rule,
                                  std::uint64_t max_steps = 200'000'000) {
     ss::EngineSettings s = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     s.engine = ss::Engine::Inclusion;
     s.dt = dt;
     s.stop_rule = rule;
     s.max_work_per_excursion = max_steps;
-    return ss::make_inclusion_constants(p, s);
+    return ss::make_resolvent_constants(p, s);
 }
 
 } // namespace
 
-TEST(InclusionLanes, BitwiseEqualToOneAtATimeBridgeRule) {
+TEST(ResolventLanes, BitwiseEqualToOneAtATimeBridgeRule) {
     EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge), 0, 100), 0);
 }
 
-TEST(InclusionLanes, BitwiseEqualToOneAtATimeStuckRule) {
+TEST(ResolventLanes, BitwiseEqualToOneAtATimeStuckRule) {
     EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Stuck), 0, 100), 0);
 }
 
-TEST(InclusionLanes, BitwiseEqualWithoutViscousDragAndAtLargeIndices) {
+TEST(ResolventLanes, BitwiseEqualWithoutViscousDragAndAtLargeIndices) {
     const std::uint64_t first = (std::uint64_t{1} << 40) + 3;
     EXPECT_EQ(mismatches(constants(dry_params(), 1e-3, ss::StopRule::Bridge), first, 77), 0);
     EXPECT_EQ(mismatches(constants(dry_params(), 2e-2, ss::StopRule::Stuck), first, 77), 0);
 }
 
-TEST(InclusionLanes, WhiteNoiseRunsTheOneExcursionKernel) {
+TEST(ResolventLanes, WhiteNoiseRunsTheOneExcursionKernel) {
     ss::ModelParams p = dry_params();
     p.tau = 0.0;
     EXPECT_EQ(mismatches(constants(p, 1e-3, ss::StopRule::Auto), 5, 40), 0);
 }
 
-TEST(InclusionLanes, PartialGroupsAndEmptyRuns) {
+TEST(ResolventLanes, PartialGroupsAndEmptyRuns) {
     const auto c = constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge);
     for (std::uint64_t n : {0u, 1u, 7u, 8u, 9u, 17u}) EXPECT_EQ(mismatches(c, 1000, n), 0) << n << " excursions";
 }
 
-TEST(InclusionLanes, CappedExcursionsMatchToo) {
+TEST(ResolventLanes, CappedExcursionsMatchToo) {
     // A cap below the median length: many excursions end capped, some in their first half.
     int capped = 0;
     EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge, 4000), 0, 64, &capped), 0);
@@ -114,26 +114,26 @@ TEST(InclusionLanes, CappedExcursionsMatchToo) {
     EXPECT_LT(capped, 64);
 }
 
-TEST(InclusionLanes, CancelStopsStartingExcursions) {
+TEST(ResolventLanes, CancelStopsStartingExcursions) {
     const auto c = constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge);
     std::atomic<bool> cancel{true};
     std::vector<ss::ExcursionOutcome> out(64);
-    EXPECT_FALSE(ss::inclusion_long_excursions(c, kSeed, 0, out.size(), out.data(), &cancel));
-    EXPECT_FALSE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, 0, out.size(), out.data(), &cancel));
+    EXPECT_FALSE(ss::resolvent_long_excursions(c, kSeed, 0, out.size(), out.data(), &cancel));
+    EXPECT_FALSE(ss::detail::resolvent_long_excursions_in_lanes(c, kSeed, 0, out.size(), out.data(), &cancel));
     cancel = false;
-    EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, 0, 3, out.data(), &cancel));
-    EXPECT_TRUE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, 0, 3, out.data(), &cancel));
+    EXPECT_TRUE(ss::resolvent_long_excursions(c, kSeed, 0, 3, out.data(), &cancel));
+    EXPECT_TRUE(ss::detail::resolvent_long_excursions_in_lanes(c, kSeed, 0, 3, out.data(), &cancel));
 }
 
-TEST(InclusionLanes, NothingToStartMeansNothingCancelled) {
+TEST(ResolventLanes, NothingToStartMeansNothingCancelled) {
     // Both kernels agree that a run with nothing left to start is complete.
     const auto c = constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge);
     std::atomic<bool> cancel{true};
-    EXPECT_TRUE(ss::inclusion_long_excursions(c, kSeed, 0, 0, nullptr, &cancel));
-    EXPECT_TRUE(ss::detail::inclusion_long_excursions_in_lanes(c, kSeed, 0, 0, nullptr, &cancel));
+    EXPECT_TRUE(ss::resolvent_long_excursions(c, kSeed, 0, 0, nullptr, &cancel));
+    EXPECT_TRUE(ss::detail::resolvent_long_excursions_in_lanes(c, kSeed, 0, 0, nullptr, &cancel));
 }
 
-TEST(InclusionLanes, ReportsItsKernel) {
-    const std::string name = ss::inclusion_kernel_name();
-    EXPECT_EQ(name, ss::inclusion_lanes_vectorised() ? "8 SIMD lanes (AVX-512)" : "one excursion at a time");
+TEST(ResolventLanes, ReportsItsKernel) {
+    const std::string name = ss::resolvent_kernel_name();
+    EXPECT_EQ(name, ss::resolvent_lanes_vectorised() ? "8 SIMD lanes (AVX-512)" : "one excursion at a time");
 }

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// stickslip/errors.hpp -- what the library throws, in one place.
+//
+// Every failure a user can meet is one of four kinds, and each front end maps
+// a kind to one behaviour: bad input (InvalidParameter: exit status 2, Python
+// ValueError subclass), a run that finished but cannot be believed
+// (UntrustworthyResult, CappedExcursions: exit status 3), a run cancelled
+// (RunCancelled: nothing returned) and a run stopped before it had anything to
+// report (RunInterrupted). Kept apart from the requests so that the driver and
+// the kernels' callers can throw them without including every request.
+#pragma once
+
+/// \file
+/// The exceptions of the library. The comment at the top of this header
+/// explains the design.
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace stickslip {
+
+/// Thrown for invalid input. `parameter()` is the name of the offending
+/// parameter as spelled on the command line (e.g. "friction", "dt").
+class InvalidParameter : public std::invalid_argument {
+public:
+    /// `parameter`: the setting's name ("friction"); `message`: the whole
+    /// sentence a user reads (what()), which front ends prefix with --parameter.
+    InvalidParameter(std::string parameter, const std::string& message)
+        : std::invalid_argument(message), parameter_(std::move(parameter)) {}
+    /// The offending setting's name, as SettingInfo::name spells it.
+    const std::string& parameter() const noexcept { return parameter_; }
+
+private:
+    std::string parameter_;
+};
+
+/// Thrown when a run was cancelled: RunControl::progress returned false or
+/// RunControl::cancel was set. Nothing of the run is returned (compare
+/// RunControl::stop, which returns what is done).
+struct RunCancelled : std::runtime_error {
+    RunCancelled() : std::runtime_error("run cancelled") {}
+};
+
+/// Thrown when a run was stopped (RunControl::stop) before it had anything to
+/// report (fewer than two samples, or during a pilot run).
+struct RunInterrupted : std::runtime_error {
+    RunInterrupted() : std::runtime_error("interrupted before any result") {}
+};
+
+/// Thrown when a run finished but its numbers cannot be believed: every
+/// excursion ended within its first step (the estimates would be 0/0), or an
+/// estimate is not a finite number. The message says why and what to change.
+/// The command exits with status 3 on it; Python raises
+/// UntrustworthyResultError.
+struct UntrustworthyResult : std::runtime_error {
+    /// `m`: the message for the user.
+    explicit UntrustworthyResult(const std::string& m) : std::runtime_error(m) {}
+};
+
+/// Thrown when excursions hit the runaway guard and the request does not
+/// allow it, or fewer than 2 completed: an untrustworthy result of one kind.
+struct CappedExcursions : UntrustworthyResult {
+    /// `m`: the message for the user (how many were capped, what to do).
+    explicit CappedExcursions(const std::string& m) : UntrustworthyResult(m) {}
+};
+
+} // namespace stickslip
