@@ -16,6 +16,7 @@
 /// The settings every run shares and the engine prepared for a run. The comment
 /// at the top of this header explains the design.
 
+#include <concepts>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -125,9 +126,13 @@ Scheme auto_scheme(const ModelParams& p, PathUse use);
 /// Every run resolves its settings so, first; resolving again changes nothing.
 EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, PathUse use = PathUse::Events);
 
+/// A request of the library: its settings are a RunSettings plus its own.
+template <class R>
+concept Request = std::derived_from<R, RunSettings>;
+
 /// A request (any RunSettings) with its engine settings resolved so.
-template <class Request>
-Request with_resolved_engine(Request r, PathUse use = PathUse::Events) {
+template <Request R>
+R with_resolved_engine(R r, PathUse use = PathUse::Events) {
     r.engine = resolve_engine_settings(r.params, r.engine, use);
     return r;
 }

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <concepts>
 #include <exception>
 #include <mutex>
 #include <optional>
@@ -78,6 +79,18 @@ private:
     std::atomic<std::uint64_t> next_{0};
 };
 
+/// What a run's total of an observable must offer: merging another total
+/// exactly (any order, any process, the same bits) and its state as words of
+/// ExactSum, for the all-reduce and the checkpoint. (Adding a block,
+/// add_block(const Block&), depends on the block type.)
+template <class T>
+concept BlockTotal = requires(T& t, const T& other, std::uint64_t* w) {
+    t.merge(other);
+    { other.words() } -> std::convertible_to<std::size_t>;
+    other.to_words(w);
+    t.assign_words(w);
+};
+
 /// Sums of (U, t), of the observable, and the integer counts, as one unit.
 template <class Total>
 struct RoundSums {
@@ -111,7 +124,7 @@ inline std::uint64_t block_count(std::uint64_t n) { return (n + block_size - 1) 
 /// Block&) -> bool (false: cancelled, out incomplete), which fills a block of
 /// outcomes at once. `total` (empty on entry) receives the exact sum of every
 /// block.
-template <class Block, class Total, class MakeBlock, class Sample>
+template <class Block, BlockTotal Total, class MakeBlock, class Sample>
 RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeBlock make_block, Sample sample, Total& total) {
     using clock = std::chrono::steady_clock;
     if (ctl.ranks > 1 && (!ctl.reduce || ctl.rank >= ctl.ranks))

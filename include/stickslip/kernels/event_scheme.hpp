@@ -61,6 +61,7 @@
 /// the design.
 
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 
 #include "stickslip/config.hpp"
@@ -197,6 +198,11 @@ struct EventPiece {
     double x0, v0, u0, x1, v1, u1;
     /// @}
 };
+
+/// What observes an event-scheme path: observe(piece) for every piece
+/// between two events or step ends.
+template <class O>
+concept PieceObserver = std::invocable<O&, const EventPiece&>;
 
 /// Observer that ignores the path (the default of the long-excursion kernel).
 struct NoPieceObserver {
@@ -841,7 +847,7 @@ STICKSLIP_HD inline EventStatus event_step(const EventConstants& c, EventWalk& w
 
 /// One long excursion (+HLE then -HLE) of the event scheme; `observe` sees
 /// every piece of it.
-template <class Rng, class RefRng, class Observer = NoPieceObserver>
+template <class Rng, class RefRng, PieceObserver Observer = NoPieceObserver>
 STICKSLIP_HD inline ExcursionOutcome event_long_excursion(const EventConstants& c, Rng& rng, RefRng& ref,
                                                           Observer&& observe = Observer{}) {
     EventWalk w;

@@ -18,6 +18,7 @@
 /// kernels. The comment at the top of this header explains the design.
 
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 #include <limits>
 
@@ -154,6 +155,11 @@ STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& r
     return true;
 }
 
+/// What observes a PDMP path: observe(start state, start time [s], start
+/// displacement [m], duration [s]) for every segment between two events.
+template <class O>
+concept SegmentObserver = std::invocable<O&, const PdmpState&, double, double, double>;
+
 /// Observer that ignores the path (the default; compiled away).
 struct NoSegmentObserver {
     /// Does nothing with the segment (start state, start time [s], start
@@ -170,7 +176,7 @@ struct NoSegmentObserver {
 /// state at its start, its start time [s], the displacement there [m] and its
 /// length [s]; inside it X and the mode are constant and V, U follow pdmp_flow
 /// from `start`.
-template <class Rng, class Observer = NoSegmentObserver>
+template <class Rng, SegmentObserver Observer = NoSegmentObserver>
 STICKSLIP_HD inline bool pdmp_half(const PdmpConstants& c, int dir, Rng& rng, double& time,
                                    double& disp, std::uint64_t& events, Observer&& observe = Observer{}) {
     const double inf = std::numeric_limits<double>::infinity();
@@ -188,7 +194,7 @@ STICKSLIP_HD inline bool pdmp_half(const PdmpConstants& c, int dir, Rng& rng, do
 }
 
 /// One long excursion (+HLE then -HLE) of the PDMP engine.
-template <class Rng, class Observer = NoSegmentObserver>
+template <class Rng, SegmentObserver Observer = NoSegmentObserver>
 STICKSLIP_HD inline ExcursionOutcome pdmp_long_excursion(const PdmpConstants& c, Rng& rng,
                                                          Observer&& observe = Observer{}) {
     double time = 0.0, disp = 0.0, first = 0.0;
@@ -222,7 +228,7 @@ STICKSLIP_HD inline PdmpState pdmp_initial_state(const PdmpConstants& c, double 
 /// Path on [0, horizon] from state s (Algorithm 2, with the displacement over
 /// each inter-event interval); `observe` sees every flow segment, the last one
 /// cut at the horizon. Returns U(horizon); s holds the final state.
-template <class Rng, class Observer = NoSegmentObserver>
+template <class Rng, SegmentObserver Observer = NoSegmentObserver>
 STICKSLIP_HD inline ExcursionOutcome pdmp_path(const PdmpConstants& c, PdmpState& s, double horizon, Rng& rng,
                                                Observer&& observe = Observer{}) {
     double time = 0.0, disp = 0.0;

@@ -21,6 +21,7 @@
 /// per-step kernels. The comment at the top of this header explains the design.
 
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 #include <type_traits>
 
@@ -119,6 +120,11 @@ struct NoPathObserver {
     /// Does nothing with the state (x [s^-1/2], v [m/s]).
     STICKSLIP_HD void operator()(double /*x*/, double /*v*/) const {}
 };
+
+/// What observes a resolvent path: observe(x [s^-1/2], v [m/s]) at the start
+/// of every applied step.
+template <class O>
+concept StepObserver = std::invocable<O&, double, double>;
 
 /// A long excursion of the inclusion engine between two steps. The kernels
 /// advance it one step at a time (resolvent_walk_step_as), so the same step serves
@@ -258,7 +264,7 @@ STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion_as(const Resolvent
 
 /// One long excursion (+HLE then -HLE) of the inclusion engine; `observe(x, v)`
 /// sees every applied step (x = 0 for white noise).
-template <class Rng, class Observer = NoPathObserver>
+template <class Rng, StepObserver Observer = NoPathObserver>
 STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion(const ResolventConstants& c, Rng& rng,
                                                               Observer&& observe = Observer{}) {
     return with_step_kind(c, [&](auto kind) { return resolvent_long_excursion_as<kind.value>(c, rng, observe); });
@@ -269,7 +275,7 @@ STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion(const ResolventCon
 /// Returns U(nsteps*h).
 /// `observe(x, v)` sees the state at the start of each of the nsteps steps;
 /// on return x0 and v0 hold the final state, so a path can be continued.
-template <class Rng, class Observer = NoPathObserver>
+template <class Rng, StepObserver Observer = NoPathObserver>
 STICKSLIP_HD inline ExcursionOutcome resolvent_path(const ResolventConstants& c, double& x0, double& v0,
                                                     std::uint64_t nsteps, Rng& rng,
                                                     Observer&& observe = Observer{}) {

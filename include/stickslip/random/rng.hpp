@@ -36,6 +36,7 @@
 /// the design.
 
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 
 #include <Random123/philox.h>
@@ -260,5 +261,23 @@ private:
     Philox::key_type key_;
     Philox::ctr_type ctr_;
 };
+
+/// @name The stream protocols
+/// What a kernel asks of its random stream: the PDMP engine uniforms only
+/// (UniformStream), the time-stepping schemes pairs of normals too
+/// (GaussianStream). CounterRng and the batched streams of rng_batch.hpp
+/// model them; any stream that does must give the same numbers for the same
+/// (seed, purpose, index), whoever draws them.
+/// @{
+template <class R>
+concept UniformStream = requires(R& r) {
+    { r.uniform() } -> std::same_as<double>;
+};
+template <class R>
+concept GaussianStream = UniformStream<R> && requires(R& r) {
+    { r.normal2() } -> std::same_as<NormalPair>;
+};
+/// @}
+static_assert(GaussianStream<CounterRng>);
 
 } // namespace stickslip

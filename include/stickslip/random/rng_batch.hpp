@@ -178,4 +178,6 @@ using BatchedUniformRng = BatchedStream<false>;
 extern template class BatchedStream<true>;
 extern template class BatchedStream<false>;
 
+static_assert(GaussianStream<BatchedCounterRng> && UniformStream<BatchedUniformRng>);
+
 } // namespace stickslip
