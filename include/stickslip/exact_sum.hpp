@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// stickslip/exact_sum.hpp -- kept so that code written against stickslip 0.3 still
-// compiles: the header moved to stickslip/stats/exact_sum.hpp (the tree by layer,
-// ARCHITECTURE.md). New code includes the new path.
+// stickslip/exact_sum.hpp -- kept so that code written before the tree by layer
+// (ARCHITECTURE.md) still compiles: the header moved to stickslip/stats/exact_sum.hpp.
+// New code includes the new path.
 #pragma once
 
 /// \file

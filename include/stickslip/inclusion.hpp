@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// stickslip/inclusion.hpp -- kept so that code written against stickslip 0.3 still
-// compiles: the header moved to stickslip/kernels/resolvent.hpp (the tree by layer,
-// ARCHITECTURE.md). New code includes the new path.
+// stickslip/inclusion.hpp -- kept so that code written before the tree by layer
+// (ARCHITECTURE.md) still compiles: the header moved to stickslip/kernels/resolvent.hpp.
+// New code includes the new path.
 #pragma once
 
 /// \file
@@ -10,6 +10,6 @@
 #include "stickslip/kernels/resolvent.hpp"
 
 namespace stickslip {
-/// The resolvent scheme's constants under their name of stickslip 0.3.
+/// The resolvent scheme's constants under their name before the scheme was named resolvent.
 using InclusionConstants = ResolventConstants;
 } // namespace stickslip

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// stickslip/moment_sums.hpp -- kept so that code written against stickslip 0.3 still
-// compiles: the header moved to stickslip/stats/moment_sums.hpp (the tree by layer,
-// ARCHITECTURE.md). New code includes the new path.
+// stickslip/moment_sums.hpp -- kept so that code written before the tree by layer
+// (ARCHITECTURE.md) still compiles: the header moved to stickslip/stats/moment_sums.hpp.
+// New code includes the new path.
 #pragma once
 
 /// \file

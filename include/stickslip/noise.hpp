@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// stickslip/noise.hpp -- kept so that code written against stickslip 0.3 still
-// compiles: the header moved to stickslip/kernels/noise.hpp (the tree by layer,
-// ARCHITECTURE.md). New code includes the new path.
+// stickslip/noise.hpp -- kept so that code written before the tree by layer
+// (ARCHITECTURE.md) still compiles: the header moved to stickslip/kernels/noise.hpp.
+// New code includes the new path.
 #pragma once
 
 /// \file

@@ -348,17 +348,17 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req);
 /// The bins actually used for a request (resolves automatic ranges).
 VelocityBins resolve_bins(const ModelParams& p, const VelocityBins& b);
 
-/// @name The names of stickslip 0.3
+/// @name The names before the requests were named after their commands
 /// The requests and results of `density` and `moments` under the names they
 /// had before they were named after their commands.
 /// @{
-using StationaryDensityRequest = DensityRequest; ///< DensityRequest under its 0.3 name
-using StationaryDensityResult = DensityResult;   ///< DensityResult under its 0.3 name
-using TransientRequest = MomentsRequest;         ///< MomentsRequest under its 0.3 name
-using TransientResult = MomentsResult;           ///< MomentsResult under its 0.3 name
-/// compute_density under its 0.3 name.
+using StationaryDensityRequest = DensityRequest; ///< DensityRequest under its earlier name
+using StationaryDensityResult = DensityResult;   ///< DensityResult under its earlier name
+using TransientRequest = MomentsRequest;         ///< MomentsRequest under its earlier name
+using TransientResult = MomentsResult;           ///< MomentsResult under its earlier name
+/// compute_density under its earlier name.
 inline DensityResult compute_stationary_density(const DensityRequest& r) { return compute_density(r); }
-/// compute_moments under its 0.3 name.
+/// compute_moments under its earlier name.
 inline MomentsResult compute_transient(const MomentsRequest& r) { return compute_moments(r); }
 /// @}
 

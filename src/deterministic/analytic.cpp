@@ -67,6 +67,7 @@
 
 #include "core/format.hpp"
 #include "stickslip/number_text.hpp"
+#include "stickslip/stats/double_double.hpp"
 
 namespace stickslip {
 
@@ -81,21 +82,12 @@ constexpr Real kFarMode = 80;     // phi(0) from which the density is the viscou
 
 // ---- Double-double numbers: the mode, exact to ~2^-104 --------------------------
 
-struct Exact {
-    double hi = 0, lo = 0; // value hi + lo, |lo| <= ulp(hi)/2
-};
-
-Exact two_sum(double a, double b) {
-    const double s = a + b, bb = s - a;
-    return {s, (a - (s - bb)) + (b - bb)};
-}
+// The one double-double arithmetic (stats/double_double.hpp).
+using Exact = detail::dd::DD;
+using detail::dd::two_sum;
 
 /// t (x.hi + x.lo), to ~2^-104 relative.
-Exact times(double t, Exact x) {
-    const double p = t * x.hi, e = std::fma(t, x.hi, -p) + t * x.lo;
-    const double s = p + e;
-    return {s, e - (s - p)};
-}
+Exact times(double t, Exact x) { return detail::dd::mul(x, t); }
 
 Real value(Exact x) { return static_cast<Real>(x.hi) + x.lo; }
 

@@ -4,49 +4,20 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <stdexcept>
 
+#include "stickslip/stats/double_double.hpp"
+
 namespace stickslip {
 
 namespace {
 
 using Big = boost::multiprecision::cpp_bin_float_50;
 
-// ---- double-double arithmetic (error-free transformations; no fused
-// multiply-add, so the bits are the same on every machine) ---------------------
-
-struct DD {
-    double hi, lo;
-};
-
-DD quick_two_sum(double a, double b) {
-    const double s = a + b;
-    return {s, b - (s - a)};
-}
-
-void split(double a, double& hi, double& lo) {
-    const double c = 134217729.0 * a; // 2^27 + 1
-    hi = c - (c - a);
-    lo = a - hi;
-}
-
-DD two_prod(double a, double b) {
-    const double p = a * b;
-    double ah, al, bh, bl;
-    split(a, ah, al);
-    split(b, bh, bl);
-    return {p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
-}
-
-DD mul(const DD& x, double y) {
-    DD p = two_prod(x.hi, y);
-    p.lo += x.lo * y;
-    return quick_two_sum(p.hi, p.lo);
-}
-
-DD mul(const DD& x, const DD& y) {
-    DD p = two_prod(x.hi, y.hi);
-    p.lo += x.hi * y.lo + x.lo * y.hi;
-    return quick_two_sum(p.hi, p.lo);
-}
+// Double-double arithmetic (stats/double_double.hpp): error-free
+// transformations without fused multiply-add, so the bits are the same on
+// every machine.
+using detail::dd::DD;
+using detail::dd::mul;
+using detail::dd::two_prod;
 
 void add(ExactSum& s, const DD& x) {
     s.add(x.hi);

@@ -61,6 +61,7 @@
 #include <cstring>
 
 #include "stickslip/config.hpp"
+#include "stickslip/stats/double_double.hpp"
 
 /// Keeps a function out of line: the portable functions are on rare paths,
 /// and inlined they would crowd the hot loops that call them (registers on a
@@ -77,10 +78,7 @@ namespace stickslip {
 
 namespace detail::pm {
 
-/// An unevaluated sum hi + lo with |lo| <= ulp(hi) / 2.
-struct DD {
-    double hi, lo;
-};
+using namespace detail::dd; // the one double-double arithmetic (stats/double_double.hpp)
 
 /// The bits of a double.
 STICKSLIP_HD inline std::uint64_t bits_of(double x) {
@@ -100,71 +98,6 @@ STICKSLIP_HD inline double from_bits(std::uint64_t u) {
 STICKSLIP_HD inline double pow2(int n) {
     if (n >= -1022) return from_bits(static_cast<std::uint64_t>(n + 1023) << 52);
     return from_bits(std::uint64_t{1} << (n + 1074));
-}
-
-/// s + e = a + b exactly (Knuth).
-STICKSLIP_HD inline DD two_sum(double a, double b) {
-    const double s = a + b;
-    const double bb = s - a;
-    return {s, (a - (s - bb)) + (b - bb)};
-}
-
-/// s + e = a + b exactly, for |a| >= |b| or a == 0 (Dekker).
-STICKSLIP_HD inline DD fast_two_sum(double a, double b) {
-    const double s = a + b;
-    return {s, b - (s - a)};
-}
-
-/// a = hi + lo with hi and lo of 26 significant bits (Veltkamp; |a| < 2^995).
-STICKSLIP_HD inline DD split(double a) {
-    const double c = 134217729.0 * a; // 2^27 + 1
-    const double hi = c - (c - a);
-    return {hi, a - hi};
-}
-
-/// p + e = a * b exactly, without a fused multiply-add (Dekker).
-STICKSLIP_HD inline DD two_prod(double a, double b) {
-    const double p = a * b;
-    const DD x = split(a), y = split(b);
-    const double e = ((x.hi * y.hi - p) + x.hi * y.lo + x.lo * y.hi) + x.lo * y.lo;
-    return {p, e};
-}
-
-STICKSLIP_HD inline DD add(DD a, DD b) {
-    DD s = two_sum(a.hi, b.hi);
-    const DD t = two_sum(a.lo, b.lo);
-    s.lo += t.hi;
-    s = fast_two_sum(s.hi, s.lo);
-    s.lo += t.lo;
-    return fast_two_sum(s.hi, s.lo);
-}
-
-STICKSLIP_HD inline DD add(DD a, double b) {
-    DD s = two_sum(a.hi, b);
-    s.lo += a.lo;
-    return fast_two_sum(s.hi, s.lo);
-}
-
-STICKSLIP_HD inline DD mul(DD a, DD b) {
-    DD p = two_prod(a.hi, b.hi);
-    p.lo += a.hi * b.lo + a.lo * b.hi;
-    return fast_two_sum(p.hi, p.lo);
-}
-
-STICKSLIP_HD inline DD mul(DD a, double b) {
-    DD p = two_prod(a.hi, b);
-    p.lo += a.lo * b;
-    return fast_two_sum(p.hi, p.lo);
-}
-
-/// a / b, three quotient digits.
-STICKSLIP_HD inline DD div(DD a, DD b) {
-    const double q1 = a.hi / b.hi;
-    DD r = add(a, mul(b, -q1));
-    const double q2 = r.hi / b.hi;
-    r = add(r, mul(b, -q2));
-    const double q3 = r.hi / b.hi;
-    return add(fast_two_sum(q1, q2), q3);
 }
 
 /// ln 2 = ln2_hi + ln2_lo + O(2^-110).
