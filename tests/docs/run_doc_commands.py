@@ -27,10 +27,15 @@ Fenced blocks, by their language:
   `bash -o pipefail -c`; it must exit 0.
 * ```console: the lines that start with "$ " are the commands; the other lines
   are what the command prints. Every shown line must appear in the actual
-  output (stdout and stderr together), compared with every number replaced
-  by "#" and runs of blanks collapsed (numbers change with the seed, the sizes
-  and the machine; the layout, the words and the notes may not); "..." stands
-  for lines left out.
+  output (stdout and stderr together): first with every number replaced by
+  "#" and runs of blanks collapsed (the layout, the words and the notes),
+  then number by number: every number exactly as shown (the runs are seeded,
+  so the same build prints the same digits), except wall times and rates,
+  which may differ by a factor of TIMING_FACTOR (20) either way, thread
+  counts, and revision hashes. A block shrunk by a --flag directive (or
+  marked "numbers unchecked") is compared without its numbers. "..." stands
+  for lines left out. --update rewrites the shown lines whose words match
+  but numbers differ with what was printed (review the diff).
 * ```python: the block is one script, run by this interpreter; it must exit 0.
 * any other language (cmake, cpp, toml, json, text): must carry a directive,
   `test: file PATH` (written to PATH in the work folder, for a later command
@@ -52,6 +57,9 @@ allowed; GitHub does not render it) tells the test what to do with it:
             replace the text OLD by NEW in the block (OLD must occur)
         exit N
             every command of the block must exit with status N (a refusal)
+        numbers unchecked
+            a console block whose words are compared but not its numbers
+            (they depend on the machine: a timing table, a benchmark)
         output unchecked
             a console block whose shown output is not compared (it depends
             on the size the test shrank away, or on the machine)
@@ -144,12 +152,14 @@ def parse_blocks(path, name):
 def apply_directives(block):
     """(text, options) with the shrinking directives applied."""
     text = block.text
-    opts = {"exit": 0, "check_output": True, "needs": [], "file": None, "timeout": DEFAULT_TIMEOUT}
+    opts = {"exit": 0, "check_output": True, "needs": [], "file": None, "timeout": DEFAULT_TIMEOUT,
+            "exact_numbers": True}
     for d in block.directives:
         if d.startswith("--"):
             toks = shlex.split(d)
             if len(toks) % 2:
                 raise DocError(f"{block.where}: '{d}': flags and values must come in pairs")
+            opts["exact_numbers"] = False  # a shrunk run prints other numbers than the one shown
             for flag, value in zip(toks[0::2], toks[1::2]):
                 pat = re.compile(r"(?<![\w-])(" + re.escape(flag) + r")(=|\s+)(\S+)")
                 text, n = pat.subn(lambda m, v=value: m.group(1) + m.group(2) + v, text)
@@ -164,6 +174,8 @@ def apply_directives(block):
             text = text.replace(toks[0], toks[1])
         elif re.fullmatch(r"exit \d+", d):
             opts["exit"] = int(d.split()[1])
+        elif d == "numbers unchecked":
+            opts["exact_numbers"] = False
         elif d == "output unchecked":
             opts["check_output"] = False
         elif d.startswith("needs "):
@@ -223,17 +235,100 @@ def normalise(line):
     return " ".join(s.split())
 
 
-def missing_lines(shown, actual):
-    """Shown lines (normalised) that do not appear in the actual output."""
-    have = {normalise(l) for l in actual.split("\n")}
+# Numbers that depend on the machine, not on the program: compared within
+# TIMING_FACTOR (a wall time, a rate), or not at all (a thread count, a
+# revision hash). Every other number must be printed exactly as shown.
+TIMING_FACTOR = 20.0
+MACHINE_NUMBER = [
+    re.compile(r"^\s*threads?\b"),                      # "2 threads": the machine's cores
+]
+TIMING_AFTER = re.compile(r"^\s*(?:s|ms|min|h)\b(?:\s+on\b|\)|,|\s+left|\s*$|\s+\(|\s+elapsed)")
+TIMING_KEY = re.compile(r'"(?:seconds|threads|threads_from|revision|version)"\s*:')
+HEXISH = re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}\b")
+
+
+def number_spans(line):
+    return [(m.start(), m.end(), m.group(0)) for m in NUMBER.finditer(line)]
+
+
+def numbers_agree(shown, actual):
+    """Whether two lines with the same normalised form print the same numbers,
+    timings within TIMING_FACTOR and machine-dependent counts aside."""
+    if HEXISH.search(shown) or TIMING_KEY.search(shown):
+        shown, actual = HEXISH.sub("h", shown), HEXISH.sub("h", actual)
+        if TIMING_KEY.search(shown):
+            return True
+    a, b = number_spans(shown), number_spans(actual)
+    if len(a) != len(b):
+        return False
+    for (s0, s1, x), (_, _, y) in zip(a, b):
+        if x == y:
+            continue
+        rest = shown[s1:]
+        if any(p.search(rest) for p in MACHINE_NUMBER):
+            continue
+        if TIMING_AFTER.search(rest):
+            try:
+                fx, fy = float(x), float(y)
+            except ValueError:
+                return False
+            if fx > 0 and fy > 0 and 1 / TIMING_FACTOR <= fy / fx <= TIMING_FACTOR:
+                continue
+            if fx == fy == 0:
+                continue
+        return False
+    return True
+
+
+def missing_lines(shown, actual, exact_numbers=True):
+    """Shown lines that do not appear in the actual output: compared with
+    every number replaced (the words, the layout and the notes), then, with
+    exact_numbers, number by number (numbers_agree)."""
+    have = {}
+    for l in actual.split("\n"):
+        have.setdefault(normalise(l), []).append(l)
     out = []
     for l in shown:
         n = normalise(l)
         if not n or n == "...":
             continue
-        if n not in have:
+        if n not in have or (exact_numbers and not any(numbers_agree(l, a) for a in have[n])):
             out.append(l)
     return out
+
+
+def updated_lines(shown, actual):
+    """The shown lines with each replaced by the actual line of the same
+    normalised form (for --update): the first not yet used, in order."""
+    pool = {}
+    for l in actual.split("\n"):
+        pool.setdefault(normalise(l), []).append(l)
+    out = []
+    for l in shown:
+        n = normalise(l)
+        if n and n != "..." and pool.get(n):
+            out.append(pool[n].pop(0))
+        else:
+            out.append(l)
+    return out
+
+
+def write_updates(path, updates):
+    """Replaces, within each block's lines of the file, the first remaining
+    occurrence of each old shown line by the new one."""
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().split("\n")
+    done = set()
+    for b, old, new in updates:
+        end = b.line + len(b.text.split("\n"))
+        for i in range(b.line, min(end + 1, len(lines))):
+            if i not in done and lines[i].strip() == old.strip() and lines[i].endswith(old.rstrip()):
+                indent = lines[i][: len(lines[i]) - len(lines[i].lstrip())] if not old.startswith(" ") else ""
+                lines[i] = indent + new
+                done.add(i)
+                break
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines))
 
 
 def github_anchor(heading):
@@ -335,6 +430,9 @@ def main():
     ap.add_argument("--list", action="store_true", help="list the blocks and what would be done, run nothing")
     ap.add_argument("--only", help="DOC:LINE: run only that block (and the file blocks before it)")
     ap.add_argument("--keep", action="store_true", help="keep the work folders")
+    ap.add_argument("--update", action="store_true",
+                    help="rewrite the shown output of console blocks whose words match but numbers differ "
+                         "with what the program printed (regenerates stale examples; review the diff)")
     ap.add_argument("docs", nargs="*", help=f"Markdown files relative to --source (default: {' '.join(DEFAULT_DOCS)})")
     args = ap.parse_args()
     args.source = os.path.abspath(args.source)
@@ -352,6 +450,7 @@ def main():
     counts = {"blocks": 0, "commands": 0, "python": 0, "files": 0}
     start = time.monotonic()
     for name in docs:
+        updates = []  # (block, old line, new line) for --update
         try:
             blocks = parse_blocks(os.path.join(args.source, name), name)
         except DocError as e:
@@ -437,14 +536,22 @@ def main():
                     if rc != opts["exit"]:
                         bad = f"exit {rc}, expected {opts['exit']}"
                     elif b.lang == "console" and opts["check_output"]:
-                        miss = missing_lines(shown, out)
+                        miss = missing_lines(shown, out, exact_numbers=opts["exact_numbers"])
+                        if miss and args.update and opts["exact_numbers"]:
+                            for old, new in zip(shown, updated_lines(shown, out)):
+                                if old != new:
+                                    updates.append((b, old, new))
+                            miss = missing_lines(updated_lines(shown, out), out)
                         if miss:
-                            bad = "shown output not printed (numbers aside):\n" + "\n".join("      " + l for l in miss)
+                            bad = "shown output not printed:\n" + "\n".join("      " + l for l in miss)
                     if bad:
                         failures.append(f"{b.where}: $ {cmd}\n  {bad}\n  --- actual output (tail):\n{tail(out)}")
                         print(f"FAIL {b.where} $ {cmd}  ({dt:.1f} s): {bad.splitlines()[0]}")
                     else:
                         print(f"ok   {b.where} $ {cmd}  ({dt:.1f} s)")
+            if updates:
+                write_updates(os.path.join(args.source, name), updates)
+                print(f"updated {len(updates)} shown line(s) in {name}")
         finally:
             if args.keep:
                 print(f"work folder of {name}: {tmp}")
