@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "stickslip/stats/estimators.hpp"
+#include "stickslip/method.hpp"
 #include "stickslip/run.hpp"
 
 namespace stickslip {
@@ -48,15 +49,11 @@ void visit_settings(BruteForceRequest& r, Visitor&& v) {
 }
 
 /// What compute_bruteforce returns; report.hpp writes it.
-struct BruteForceResult {
+struct BruteForceResult : MethodResult {
     /// The request, as run.
     BruteForceRequest request;
-    /// The engine's resolved details.
-    ResolvedEngine resolved;
     /// D_t [m^2/s] and M0_t [m/s] with their intervals.
     BruteForceEstimates estimates;
-    /// The raw sums and counts of U(horizon) over the trajectories.
-    RunTotals totals;
     double start_noise = 0; ///< x0 actually used [s^-1/2]
     /// Notes for the user, one sentence each: always that D_t is biased by
     /// O(1/t); a step too coarse, the horizon rounded to whole steps, an

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "stickslip/errors.hpp"
+#include "stickslip/method.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
 
@@ -106,15 +107,11 @@ struct PrecisionOutcome {
 
 /// What compute_diffusivity returns; report.hpp writes it as JSON, a table
 /// or CSV.
-struct DiffusivityResult {
+struct DiffusivityResult : MethodResult {
     /// The request, as run.
     DiffusivityRequest request;
-    /// The engine's resolved details (stop rule, PDMP lattice, ...).
-    ResolvedEngine resolved;
     /// D [m^2/s], M0 [m/s] and E[t1] [s] with their intervals.
     LongExcursionEstimates estimates;
-    /// The raw sums and counts: completed and capped excursions, work, time.
-    RunTotals totals;
     /// How the precision-on-demand mode ended (target 0: it was off).
     PrecisionOutcome precision;
     /// Notes for the user, one sentence each: a step too coarse, fewer than

@@ -142,6 +142,9 @@ bool samples_at_steps(const EngineSettings& s);
 /// (tau = 0), whose V between events is a Brownian bridge that interpolation
 /// would flatten.
 bool samples_on_grid(const EngineSettings& s, double tau);
+/// Advice for a run whose step bias shows: " or --scheme event" where a
+/// coloured-noise run uses the first-order resolvent scheme, else "".
+std::string more_accurate_scheme_advice(const EngineSettings& s, double tau);
 /// @}
 
 /// Throws InvalidParameter for a non-positive or non-finite dt or grid, a

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/method.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
@@ -117,19 +118,15 @@ void visit_settings(DensityRequest& r, Visitor&& v) {
 }
 
 /// What compute_density returns; report.hpp writes it.
-struct DensityResult {
+struct DensityResult : MethodResult {
     /// The request, with the bins resolved (an automatic range replaced by
     /// the one used).
     DensityRequest request;
-    /// The engine's resolved details.
-    ResolvedEngine resolved;
     /// The stationary density of V [s/m] with P(V = 0) and the tails.
     VelocityHistogram histogram;
     Estimate mean;     ///< stationary E[V] = M0 [m/s]
     Estimate variance; ///< stationary Var(V) [m^2/s^2]
     LongExcursionEstimates estimates; ///< D, M0, E[t1] of the same excursions
-    /// The raw sums and counts of the main run (the pilot run excluded).
-    RunTotals totals;
     /// Notes for the user, one sentence each: those of DiffusivityResult, and
     /// on the sampling of the path, P(V = 0) and mass outside the range.
     std::vector<std::string> warnings;
@@ -171,11 +168,9 @@ void visit_settings(CorrelationRequest& r, Visitor&& v) {
 }
 
 /// What compute_correlation returns; report.hpp writes it.
-struct CorrelationResult {
+struct CorrelationResult : MethodResult {
     /// The request, with max_lag resolved (0 replaced by the lag used).
     CorrelationRequest request;
-    /// The engine's resolved details.
-    ResolvedEngine resolved;
     std::vector<double> lag;               ///< r [s] (multiples of the sampling interval)
     std::vector<Estimate> autocorrelation; ///< <V(0) V(r)> [m^2/s^2]
     std::vector<Estimate> covariance;      ///< h(r) = <V(0)V(r)> - M0^2 [m^2/s^2]
@@ -183,8 +178,6 @@ struct CorrelationResult {
     Estimate mean;                         ///< M0 [m/s]
     /// D, M0 and E[t1] of the same excursions.
     LongExcursionEstimates estimates;
-    /// The raw sums and counts of the run.
-    RunTotals totals;
     /// Notes for the user, one sentence each: those of DiffusivityResult, and
     /// on the sampling of the path.
     std::vector<std::string> warnings;
@@ -244,20 +237,16 @@ inline constexpr double table_one_times[] = {0.05, 0.125, 0.25, 0.5, 1.0, 2.5};
 
 /// What compute_moments returns; report.hpp writes it. Every series is
 /// aligned with `time`.
-struct MomentsResult {
+struct MomentsResult : MethodResult {
     /// The request, with its defaults resolved: v0, the times (as given, or
     /// Table I's in seconds; those used, rounded and sorted, are in `time`)
     /// and the density's bins.
     MomentsRequest request;
-    /// The engine's resolved details.
-    ResolvedEngine resolved;
     std::vector<double> time;          ///< times actually used [s] (inclusion: whole steps), sorted
     std::vector<Estimate> first_moment;  ///< E[V(t) | v_i] [m/s]
     std::vector<Estimate> second_moment; ///< E[V(t)^2 | v_i] [m^2/s^2]
     std::vector<Estimate> stuck;         ///< P(V(t) = 0)
     std::vector<VelocityHistogram> density; ///< per time, when requested
-    /// The raw sums and counts of the run.
-    RunTotals totals;
     /// Notes for the user, one sentence each (a step too coarse, times
     /// rounded to steps, an interrupted run, ...).
     std::vector<std::string> warnings;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "stickslip/analytic.hpp"
+#include "stickslip/method.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {
@@ -50,7 +51,10 @@ void visit_settings(WhiteNoiseRequest& r, Visitor&& v) {
 }
 
 /// What compute_white_noise returns; report.hpp writes it.
-struct WhiteNoiseResult {
+/// Its details (MethodResult) are a GridDetails: the closed forms, or the
+/// Fokker-Planck grid of the transient quantities with its cells, domain and
+/// measured accuracy.
+struct WhiteNoiseResult : MethodResult {
     /// The request, with params.tau set to 0.
     WhiteNoiseRequest request;
     WhiteNoiseReference reference;       ///< M0 [m/s], D [m^2/s], Var(V) [m^2/s^2]
@@ -60,7 +64,6 @@ struct WhiteNoiseResult {
     /// p(v, t | v0) [s/m]: one row per time (t = 0 rows are empty: a delta
     /// function), one column per velocity.
     std::vector<std::vector<double>> transient_density;
-    std::string method;                  ///< "closed form" or "fokker-planck"
     /// Notes for the user, one sentence each, reported like every result's;
     /// compute_white_noise currently adds none (exact references).
     std::vector<std::string> warnings;

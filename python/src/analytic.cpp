@@ -188,7 +188,8 @@ void bind_analytic(py::module_& m) {
             "transient_density",
             [](const R& r) { return rows_to_array(r.transient_density, r.request.velocities.size()); },
             "p(v, t | v0) [s/m], shape (n, m); rows at t = 0 (a delta function) are NaN")
-        .def_readonly("method", &R::method, "'closed form (...)' or 'fokker-planck (...)'")
+        .def_property_readonly(
+            "method", [](const R& r) { return r.grid().solver; }, "'closed form (...)' or 'fokker-planck (...)'")
         .def_readonly("warnings", &R::warnings)
         .def(
             "to_json", [](const R& r, int indent) { return to_json(r, indent); }, py::arg("indent") = 2)

@@ -41,23 +41,23 @@ void add_request_params(Cls& cls) {
 template <class R, class Cls>
 void add_totals(Cls& cls) {
     cls.def_property_readonly(
-           "capped", [](const R& r) { return r.totals.capped; },
+           "capped", [](const R& r) { return r.monte_carlo().totals.capped; },
            "samples dropped by the runaway guard (max_steps)")
         .def_property_readonly(
-            "work", [](const R& r) { return r.totals.work; }, "steps (inclusion) or events (pdmp), all samples")
+            "work", [](const R& r) { return r.monte_carlo().totals.work; }, "steps (inclusion) or events (pdmp), all samples")
         .def_property_readonly(
-            "seconds", [](const R& r) { return r.totals.seconds; }, "wall time of the run [s]")
+            "seconds", [](const R& r) { return r.monte_carlo().totals.seconds; }, "wall time of the run [s]")
         .def_property_readonly(
-            "threads", [](const R& r) { return r.totals.threads; }, "worker threads used")
+            "threads", [](const R& r) { return r.monte_carlo().totals.threads; }, "worker threads used")
         .def_property_readonly(
-            "threads_from", [](const R& r) { return r.totals.threads_from; },
+            "threads_from", [](const R& r) { return r.monte_carlo().totals.threads_from; },
             "how the thread count was chosen: 'option' (threads=N), else 'hardware', 'affinity', 'cpu-quota' or "
             "'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the blocks were fewer")
         .def_property_readonly(
-            "interrupted", [](const R& r) { return r.totals.interrupted; },
+            "interrupted", [](const R& r) { return r.monte_carlo().totals.interrupted; },
             "True when the run was stopped early (Ctrl-C): the result is of the blocks completed, in index order")
         .def_property_readonly(
-            "resumed", [](const R& r) { return r.totals.resumed; },
+            "resumed", [](const R& r) { return r.monte_carlo().totals.resumed; },
             "samples restored from a checkpoint (resume=) rather than computed");
 }
 
@@ -162,7 +162,7 @@ void bind_results(py::module_& m) {
             .def_property_readonly("estimator",
                                    [](const DiffusivityResult& r) { return to_string(r.request.estimator); })
             .def_property_readonly(
-                "stop_rule", [](const DiffusivityResult& r) { return r.resolved.stop_rule; },
+                "stop_rule", [](const DiffusivityResult& r) { return r.monte_carlo().engine.stop_rule; },
                 "'bridge', 'stuck', 'velocity-levels' (white noise) or 'exact' (pdmp)")
             .def_property_readonly("excursions", [](const DiffusivityResult& r) { return r.request.excursions; },
                                    "excursions requested")

@@ -6,57 +6,20 @@
 #include <numbers>
 
 #include "core/format.hpp"
+#include "engines/event/event_steps.hpp"
+#include "engines/resolvent/resolvent_steps.hpp"
 #include "engines/visit_engine.hpp"
 
 namespace stickslip::detail {
 
 namespace {
 
-constexpr double kWarnBias = 0.02;    ///< a step whose predicted bias of D exceeds this is warned about
-constexpr double kRefuseBias = 0.20;  ///< ... and refused beyond this
 constexpr double kLongRun = 3e10;     ///< steps or events in all: "this run is long" (a lower bound: 2-3x short)
 constexpr double kStepsPerSecond = 1e8; ///< one core, the inclusion kernel (bench/): for the time estimate
 
-// The resolvent bias law (measured: docs/validation.md, "Step checks").
-constexpr double kNearWhite = 0.3;     ///< tau' below this: the white-noise law
-constexpr double kWhiteLaw = 0.39;     ///< bias -0.39 sqrt(dt')
-constexpr double kColouredLaw = 0.35;  ///< bias +0.35 dt'
 
-// --dt auto (docs/validation.md, "Choosing the step").
-constexpr double kAutoBias = 1e-3;             ///< the bias of D the automatic step aims below
-constexpr double kAutoRelaxation = 0.01;       ///< resolvent: dt <= relaxation / 100 as well
-/// Event scheme: dt = min(tau, 4 relaxation, T_f) / 16. No bias was seen
-/// (1e6 excursions, 0.3% standard errors) up to 0.12 tau, 0.9 relaxation and
-/// 0.18 T_f on the Fig. 2 case, and E[t1], M0 flat to 1% up to dt = tau at
-/// tau' = 0.1; these fractions stay 4 or more times below.
-constexpr double kAutoEventTau = 1.0 / 16, kAutoEventRelaxation = 1.0 / 4, kAutoEventFriction = 1.0 / 16;
-/// White noise, event scheme: dt = min(T_f / 16, relaxation / 16). Measured
-/// (1e6 excursions, docs/validation.md): no bias of D or M0 up to dt = T_f/8
-/// without drag; with relaxation 0.2 T_f, D and M0 +0.08% at relaxation/20,
-/// -0.35% and -0.9% (z = -1.3, -1.8) at relaxation/8, D -0.7% (z = -2.6) at
-/// relaxation/4.
-constexpr double kAutoEventWhiteRelaxation = 1.0 / 16;
 
-// The event scheme's measured reach (docs/validation.md, "The event scheme at
-// coarse steps"; 1e5 excursions per point against the automatic step, the
-// PDMP or the exact quadrature):
-//  * coloured noise: flat to dt = tau (E[t1] +1.7% at tau' = 0.1); beyond,
-//    E[t1] +3.7% at 3 tau and +25% at 10 tau (tau' = 0.1), M0 -2% at 6 tau
-//    and -33% at 20 tau (Fig. 2 case), D 100 times too large at 200 tau;
-//    the drag and the friction time set no limit of their own (Fig. 2: D
-//    within 1% at 45 relaxation times, 9 friction times);
-//  * white noise: D within 1% up to relaxation/4 (-2% at relaxation/2, -6%
-//    at 1, -10% at 2, -76% at 15) and M0 to T_f/2 (-1.1%; -2% at T_f, -3.6%
-//    at 2 T_f, no drag).
-constexpr double kEventTauNote = 1.0, kEventTauRefuse = 8.0;
-// The finest steps its tables validate (docs/validation.md, "The event scheme
-// at fine steps"): dt/tau = 1e-5 (coloured), 1e-5 friction times (white).
-// Finer steps are not known to be wrong, only not shown right: a note.
-constexpr double kEventFinestValidated = 1e-5;
-constexpr double kEventWhiteRelaxationNote = 0.25, kEventWhiteRelaxationRefuse = 2.0;
-constexpr double kEventWhiteFrictionNote = 0.5, kEventWhiteFrictionRefuse = 2.0;
 
-bool near_white(const ModelParams& p, const Scales& sc) { return p.white() || p.tau / sc.time < kNearWhite; }
 
 std::string rounded(double x) { return format_number(x, 2); }
 
@@ -102,102 +65,11 @@ double excursion_work_lower_bound(const PreparedEngine& e, double sample_dt) {
     return visit_engine(e, [t](const auto& engine) { return engine.work_for(t); }) + samples;
 }
 
-double resolvent_bias(const ModelParams& p, double dt) {
-    const Scales sc = scales_of(p);
-    const double step = dt / sc.time;
-    if (near_white(p, sc)) return -kWhiteLaw * std::sqrt(step);
-    return kColouredLaw * step;
-}
 
-double resolvent_step_for_bias(const ModelParams& p, double bias) {
-    const Scales sc = scales_of(p);
-    return near_white(p, sc) ? sc.time * (bias / kWhiteLaw) * (bias / kWhiteLaw) : sc.time * bias / kColouredLaw;
-}
 
-double auto_step(const ModelParams& p, Scheme scheme) {
-    const Scales sc = scales_of(p);
-    if (scheme == Scheme::Resolvent) {
-        const double law = resolvent_step_for_bias(p, kAutoBias);
-        return std::isfinite(p.relaxation) ? std::fmin(law, kAutoRelaxation * p.relaxation) : law;
-    }
-    double dt = kAutoEventFriction * sc.time;
-    if (!p.white()) dt = std::fmin(dt, kAutoEventTau * p.tau);
-    if (std::isfinite(p.relaxation))
-        dt = std::fmin(dt, (p.white() ? kAutoEventWhiteRelaxation : kAutoEventRelaxation) * p.relaxation);
-    return dt;
-}
 
-void check_event_step(const ModelParams& p, double dt, std::vector<std::string>& notes) {
-    const Scales sc = scales_of(p);
-    const std::string at = "dt = " + format_number(dt) + " s is ";
-    const std::string where = " (measured: docs/validation.md, \"The event scheme at coarse steps\")";
-    std::string refuse, note, cure;
-    if (!p.white()) {
-        const double r = dt / p.tau;
-        cure = "use --dt " + rounded(p.tau) + " or smaller (--dt auto: " + rounded(auto_step(p, Scheme::Event)) +
-               "), or --engine pdmp";
-        const std::string what = at + format_number(r, 3) + " correlation times of the noise (tau = " + format_number(p.tau) + " s)";
-        if (r > kEventTauRefuse)
-            refuse = what + ": the event scheme's stuck phases and launches are not resolved there (M0 -33% at 20 tau, "
-                            "D 100 times too large at 200 tau)";
-        else if (r > kEventTauNote)
-            note = what + ": beyond the event scheme's validated steps (dt <= tau); E[t1] +3.7% at 3 tau, M0 -2% at "
-                          "6 tau";
-    } else {
-        const double rl = std::isfinite(p.relaxation) ? dt / p.relaxation : 0.0, rf = dt / sc.time;
-        const double fine = std::fmin(kEventWhiteFrictionNote * sc.time,
-                                      std::isfinite(p.relaxation) ? kEventWhiteRelaxationNote * p.relaxation : HUGE_VAL);
-        cure = "use --dt " + rounded(fine) + " or smaller (--dt auto: " + rounded(auto_step(p, Scheme::Event)) + ")";
-        const std::string in_relaxation = at + format_number(rl, 3) + " relaxation times (" + format_number(p.relaxation) + " s)";
-        const std::string in_friction =
-            at + format_number(rf, 3) + " friction times (noise/friction^2 = " + format_number(sc.time) + " s)";
-        if (rl > kEventWhiteRelaxationRefuse)
-            refuse = in_relaxation + ": the white-noise event scheme's D is 10% low at 2 and 76% low at 15";
-        else if (rf > kEventWhiteFrictionRefuse)
-            refuse = in_friction + ": beyond the white-noise event scheme's measured steps (M0 -3.6% at 2)";
-        else if (rl > kEventWhiteRelaxationNote)
-            note = in_relaxation + ": the white-noise event scheme's D is about -2% at 0.5 and -6% at 1";
-        else if (rf > kEventWhiteFrictionNote)
-            note = in_friction + ": the white-noise event scheme's M0 is about -1% at 0.5 and -2% at 1";
-    }
-    const double finest = p.white() ? dt / sc.time : dt / p.tau;
-    if (refuse.empty() && note.empty() && finest < kEventFinestValidated)
-        notes.push_back(at + format_number(finest, 3) + (p.white() ? " friction times" : " correlation times of the noise") +
-                        ": finer than the event scheme's validated steps (down to 1e-5; docs/validation.md, \"The "
-                        "event scheme at fine steps\"), so not shown right there; a coarser --dt is as accurate and "
-                        "cheaper");
-    if (!refuse.empty()) throw InvalidParameter("dt", refuse + where + "; " + cure);
-    if (!note.empty()) notes.push_back(note + where + "; " + cure);
-}
 
-void check_resolvent_step(const ModelParams& p, double dt, std::vector<std::string>& notes) {
-    const Scales sc = scales_of(p);
-    const double step = dt / sc.time;
-    const double bias = resolvent_bias(p, dt);
-    const double fine = resolvent_step_for_bias(p, kWarnBias);
-    const std::string what =
-        step > 1.0 ? "dt = " + format_number(dt) + " s is longer than the friction time noise/friction^2 = " +
-                         format_number(sc.time) + " s: the resolvent step cannot resolve the stick-slip dynamics"
-                   : "dt = " + format_number(dt) + " s is " + rounded(step) +
-                         " friction times (noise/friction^2 = " + format_number(sc.time) +
-                         " s): the resolvent step's bias of D is about " + (bias > 0 ? "+" : "") +
-                         rounded(100 * bias) + "% there";
-    const std::string cure = "use --dt " + rounded(fine) + " or smaller for 2%" +
-                             (p.white() ? "" : ", or --scheme event or --engine pdmp");
-    if (std::fabs(bias) > kRefuseBias || step > 1.0)
-        throw InvalidParameter("dt", what + " (measured: docs/validation.md, \"Step checks\"); " + cure);
-    if (std::fabs(bias) > kWarnBias) notes.push_back(what + "; " + cure);
-    // The law above ignores the explicit drift step, whose error grows as
-    // dt approaches the relaxation time: measured, the Fig. 2 case is
-    // +3.1% at dt = 0.45 relaxation (as the law says) but -5% at 0.9
-    // (the law says +6%).
-    if (std::isfinite(p.relaxation) && dt > 0.5 * p.relaxation)
-        notes.push_back("dt = " + format_number(dt) + " s is " + rounded(dt / p.relaxation) +
-                        " relaxation times: the explicit drift step's own error adds to the bias, in either "
-                        "direction (Fig. 2 case at 0.9 relaxation times: D -5%); use --dt " +
-                        rounded(0.3 * p.relaxation) + " or smaller" +
-                        (p.white() ? "" : ", or --scheme event or --engine pdmp"));
-}
+
 
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes) {
     visit_engine(e, [&](const auto& engine) { engine.check_step(e.params, notes); });

@@ -21,7 +21,7 @@
 // * Which step does --dt auto take? The largest at which the measured
 //   convergence shows the scheme's bias of D below 0.1%: for the resolvent
 //   scheme, the law above solved for 0.1%; for the event scheme, a fixed
-//   fraction of the shortest time scale (see auto_step).
+//   fraction of the shortest time scale (engines/{resolvent,event}/*_steps.hpp).
 //
 // * Can an excursion finish? An excursion of coloured noise ends only when,
 //   stuck, the noise has crossed the static band from one threshold to the
@@ -39,6 +39,8 @@
 #include <string>
 #include <vector>
 
+#include "engines/event/event_steps.hpp"
+#include "engines/resolvent/resolvent_steps.hpp"
 #include "stickslip/run.hpp"
 
 namespace stickslip::detail {
@@ -55,31 +57,13 @@ double excursion_duration_lower_bound(const ModelParams& p);
 /// with sample_dt > 0 [s] (density, correlation) its samples, one unit each.
 double excursion_work_lower_bound(const PreparedEngine& e, double sample_dt = 0.0);
 
-/// The predicted relative bias of D of the resolvent scheme (see above): > 0
-/// when D comes out too high.
-double resolvent_bias(const ModelParams& p, double dt);
-
-/// The resolvent step [s] whose predicted relative bias of D is `bias` (> 0),
-/// from the law above.
-double resolvent_step_for_bias(const ModelParams& p, double bias);
-
-/// The step --dt auto chooses (stickslip::auto_time_step, run.hpp).
-double auto_step(const ModelParams& p, Scheme scheme);
-
 /// Refuses (InvalidParameter "dt") a resolvent step whose predicted bias of D
 /// exceeds 20% or that is longer than the friction time, and an event step far
 /// beyond its measured reach; adds a note for a resolvent step whose predicted
 /// bias exceeds 2% and an event step beyond its measured reach.
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
 
-/// The event scheme's step dt [s] on model p against its measured reach
-/// (docs/validation.md, "The event scheme at coarse steps" and "... at fine
-/// steps"): InvalidParameter ("dt") far beyond it, a note beyond it.
-void check_event_step(const ModelParams& p, double dt, std::vector<std::string>& notes);
-/// The resolvent scheme's step dt [s] on model p against its measured bias
-/// law: InvalidParameter ("dt") beyond 20% predicted bias of D or a step
-/// longer than the friction time, a note beyond 2% or half a relaxation time.
-void check_resolvent_step(const ModelParams& p, double dt, std::vector<std::string>& notes);
+
 
 /// Refuses (InvalidParameter "max-steps") a run of long excursions that
 /// cannot end under the runaway guard (see the top of the file), and

@@ -92,6 +92,10 @@ bool samples_at_steps(const EngineSettings& s) {
     return s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent;
 }
 
+std::string more_accurate_scheme_advice(const EngineSettings& s, double tau) {
+    return tau == 0 || s.scheme == Scheme::Event ? "" : " or --scheme event";
+}
+
 bool samples_on_grid(const EngineSettings& s, double tau) {
     return !(s.engine == Engine::Inclusion && s.scheme == Scheme::Event && tau == 0);
 }

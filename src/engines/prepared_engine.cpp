@@ -6,13 +6,15 @@
 #include <cmath>
 
 #include "stickslip/stats/estimators.hpp"
-#include "driver/step_check.hpp"
+#include "driver/step_check.hpp" // check_step: the notes of a prepared run
+#include "engines/event/event_steps.hpp"
+#include "engines/resolvent/resolvent_steps.hpp"
 
 namespace stickslip {
 
 double auto_time_step(const ModelParams& p, Scheme scheme) {
     validate(p);
-    return detail::auto_step(p, scheme);
+    return scheme == Scheme::Resolvent ? detail::resolvent_auto_step(p) : detail::event_auto_step(p);
 }
 
 Scheme auto_scheme(const ModelParams& p, PathUse use) {

@@ -40,19 +40,19 @@ BruteForceResult compute_bruteforce(const BruteForceRequest& req_in) {
     const std::vector<std::string> notes = detail::start_notes(engine, 0, req.control);
     BruteForceResult out;
     out.request = req;
-    out.resolved = engine.resolved;
-    out.resolved.stop_rule = "none"; // brute force needs no regeneration test
+    out.monte_carlo().engine = engine.resolved;
+    out.monte_carlo().engine.stop_rule = "none"; // brute force needs no regeneration test
     const double x0 = std::isnan(req.x0) ? detail::default_start_noise(engine) : req.x0;
     out.start_noise = x0;
-    out.totals = run_bruteforce(engine, req.horizon, x0, req.v0, req.trajectories, req.control);
-    detail::note_interruption(out.totals, "trajectories", out.warnings);
+    out.monte_carlo().totals = run_bruteforce(engine, req.horizon, x0, req.v0, req.trajectories, req.control);
+    detail::note_interruption(out.monte_carlo().totals, "trajectories", out.warnings);
     // The inclusion engine simulates a whole number of steps: use the time it
     // actually simulated, and say so when it differs from the request.
-    const double simulated = out.totals.moments.mean_y();
+    const double simulated = out.monte_carlo().totals.moments.mean_y();
     if (std::fabs(simulated - req.horizon) > 1e-9 * req.horizon)
         out.warnings.push_back("time rounded to a whole number of steps: " + detail::format_number(simulated) + " s simulated");
-    out.estimates = estimate_bruteforce(out.totals.moments, simulated, req.level);
-    const std::uint64_t n = out.totals.moments.count();
+    out.estimates = estimate_bruteforce(out.monte_carlo().totals.moments, simulated, req.level);
+    const std::uint64_t n = out.monte_carlo().totals.moments.count();
     if (n < kFewTrajectories)
         out.warnings.push_back("only " + std::to_string(n) + " trajectories: the standard error of D_t comes from "
                                "their fourth moment and is unreliable below " + std::to_string(kFewTrajectories) +

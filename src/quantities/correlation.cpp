@@ -66,7 +66,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
         detail::start_notes(prepared, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
     CorrelationResult out;
     out.request = req;
-    out.resolved = prepared.resolved;
+    out.monte_carlo().engine = prepared.resolved;
     const double dt = sampling_interval(req.engine, req.sample_dt);
     const double max_lag = req.max_lag > 0 ? req.max_lag : 5 * scales_of(req.params).time;
     out.request.max_lag = max_lag;
@@ -114,7 +114,7 @@ CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
         st.m = 0;
         st.limit = ~0ull;
     };
-    out.totals = detail::visit_engine(prepared, [&](const auto& engine) {
+    out.monte_carlo().totals = detail::visit_engine(prepared, [&](const auto& engine) {
         return detail::run_blocks<RatioMoments>(
             req.excursions, req.control, make,
             [&](std::uint64_t k, RatioMoments& acc) {
@@ -135,8 +135,8 @@ CorrelationResult compute_correlation(const CorrelationRequest& req_in) {
             exact);
     });
     const RatioMoments total = exact.moments();
-    detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
-    out.estimates = estimate_long_excursion(out.totals.moments, req.level);
+    detail::finish_long_excursion_run(prepared, out.monte_carlo().totals, req.allow_capped, out.warnings);
+    out.estimates = estimate_long_excursion(out.monte_carlo().totals.moments, req.level);
     detail::check_finite(out.estimates);
     const std::size_t iu = nl;
     const double m = total.ratio(iu);

@@ -105,7 +105,7 @@ DensityResult density_of(const Engine& engine, const DensityRequest& req, const 
                          const std::vector<std::string>& notes) {
     DensityResult out;
     out.request = req;
-    out.resolved = prepared.resolved;
+    out.monte_carlo().engine = prepared.resolved;
     const double dt = sampling_interval(req.engine, req.sample_dt);
     VelocityBins bins = resolve_bins(req.params, req.bins);
     if (req.bins.lo == 0 && req.bins.hi == 0) pilot_range(req, engine, dt, bins.lo, bins.hi);
@@ -145,7 +145,7 @@ DensityResult density_of(const Engine& engine, const DensityRequest& req, const 
         acc.mom.add(m, static_cast<double>(samples));
     };
     Total exact{ExactRatioSums(nh, {}), ExactRatioSums(2, {0})};
-    out.totals = detail::run_blocks<Acc>(
+    out.monte_carlo().totals = detail::run_blocks<Acc>(
         req.excursions, req.control, make,
         [&](std::uint64_t k, Acc& acc) {
             thread_local std::vector<double> y;
@@ -163,8 +163,8 @@ DensityResult density_of(const Engine& engine, const DensityRequest& req, const 
         },
         exact);
     const Acc total{exact.hist.moments(), exact.mom.moments()};
-    detail::finish_long_excursion_run(prepared, out.totals, req.allow_capped, out.warnings);
-    out.estimates = estimate_long_excursion(out.totals.moments, req.level);
+    detail::finish_long_excursion_run(prepared, out.monte_carlo().totals, req.allow_capped, out.warnings);
+    out.estimates = estimate_long_excursion(out.monte_carlo().totals.moments, req.level);
     detail::check_finite(out.estimates);
     out.histogram = make_histogram(bins, total.hist, 0, req.level);
     out.mean = total.mom.estimate(0, req.level);

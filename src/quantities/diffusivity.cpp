@@ -57,11 +57,11 @@ namespace {
 /// independent streams; its progress continues the main run's line.
 DiscretisationCheck run_check_dt(const DiffusivityRequest& req, const DiffusivityResult& main,
                                  std::vector<std::string>& warnings, bool& interrupted) {
-    const std::uint64_t n = main.totals.requested;
+    const std::uint64_t n = main.monte_carlo().totals.requested;
     DiffusivityRequest coarse = check_dt_request(req, n);
     if (req.control.progress) {
         coarse.control.progress = [&req, &main, n](const Progress& p) {
-            Progress q{n + p.done, 2 * n, main.totals.seconds + p.seconds, &main.totals.moments};
+            Progress q{n + p.done, 2 * n, main.monte_carlo().totals.seconds + p.seconds, &main.monte_carlo().totals.moments};
             return req.control.progress(q);
         };
     }
@@ -103,7 +103,7 @@ DiscretisationCheck run_check_dt(const DiffusivityRequest& req, const Diffusivit
                                format_number(z, 2) + "); for a first-order scheme the bias at dt is about that "
                                "difference (2.4 times it where D converges like sqrt(dt), white noise): use a "
                                "smaller --dt" +
-                               (req.params.white() || req.engine.scheme == Scheme::Event ? "" : " or --scheme event"));
+                               more_accurate_scheme_advice(req.engine, req.params.tau));
     }
     return c;
 }
@@ -179,26 +179,26 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
     const std::vector<std::string> notes = detail::start_notes(engine, req.excursions, req.control);
     DiffusivityResult out;
     out.request = req;
-    out.resolved = engine.resolved;
-    if (req.rel_precision > 0) out.totals = run_to_precision(req, engine, out.precision);
-    else out.totals = run_long_excursions(engine, req.excursions, req.control);
-    detail::finish_long_excursion_run(engine, out.totals, req.allow_capped, out.warnings);
-    out.estimates = estimate_long_excursion(out.totals.moments, req.level, req.estimator);
+    out.monte_carlo().engine = engine.resolved;
+    if (req.rel_precision > 0) out.monte_carlo().totals = run_to_precision(req, engine, out.precision);
+    else out.monte_carlo().totals = run_long_excursions(engine, req.excursions, req.control);
+    detail::finish_long_excursion_run(engine, out.monte_carlo().totals, req.allow_capped, out.warnings);
+    out.estimates = estimate_long_excursion(out.monte_carlo().totals.moments, req.level, req.estimator);
     detail::check_finite(out.estimates);
     if (req.rel_precision > 0 && !out.precision.reached)
         out.warnings.push_back("precision target not reached: relative half-width " +
                                format_number(out.precision.relative_half_width, 3) + " > " +
                                format_number(req.rel_precision, 3) + " after " +
-                               std::to_string(out.totals.moments.count() + out.totals.capped) + " excursions (" +
-                               (out.totals.interrupted ? "interrupted" : "--max-excursions") + ")");
+                               std::to_string(out.monte_carlo().totals.moments.count() + out.monte_carlo().totals.capped) + " excursions (" +
+                               (out.monte_carlo().totals.interrupted ? "interrupted" : "--max-excursions") + ")");
     if (req.estimator == Estimator::Paper &&
         (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
         out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");
     if (req.check_dt) {
-        if (out.totals.interrupted)
+        if (out.monte_carlo().totals.interrupted)
             out.warnings.push_back("the --check-dt run was not started: the run was interrupted");
         else
-            out.discretisation = run_check_dt(req, out, out.warnings, out.totals.interrupted);
+            out.discretisation = run_check_dt(req, out, out.warnings, out.monte_carlo().totals.interrupted);
     }
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;

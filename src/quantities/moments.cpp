@@ -76,8 +76,8 @@ MomentsResult compute_moments(const MomentsRequest& req_in) {
     req.times = transient_times(req);
     MomentsResult out;
     out.request = req;
-    out.resolved = prepared.resolved;
-    out.resolved.stop_rule = "none";
+    out.monte_carlo().engine = prepared.resolved;
+    out.monte_carlo().engine.stop_rule = "none";
     std::vector<double> times = req.times;
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
@@ -112,7 +112,7 @@ MomentsResult compute_moments(const MomentsRequest& req_in) {
     const auto start_x = [&](BatchedCounterRng& rng) {
         return draw_x ? x_sd * rng.normal2().x : (std::isnan(req.x0) ? 0.0 : req.x0);
     };
-    out.totals = detail::visit_engine(prepared, [&](const auto& engine) {
+    out.monte_carlo().totals = detail::visit_engine(prepared, [&](const auto& engine) {
         // The times the engine's clock can stop at (rounded to its step or leaf).
         out.time = engine.clock_times(times, out.warnings);
         return detail::run_blocks<RatioMoments>(
@@ -127,7 +127,7 @@ MomentsResult compute_moments(const MomentsRequest& req_in) {
             },
             exact);
     });
-    detail::note_interruption(out.totals, "trajectories", out.warnings);
+    detail::note_interruption(out.monte_carlo().totals, "trajectories", out.warnings);
     const RatioMoments total = exact.moments();
     for (std::size_t j = 0; j < nt; ++j) {
         out.first_moment.push_back(total.estimate(j, req.level));
@@ -136,7 +136,7 @@ MomentsResult compute_moments(const MomentsRequest& req_in) {
         if (nh) out.density.push_back(make_histogram(bins, total, 3 * nt + j * nh, req.level));
     }
     const std::string lattice = detail::visit_engine(
-        prepared, [&](const auto& engine) { return engine.lattice_note(out.resolved, false); });
+        prepared, [&](const auto& engine) { return engine.lattice_note(out.monte_carlo().engine, false); });
     if (!lattice.empty()) out.warnings.push_back(lattice);
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;

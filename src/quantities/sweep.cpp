@@ -108,20 +108,20 @@ SweepResult compute_sweep(const SweepRequest& req) {
                 out.interrupted = true; // stopped before this point had a result
                 break;
             }
-            out.resumed += r.totals.resumed;
+            out.resumed += r.monte_carlo().totals.resumed;
             SweepPoint p;
             p.noise = noise;
             p.tau = tau;
             p.estimates = r.estimates;
-            p.stop_rule = r.resolved.stop_rule;
+            p.stop_rule = r.monte_carlo().engine.stop_rule;
             p.dt = r.request.engine.dt;
             p.scheme = r.request.engine.scheme;
-            p.work = r.totals.work;
-            p.seconds = r.totals.seconds;
+            p.work = r.monte_carlo().totals.work;
+            p.seconds = r.monte_carlo().totals.seconds;
             p.warnings = r.warnings;
             out.points.push_back(p);
             ++k;
-            if (r.totals.interrupted) {
+            if (r.monte_carlo().totals.interrupted) {
                 out.interrupted = true;
                 break;
             }

@@ -15,7 +15,7 @@ using namespace detail;
 std::string to_json(const DiffusivityResult& r, int indent) {
     const auto& q = r.request;
     const std::string estimator = to_string(q.estimator);
-    ordered_json j = report_head(nullptr, q.engine, estimator.c_str(), &r.resolved.stop_rule);
+    ordered_json j = report_head(nullptr, q.engine, estimator.c_str(), &r.monte_carlo().engine.stop_rule);
     auto params = params_json(q);
     params["excursions"] = q.excursions;
     params["level"] = q.level;
@@ -30,7 +30,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     j["mobility"] = estimate_json(r.estimates.mobility);
     j["mean_duration"] = estimate_json(r.estimates.mean_duration, false);
     j["completed"] = r.estimates.excursions;
-    j["capped"] = r.totals.capped;
+    j["capped"] = r.monte_carlo().totals.capped;
     if (q.rel_precision > 0) {
         ordered_json pr;
         pr["target"] = r.precision.target;
@@ -53,9 +53,9 @@ std::string to_json(const DiffusivityResult& r, int indent) {
                           {"stderr", json_number(c.mobility_stderr)}};
         j["discretisation"] = dc;
     }
-    j["engine_details"] = engine_details_json(r.resolved, q);
-    const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
+    const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
+    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -73,7 +73,7 @@ std::string to_table(const DiffusivityResult& r) {
     const Estimate& d = r.estimates.diffusivity;
     std::ostringstream os = report_stream();
     os << engine_line("diffusivity", q.engine,
-                      ", stop rule " + r.resolved.stop_rule + ", estimator " + to_string(q.estimator));
+                      ", stop rule " + r.monte_carlo().engine.stop_rule + ", estimator " + to_string(q.estimator));
     os << param_line(q.params, q.engine);
     os << "\n" << table_head(q.level);
     table_row(os, "diffusivity D", d, sc.diffusivity, "m^2/s");
@@ -88,7 +88,7 @@ std::string to_table(const DiffusivityResult& r) {
            << difference_text(c.mobility_difference, c.mobility_stderr, "m/s") << "\n";
     }
     os << "\n"
-       << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals,
+       << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.monte_carlo().totals,
                     "; relative half-width of D: " + format_number(100 * (d.hi - d.value) / d.value, 3) + "%")
        << notes(r.warnings);
     return os.str();
@@ -123,7 +123,7 @@ std::string to_csv(const DiffusivityResult& r) {
 
 std::string to_json(const BruteForceResult& r, int indent) {
     const auto& q = r.request;
-    ordered_json j = report_head(nullptr, q.engine, "bruteforce", &r.resolved.stop_rule);
+    ordered_json j = report_head(nullptr, q.engine, "bruteforce", &r.monte_carlo().engine.stop_rule);
     auto params = params_json(q);
     params["time"] = q.horizon;
     params["trajectories"] = q.trajectories;
@@ -139,9 +139,9 @@ std::string to_json(const BruteForceResult& r, int indent) {
     j["nondimensional"] = nd;
     j["diffusivity"] = estimate_json(r.estimates.diffusivity);
     j["mobility"] = estimate_json(r.estimates.mobility);
-    j["engine_details"] = engine_details_json(r.resolved, q);
-    const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
+    const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
+    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -157,7 +157,7 @@ std::string to_table(const BruteForceResult& r) {
     table_row(os, "D_t", r.estimates.diffusivity, sc.diffusivity, "m^2/s");
     table_row(os, "U(t)/t", r.estimates.mobility, sc.velocity, "m/s");
     os << "\n"
-       << work_line(r.estimates.trajectories, "trajectories", q.control.seed, q.engine, r.totals)
+       << work_line(r.estimates.trajectories, "trajectories", q.control.seed, q.engine, r.monte_carlo().totals)
        << notes(r.warnings);
     return os.str();
 }

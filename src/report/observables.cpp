@@ -39,7 +39,7 @@ ordered_json histogram_json(const VelocityHistogram& h) {
 
 std::string to_json(const DensityResult& r, int indent) {
     const auto& q = r.request;
-    ordered_json j = report_head("stationary_density", q.engine, nullptr, &r.resolved.stop_rule);
+    ordered_json j = report_head("stationary_density", q.engine, nullptr, &r.monte_carlo().engine.stop_rule);
     auto params = params_json(q);
     params["excursions"] = q.excursions;
     params["bins"] = q.bins.count;
@@ -52,10 +52,10 @@ std::string to_json(const DensityResult& r, int indent) {
     j["mean"] = estimate_json(r.mean);
     j["variance"] = estimate_json(r.variance);
     append_members(j, long_excursion_json(r.estimates));
-    j["capped"] = r.totals.capped;
-    j["engine_details"] = engine_details_json(r.resolved, q);
-    const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    j["capped"] = r.monte_carlo().totals.capped;
+    j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
+    const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
+    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -74,7 +74,7 @@ std::string to_table(const DensityResult& r) {
     os << "mean E[V]          " << estimate_cell(r.mean) << " m/s\n";
     os << "variance Var(V)    " << estimate_cell(r.variance) << " m^2/s^2\n";
     os << "diffusivity D      " << estimate_cell(r.estimates.diffusivity) << " m^2/s (same excursions)\n\n";
-    os << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals) << notes(r.warnings);
+    os << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.monte_carlo().totals) << notes(r.warnings);
     return os.str();
 }
 
@@ -121,9 +121,9 @@ std::string to_json(const MomentsResult& r, int indent) {
         }
         j["density"] = d;
     }
-    j["engine_details"] = engine_details_json(r.resolved, q);
-    const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
+    const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
+    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -144,7 +144,7 @@ std::string to_table(const MomentsResult& r) {
     if (!r.density.empty())
         os << "(the transient density, " << r.density.size() << " times x " << q.bins.count
            << " bins, is in --format json; --format csv gives it alone)\n";
-    os << "\n" << work_line(r.totals.moments.count(), "trajectories", q.control.seed, q.engine, r.totals)
+    os << "\n" << work_line(r.monte_carlo().totals.moments.count(), "trajectories", q.control.seed, q.engine, r.monte_carlo().totals)
        << notes(r.warnings);
     return os.str();
 }
@@ -173,7 +173,7 @@ std::string to_csv(const MomentsResult& r) {
 
 std::string to_json(const CorrelationResult& r, int indent) {
     const auto& q = r.request;
-    ordered_json j = report_head("autocorrelation", q.engine, nullptr, &r.resolved.stop_rule);
+    ordered_json j = report_head("autocorrelation", q.engine, nullptr, &r.monte_carlo().engine.stop_rule);
     auto params = params_json(q);
     params["excursions"] = q.excursions;
     params["max_lag"] = q.max_lag;
@@ -193,10 +193,10 @@ std::string to_json(const CorrelationResult& r, int indent) {
     j["normalised_covariance"] = n;
     j["mean"] = estimate_json(r.mean);
     append_members(j, long_excursion_json(r.estimates));
-    j["capped"] = r.totals.capped;
-    j["engine_details"] = engine_details_json(r.resolved, q);
-    const ordered_json work = work_json(q.engine, r.totals);
-    add_report_tail(j, &work, r.warnings, r.totals.interrupted);
+    j["capped"] = r.monte_carlo().totals.capped;
+    j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
+    const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
+    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -213,7 +213,7 @@ std::string to_table(const CorrelationResult& r) {
            << estimate_cell(r.covariance[k]) << " " << estimate_cell(r.normalised[k]) << "\n";
     os << "\nmean E[V]          " << estimate_cell(r.mean) << " m/s\n";
     os << "diffusivity D      " << estimate_cell(r.estimates.diffusivity) << " m^2/s (same excursions)\n\n";
-    os << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.totals) << notes(r.warnings);
+    os << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.monte_carlo().totals) << notes(r.warnings);
     return os.str();
 }
 

@@ -26,7 +26,13 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
         j["v0"] = q.v0;
         j["first_moment"] = r.first_moment;
         j["autocorrelation"] = r.autocorrelation;
-        j["method"] = r.method;
+        const GridDetails& g = r.grid();
+        j["method"] = g.solver;
+        if (g.cells > 0)
+            j["grid"] = {{"cells", g.cells},
+                         {"lower", g.lower},
+                         {"upper", g.upper},
+                         {"discretisation_error", g.discretisation_error}};
     }
     if (!q.velocities.empty()) {
         j["velocities"] = q.velocities;
@@ -70,7 +76,11 @@ std::string to_table(const WhiteNoiseResult& r) {
     row("variance Var(V)", r.reference.variance, "m^2/s^2", r.reference.variance / (sc.velocity * sc.velocity));
     os << "(last column: nondimensional)\n";
     if (!q.times.empty()) {
-        os << "\n" << r.method << "; v0 = " << format_number(q.v0) << " m/s\n";
+        const GridDetails& g = r.grid();
+        os << "\n" << g.solver << "; v0 = " << format_number(q.v0) << " m/s\n";
+        if (g.cells > 0)
+            os << g.cells << " cells on [" << format_number(g.lower) << ", " << format_number(g.upper)
+               << "] m/s, relative discretisation error about " << format_number(g.discretisation_error) << "\n";
         os << pad("t [s]", 14) << " " << pad("E[V(t)|v0] [m/s]", 18) << " " << pad("<V(t)V(0)> [m^2/s^2]", 22) << "\n";
         for (std::size_t k = 0; k < q.times.size(); ++k)
             os << pad(format_number(q.times[k]), 14) << " " << pad(format_number(r.first_moment[k], 10), 18) << " "

@@ -36,8 +36,8 @@ Coverage measure(const ss::ModelParams& p, double dt, std::uint64_t n, int runs,
     ss::BivariateMoments pooled;
     for (int i = 0; i < runs; ++i) {
         const auto r = run_le(p, e, n, first_seed + static_cast<std::uint64_t>(i), 2);
-        EXPECT_EQ(r.totals.capped, 0u);
-        pooled.merge(r.totals.moments);
+        EXPECT_EQ(r.monte_carlo().totals.capped, 0u);
+        pooled.merge(r.monte_carlo().totals.moments);
         d.push_back(r.estimates.diffusivity);
     }
     Coverage c;

@@ -22,7 +22,7 @@ TEST(Engines, PdmpAgreesWithInclusionOnFig4Case) {
     in.dt = 1e-4;
     const auto a = run_le(p, pd, 20000, 41);
     const auto b = run_le(p, in, 6000, 42);
-    EXPECT_EQ(b.resolved.stop_rule, "bridge");
+    EXPECT_EQ(b.monte_carlo().engine.stop_rule, "bridge");
     const auto d = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.std_error,
                            b.estimates.diffusivity.value, b.estimates.diffusivity.std_error,
                            0.02 * a.estimates.diffusivity.value);

@@ -22,7 +22,7 @@ TEST(WhiteNoise, PureDryFrictionGivesFiveQuarters) {
     ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     const auto r = run_le(p, e, 100000, 2024);
-    EXPECT_EQ(r.resolved.stop_rule, "velocity-levels");
+    EXPECT_EQ(r.monte_carlo().engine.stop_rule, "velocity-levels");
     const double ref = 1.25;
     EXPECT_DOUBLE_EQ(ss::white_noise_reference(p).diffusivity, ref);
     const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref, 0.0, 0.015 * ref);
@@ -65,7 +65,7 @@ TEST(WhiteNoise, ColoredNoiseWithTinyTauConverges) {
     ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3;
     const auto r = run_le(p, e, 3000, 31);
-    EXPECT_EQ(r.resolved.stop_rule, "stuck");
+    EXPECT_EQ(r.monte_carlo().engine.stop_rule, "stuck");
     const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, 1.25, 0.0, 0.03 * 1.25);
     EXPECT_TRUE(check(c, "colored D' at tau' = 1e-4 vs white 5/4"));
 }

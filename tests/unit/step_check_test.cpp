@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "../../src/driver/step_check.hpp"
+#include "driver/step_check.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/prepared_engine.hpp"
 #include "stickslip/params.hpp"

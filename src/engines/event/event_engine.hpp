@@ -16,7 +16,7 @@
 #include "core/format.hpp"
 #include "engines/grid_sampler.hpp"
 #include "engines/path_point.hpp"
-#include "driver/step_check.hpp"
+#include "engines/event/event_steps.hpp"
 #include "stickslip/kernels/event_lanes.hpp"
 #include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/random/rng.hpp"

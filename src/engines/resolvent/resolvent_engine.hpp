@@ -16,7 +16,7 @@
 
 #include "core/format.hpp"
 #include "engines/path_point.hpp"
-#include "driver/step_check.hpp"
+#include "engines/resolvent/resolvent_steps.hpp"
 #include "stickslip/kernels/resolvent.hpp"
 #include "stickslip/kernels/resolvent_lanes.hpp"
 #include "stickslip/random/rng.hpp"
