@@ -7,7 +7,6 @@
 
 #include "core/format.hpp"
 #include "stickslip/number_text.hpp"
-#include "stickslip/params.hpp"
 
 namespace stickslip {
 

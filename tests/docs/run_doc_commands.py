@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""Runs every command and code block of README.md and docs/guide.md, so that
+"""Runs every command and code block of README.md, docs/guide.md and
+ARCHITECTURE.md (and checks their links), so that
 the documentation cannot drift from the program (ctest label "docs").
 
     /usr/bin/python3 tests/docs/run_doc_commands.py --source . --build build
@@ -87,7 +88,7 @@ import time
 
 RUN_LANGS = {"bash", "sh", "shell", "console", "python"}
 DEFAULT_TIMEOUT = 120.0
-DEFAULT_DOCS = ["README.md", "docs/guide.md"]
+DEFAULT_DOCS = ["README.md", "docs/guide.md", "ARCHITECTURE.md"]
 
 FENCE = re.compile(r"^(\s*)(`{3,}|~{3,})\s*([A-Za-z0-9_+-]*)")
 DIRECTIVE = re.compile(r"^\s*<!--\s*(test|not run)\s*:\s*(.*?)\s*-->\s*$")
