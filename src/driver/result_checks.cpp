@@ -8,7 +8,8 @@
 #include "core/format.hpp"
 #include "driver/step_check.hpp"
 #include "engines/visit_engine.hpp"
-#include "stickslip/diffusivity.hpp"
+#include "stickslip/errors.hpp"
+#include "stickslip/stats/estimators.hpp"
 #include "stickslip/prepared_engine.hpp"
 
 namespace stickslip::detail {
