@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <utility>
 
+#include "engines/path_point.hpp"
+
 namespace stickslip::detail {
 
 /// f(x [s^-1/2], mode, v [m/s], u [m]) at every grid time of every piece the
@@ -47,6 +49,15 @@ struct GridSampler {
 template <class Engine, class F>
 GridSampler<Engine, F> grid_sampler(const Engine& engine, double dt, F f, double phase = 0.0) {
     return GridSampler<Engine, F>{engine, dt, std::move(f), phase};
+}
+
+/// A sampler on the grid n * every [s] (phase 0) that hands f the PathPoint
+/// at each grid time: what a recorded trajectory takes.
+template <class Engine, class F>
+auto point_sampler(const Engine& engine, double every, F& f) {
+    return grid_sampler(engine, every, [&f, every, n = std::uint64_t{0}](double x, int y, double v, double u) mutable {
+        f(PathPoint{static_cast<double>(n++) * every, x, y, v, u});
+    });
 }
 
 } // namespace stickslip::detail

@@ -19,15 +19,9 @@
 
 namespace stickslip {
 
-using detail::add_sampling_note;
 using detail::BinIndex;
 using detail::check_bins;
-using detail::check_event_sampling;
-using detail::extra_sampling;
 using detail::make_histogram;
-using detail::sampled_excursion;
-using detail::sampling_interval;
-using detail::sampling_phase;
 
 namespace {
 

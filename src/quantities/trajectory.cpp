@@ -13,21 +13,10 @@
 #include "driver/result_checks.hpp"
 #include "driver/step_check.hpp"
 #include "engines/visit_engine.hpp"
-#include "quantities/path_sampling.hpp"
 #include "stickslip/prepared_engine.hpp"
 #include "stickslip/random/rng.hpp"
 
 namespace stickslip {
-
-using detail::add_sampling_note;
-using detail::BinIndex;
-using detail::check_bins;
-using detail::check_event_sampling;
-using detail::extra_sampling;
-using detail::make_histogram;
-using detail::sampled_excursion;
-using detail::sampling_interval;
-using detail::sampling_phase;
 
 namespace {
 

@@ -103,10 +103,7 @@ public:
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, index);
         BatchedCounterRng ref(seed, StreamPurpose::Refinement, index);
         if (every > 0) {
-            std::uint64_t n = 0;
-            auto sampler = grid_sampler(*this, every, [&](double x, int y, double v, double u) {
-                f(PathPoint{static_cast<double>(n++) * every, x, y, v, u});
-            });
+            auto sampler = point_sampler(*this, every, f);
             return event_long_excursion(c_, rng, ref, sampler);
         }
         // Every piece's start, so events are in the path at their times.

@@ -96,10 +96,7 @@ public:
     ExcursionOutcome excursion_path(std::uint64_t seed, std::uint64_t index, double every, F&& f) const {
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, index);
         if (every > 0) {
-            std::uint64_t n = 0;
-            auto sampler = grid_sampler(*this, every, [&](double x, int y, double v, double u) {
-                f(PathPoint{static_cast<double>(n++) * every, x, y, v, u});
-            });
+            auto sampler = point_sampler(*this, every, f);
             return pdmp_long_excursion(c_, rng, [&](const PdmpState& s, double t0, double u0, double dur) {
                 sampler(Piece{s, t0, u0, dur});
             });
@@ -151,15 +148,12 @@ public:
                       F&& f, std::vector<std::string>&) const {
         BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);
         PdmpState s = pdmp_initial_state(c_, x0, v0);
-        std::uint64_t n = 0;
-        auto sampler = grid_sampler(*this, every, [&](double x, int y, double v, double u) {
-            f(PathPoint{static_cast<double>(n++) * every, x, y, v, u});
-        });
+        auto sampler = point_sampler(*this, every, f);
         sampler.stop_at = npoints;
         const double horizon = static_cast<double>(npoints - 1) * every;
         const ExcursionOutcome o = pdmp_path(c_, s, horizon, rng, [&](const PdmpState& st, double t0, double u0,
                                                                       double dur) { sampler(Piece{st, t0, u0, dur}); });
-        if (n < npoints) f(PathPoint{horizon, c_.delta * s.i, s.y, s.v, o.displacement});
+        if (sampler.next < npoints) f(PathPoint{horizon, c_.delta * s.i, s.y, s.v, o.displacement});
     }
 
     /// Work [events] of a path of duration t [s], on average at least.
