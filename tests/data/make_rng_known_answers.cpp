@@ -11,7 +11,7 @@
 #include <string>
 #include <utility>
 
-#include "stickslip/rng.hpp"
+#include "stickslip/random/rng.hpp"
 
 using stickslip::CounterRng;
 using stickslip::StreamPurpose;
