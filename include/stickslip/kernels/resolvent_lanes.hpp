@@ -17,7 +17,7 @@
 // needs its uniform, the step cap -- is left untouched and redone by
 // resolvent_walk_step_as itself. A finished lane takes the next excursion.
 // The outcomes are therefore bitwise those of resolvent_long_excursion with
-// CounterRng (tests/unit/inclusion_lanes_test.cpp), on any instruction set:
+// CounterRng (tests/unit/resolvent_lanes_test.cpp), on any instruction set:
 // the file is compiled with -ffp-contract=off, once per x86-64 level.
 //
 // Colored noise only; white noise runs the one-excursion kernel, and so does
