@@ -305,7 +305,13 @@ void compare_law(const Law& law, const Moments<T, N>& ref, const std::string& wh
     for (int i = 0; i < N; ++i) {
         worst.note(rel_err(law.g[i], ref.g[i]), what + " g[" + std::to_string(i) + "]");
         for (int j = 0; j < N; ++j) {
-            const std::string ij = "[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+            // Appended piece by piece: GCC 12 warns (-Wrestrict, a false
+            // positive, its bug 105651) on "literal" + std::string&& here.
+            std::string ij = "[";
+            ij += std::to_string(i);
+            ij += "][";
+            ij += std::to_string(j);
+            ij += "]";
             worst.note(rel_err(law.m[i][j], ref.m[i][j]), what + " m" + ij);
             worst.note(rel_err(law.cov[i][j], ref.s[i][j]), what + " cov" + ij);
         }
@@ -333,7 +339,13 @@ void compare_bridge(const Br& b, const Bridge<T, N>& ref, const std::string& wha
     for (int i = 0; i < N; ++i) {
         note(b.r[i], ref.r[i], ref.rs[i], "r[" + std::to_string(i) + "]");
         for (int j = 0; j < N; ++j) {
-            const std::string ij = "[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+            // Appended piece by piece: GCC 12 warns (-Wrestrict, a false
+            // positive, its bug 105651) on "literal" + std::string&& here.
+            std::string ij = "[";
+            ij += std::to_string(i);
+            ij += "][";
+            ij += std::to_string(j);
+            ij += "]";
             note(b.p[i][j], ref.p[i][j], ref.ps[i][j], "p" + ij);
             note(b.q[i][j], ref.q[i][j], ref.qs[i][j], "q" + ij);
             note(b.cov[i][j], ref.c[i][j], ref.cs[i][j], "cov" + ij);
