@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quantities/path_sampling.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/format.hpp"
@@ -41,6 +42,19 @@ double sampling_interval(const EngineSettings& s, double sample_dt) {
 }
 
 
+namespace {
+
+/// e with its interval cut to [lo, hi], the range the quantity is known to lie
+/// in: a density is >= 0 and a probability in [0, 1], which the normal
+/// (delta-method) interval of a small or near-empty bin ignores.
+Estimate within(Estimate e, double lo, double hi) {
+    e.lo = std::max(e.lo, lo);
+    e.hi = std::min(e.hi, hi);
+    return e;
+}
+
+} // namespace
+
 VelocityHistogram make_histogram(const VelocityBins& b, const RatioMoments& m, std::size_t first, double level) {
     VelocityHistogram h;
     const double width = (b.hi - b.lo) / b.count;
@@ -54,12 +68,12 @@ VelocityHistogram make_histogram(const VelocityBins& b, const RatioMoments& m, s
         e.std_error /= width;
         e.lo /= width;
         e.hi /= width;
-        h.density.push_back(e);
+        h.density.push_back(within(e, 0.0, HUGE_VAL));
     }
     const std::size_t base = first + static_cast<std::size_t>(b.count);
-    h.stuck = m.estimate(base, level);
-    h.below = m.estimate(base + 1, level);
-    h.above = m.estimate(base + 2, level);
+    h.stuck = within(m.estimate(base, level), 0.0, 1.0);
+    h.below = within(m.estimate(base + 1, level), 0.0, 1.0);
+    h.above = within(m.estimate(base + 2, level), 0.0, 1.0);
     return h;
 }
 
