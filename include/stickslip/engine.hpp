@@ -98,7 +98,9 @@ struct EngineSettings {
 /// The engine settings, as the command line, config files and Python name them.
 template <class Visitor>
 void visit_settings(EngineSettings& s, Visitor&& v) {
-    v(s.engine, SettingInfo{"engine", "", "inclusion (time stepping, exact OU noise) or pdmp (exact event-driven, lattice noise)"});
+    v(s.engine, SettingInfo{"engine", "",
+                            "inclusion (time stepping with the exact Ornstein-Uhlenbeck noise step) or pdmp (exact "
+                            "event-driven, the noise a jump process on a lattice)"});
     v(s.scheme, SettingInfo{"scheme", "",
                             "inclusion time stepping: event (exact within phases, events at their times), resolvent "
                             "(the paper's, first order) or auto: event, except resolvent for white-noise density and "
@@ -112,8 +114,10 @@ void visit_settings(EngineSettings& s, Visitor&& v) {
     v(s.lattice_bound, SettingInfo{"lattice-bound", "s^-1/2",
                                    "pdmp lattice half-width L; 0 = 8 tau^-1/2 (or what tau*grid*L < 2 allows)"});
     v(s.stop_rule, SettingInfo{"stop-rule", "",
-                               "inclusion HLE end test: auto (bridge if dt <= tau/10, else stuck), bridge (rule Q), "
-                               "stuck (rule P)"});
+                               "resolvent scheme, how it detects the end of a half long excursion (stuck, the "
+                               "noise crosses the static band): auto (bridge if dt <= tau/10, else stuck), bridge (the noise's Brownian "
+                               "bridge within a step; the paper's rule Q), stuck (a stuck step, then a step leaving "
+                               "the band; rule P)"});
     v(s.white_level, SettingInfo{"white-level", "m/s", "white noise only: regeneration velocity levels +-c; 0 chooses c"});
     v(s.max_work_per_excursion, SettingInfo{"max-steps", "",
                                             "runaway guard: most steps (inclusion) or events (pdmp) per long excursion"});

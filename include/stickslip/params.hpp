@@ -50,11 +50,11 @@ struct ModelParams {
 /// The model parameters, as the command line, config files and Python name them.
 template <class Visitor>
 void visit_settings(ModelParams& p, Visitor&& v) {
-    v(p.friction, SettingInfo{"friction", "m s^-2", "dry-friction coefficient Delta, > 0"});
+    v(p.friction, SettingInfo{"friction", "m s^-2", "dry (Coulomb) friction force per unit mass, > 0 (the paper's Delta)"});
     v(p.noise, SettingInfo{"noise", "m^2 s^-3", "noise intensity Gamma, > 0"});
     v(p.tau, SettingInfo{"tau", "s", "noise correlation time, >= 0 (0 = white noise)"});
-    v(p.relaxation, SettingInfo{"relaxation", "s", "viscous relaxation time tauL, > 0, or inf for none", "NUM|inf"});
-    v(p.bias, SettingInfo{"bias", "m s^-2", "constant force gbar, e.g. gravity on an incline"});
+    v(p.relaxation, SettingInfo{"relaxation", "s", "viscous relaxation time: drag -v/relaxation, > 0, or inf for none (the paper's tauL)", "NUM|inf"});
+    v(p.bias, SettingInfo{"bias", "m s^-2", "constant force per unit mass, e.g. gravity on an incline (the paper's gbar)"});
 }
 
 /// Units of the nondimensional system (theory.md, section 3), in SI.
