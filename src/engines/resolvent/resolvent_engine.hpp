@@ -108,15 +108,18 @@ public:
     ExcursionOutcome path_at_times(std::uint64_t seed, std::uint64_t k, StartX&& start_x, double v0,
                                    const std::vector<double>& times, Record&& record) const {
         BatchedCounterRng rng(seed, StreamPurpose::Observable, k);
+        // times are sorted: the step of the next one is all the walk needs
+        // (no per-trajectory array).
         const std::size_t nt = times.size();
-        std::vector<std::uint64_t> steps(nt);
-        for (std::size_t j = 0; j < nt; ++j) steps[j] = steps_of(times[j]);
         double x = start_x(rng);
         double v = v0;
         std::size_t j = 0;
-        std::uint64_t n = 0;
-        const ExcursionOutcome o = resolvent_path(c_, x, v, steps.back(), rng, [&](double, double vn) {
-            while (j < nt && steps[j] == n) record(j++, vn);
+        std::uint64_t n = 0, next = steps_of(times[0]);
+        const ExcursionOutcome o = resolvent_path(c_, x, v, steps_of(times.back()), rng, [&](double, double vn) {
+            while (j < nt && next == n) {
+                record(j, vn);
+                if (++j < nt) next = steps_of(times[j]);
+            }
             ++n;
         });
         while (j < nt) record(j++, v);
