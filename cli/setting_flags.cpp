@@ -145,6 +145,21 @@ void SettingFlags::apply() {
             }
         }
     }
+    // A drift law replaces the affine one: --relaxation or --bias beside it
+    // would be ignored, so the command line may not give both (a config file
+    // from --print-config holds both, and its relaxation and bias are unused).
+    auto given = [&](const char* name) {
+        const Setting* s = find(name);
+        return s && s->option->count() > 0;
+    };
+    for (const char* law : {"drift", "drift-table"})
+        for (const char* affine : {"relaxation", "bias"})
+            if (given(law) && given(affine))
+                throw InvalidParameter(affine, std::string("cannot be combined with --") + law +
+                                                   ", which gives the whole drift law b(v): put the drag and the "
+                                                   "constant force into it (e.g. --drift \"0.342 - v/0.067\")");
+    if (given("drift") && given("drift-table"))
+        throw InvalidParameter("drift-table", "cannot be combined with --drift: give the law once");
     for (Setting& s : settings_) {
         if (s.option->count() == 0) continue;
         if (s.kind == Kind::Flag) s.parse(flag_value(*s.option, s.info.name) ? "true" : "false");

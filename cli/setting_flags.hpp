@@ -82,7 +82,7 @@ private:
         else // a wrapper (OptionalNumber, ...) that holds references: keep a copy
             parse = [wrapper = Plain(field), info](const std::string& text) { parse_setting(info, text, wrapper); };
         const Kind kind = std::is_same_v<Plain, bool> ? Kind::Flag
-                          : std::is_enum_v<Plain>     ? Kind::Text
+                          : std::is_enum_v<Plain> || std::is_same_v<Plain, TextValue> ? Kind::Text
                           : std::is_same_v<Plain, NumberList> || std::is_same_v<Plain, NumberRange> ? Kind::List
                                                                                                     : Kind::Number;
         settings_.push_back(Setting{info, info.form ? info.form : setting_form(field), kind, std::move(default_text),

@@ -17,7 +17,9 @@
 /// nondimensional system. The comment at the top of this header explains the
 /// design.
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "stickslip/setting.hpp"
 
@@ -31,6 +33,24 @@ struct ModelParams {
     double relaxation = 0.067; ///< tauL, viscous relaxation time [s], > 0 or +inf
     double bias = 0.342;       ///< gbar, constant force [m s^-2], any finite sign
 
+    /// @name A drift law other than the affine one (drift_input.hpp)
+    /// When one is given, relaxation and bias are not used: the law is b(v).
+    /// @{
+    std::string drift{};       ///< b(v) as an expression in v (SI: v in m/s, b in m s^-2); "" = affine
+    std::string drift_params{}; ///< values of the expression's named constants: "a=0.8,c=0.5"
+    std::string drift_table{}; ///< path of a file of "v,b" rows; "" = none
+    std::vector<double> drift_table_v{}; ///< table rows given directly (Python arrays) [m/s]
+    std::vector<double> drift_table_b{}; ///< their b [m s^-2]
+    std::function<double(double)> drift_function{}; ///< b(v) as a callable (Python); empty = none
+    int knots = 1025;          ///< knots of the interpolant of a non-affine law (odd, 3..2049)
+    /// @}
+
+    /// True when a law other than the affine one is given (drift, drift_table,
+    /// drift_table_v or drift_function).
+    bool has_drift_law() const {
+        return !drift.empty() || !drift_table.empty() || !drift_table_v.empty() || static_cast<bool>(drift_function);
+    }
+
     /// Amplitude a of the random force a*X [m s^-2 per s^-1/2]: sqrt(noise/2).
     double force_amplitude() const;
     /// 1/relaxation [s^-1]; 0 when relaxation is infinite (no viscous drag).
@@ -38,8 +58,11 @@ struct ModelParams {
     /// True for white noise (tau == 0), where the force has no memory and the
     /// velocity alone is Markov: the PDMP engine and the event scheme refuse it.
     bool white() const { return tau == 0.0; }
-    /// b(v) = -v/relaxation + bias [m s^-2], v in m/s.
-    double drift(double v) const { return -v * inverse_relaxation() + bias; }
+    /// b(v) [m s^-2], v in m/s: -v/relaxation + bias, or the given law's
+    /// interpolant (made anew at each call: for checks, not for loops).
+    double drift_at(double v) const;
+    /// b(0) [m s^-2]: bias for the affine law; sets the noise thresholds.
+    double drift_at_zero() const;
     /// Upper noise threshold x* = (friction - b(0))/a, in the paper's X units
     /// [s^-1/2]: while stuck, the object starts moving up when X exceeds it.
     double upper_threshold() const;
@@ -55,6 +78,10 @@ void visit_settings(ModelParams& p, Visitor&& v) {
     v(p.tau, SettingInfo{"tau", "s", "noise correlation time, >= 0 (0 = white noise)"});
     v(p.relaxation, SettingInfo{"relaxation", "s", "viscous relaxation time: drag -v/relaxation, > 0, or inf for none (the paper's tauL)", "NUM|inf"});
     v(p.bias, SettingInfo{"bias", "m s^-2", "constant force per unit mass, e.g. gravity on an incline (the paper's gbar)"});
+    v(TextValue{p.drift}, SettingInfo{"drift", "m s^-2", "drift law b(v) as an expression in v [m/s], replacing relaxation and bias: e.g. \"0.8*v - 0.5*v^3\", \"0.4*tanh(v/0.1) - v/2\"", "EXPR"});
+    v(TextValue{p.drift_params}, SettingInfo{"drift-params", "", "values of named constants of --drift: \"a=0.8,c=0.5\"", "NAME=NUM,..."});
+    v(TextValue{p.drift_table}, SettingInfo{"drift-table", "", "drift law b(v) from a file of v,b rows (m/s, m s^-2), linear between them, replacing relaxation and bias", "FILE"});
+    v(p.knots, SettingInfo{"knots", "", "knots of the drift law's interpolant on its velocity range, odd, 3..2049 (--drift, --drift-table)"});
 }
 
 /// Units of the nondimensional system (theory.md, section 3), in SI.

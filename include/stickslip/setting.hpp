@@ -79,6 +79,12 @@ struct NumberList {
     bool linear = false;
 };
 
+/// A text: an expression, a path. Text: itself ("" when unset).
+struct TextValue {
+    /// The member it stands for.
+    std::string& value;
+};
+
 /// A range lo,hi [m/s]; lo == hi == 0 means "automatic". Text: "lo,hi", or
 /// empty for automatic.
 struct NumberRange {
@@ -113,6 +119,7 @@ std::string format_setting(const NumberOrAuto& x);
 std::string format_setting(const SeedValue& x);
 std::string format_setting(const NumberList& x);
 std::string format_setting(const NumberRange& x);
+std::string format_setting(const TextValue& x);
 /// @}
 
 /// @name Reading a setting's value from text
@@ -138,6 +145,7 @@ void parse_setting(const SettingInfo& info, const std::string& text, const Numbe
 void parse_setting(const SettingInfo& info, const std::string& text, const SeedValue& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberList& out);
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberRange& out);
+void parse_setting(const SettingInfo& info, const std::string& text, const TextValue& out);
 /// @}
 
 /// @name The form of a setting's value in --help
@@ -157,6 +165,7 @@ const char* setting_form(const NumberOrAuto&);
 const char* setting_form(const SeedValue&);
 const char* setting_form(const NumberList&);
 const char* setting_form(const NumberRange&);
+const char* setting_form(const TextValue&);
 /// @}
 
 /// `text` as a message may quote it: every control byte, and every byte that is

@@ -5,12 +5,14 @@
 // public, documented API is the pure-Python package `stickslip`
 // (python/stickslip/__init__.py), which re-exports these classes and makes
 // one keyword function per request from the requests' own settings.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <sstream>
 
 #include "bindings.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/config.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/runner.hpp"
@@ -72,8 +74,44 @@ struct ParamField {
 
 std::vector<ParamField> param_fields(ModelParams p) {
     std::vector<ParamField> out;
-    visit_settings(p, [&](double& field, const SettingInfo& info) { out.push_back({info.name, info.unit, info.help, field}); });
+    // The numbers only; the drift law's settings are keywords of their own (params_with).
+    visit_settings(p, [&](auto&& field, const SettingInfo& info) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(field)>, double>)
+            out.push_back({info.name, info.unit, info.help, field});
+    });
     return out;
+}
+
+/// drift= as Python gives it: an expression (str), two arrays (v, b) of a
+/// table, or a callable b(v) (SI units), sampled here, once, on the knots the
+/// library chooses for the model (a Python function is never called from a run).
+void set_drift(ModelParams& p, const py::handle& value) {
+    p.drift.clear();
+    p.drift_table.clear();
+    p.drift_table_v.clear();
+    p.drift_table_b.clear();
+    p.drift_function = nullptr;
+    if (value.is_none()) return;
+    if (py::isinstance<py::str>(value)) {
+        parse_setting(SettingInfo{"drift", "", ""}, value.cast<std::string>(), TextValue{p.drift});
+        return;
+    }
+    if (PyCallable_Check(value.ptr())) {
+        const py::function f = py::reinterpret_borrow<py::function>(value);
+        ModelParams q = p;
+        q.drift_function = [f](double v) { return f(v).cast<double>(); };
+        const DriftLaw law = make_drift_law(q);
+        for (int k = 0; k < law.knots; ++k) {
+            p.drift_table_v.push_back(law.knot(k));
+            p.drift_table_b.push_back(law.values[k]);
+        }
+        return;
+    }
+    const auto pair = value.cast<py::sequence>();
+    if (pair.size() != 2)
+        throw InvalidParameter("drift", "drift must be an expression (str), a callable b(v) or two arrays (v, b)");
+    p.drift_table_v = pair[0].cast<std::vector<double>>();
+    p.drift_table_b = pair[1].cast<std::vector<double>>();
 }
 
 /// `base` with the fields given as keywords changed (each read by the
@@ -82,8 +120,14 @@ ModelParams params_with(ModelParams base, const py::kwargs& kw, const char* func
     for (auto item : kw) {
         const auto key = item.first.cast<std::string>();
         bool found = false;
-        visit_settings(base, [&](double& field, const SettingInfo& info) {
-            if (key != info.name) return;
+        if (key == "drift") {
+            set_drift(base, item.second);
+            continue;
+        }
+        visit_settings(base, [&](auto&& field, const SettingInfo& info) {
+            std::string name = info.name;
+            std::replace(name.begin(), name.end(), '-', '_');
+            if (key != name) return;
             found = true;
             parse_setting(info, setting_text(item.second), field);
         });

@@ -287,6 +287,18 @@ void parse_setting(const SettingInfo& info, const std::string& text, const Numbe
     out.hi = v[1];
 }
 
+std::string format_setting(const TextValue& x) { return x.value; }
+
+void parse_setting(const SettingInfo& info, const std::string& text, const TextValue& out) {
+    // A text is checked where it is used (an expression by the parser, a path
+    // when it is opened); here only that it is one readable line.
+    for (unsigned char ch : text)
+        if (ch < 0x20 || ch == 0x7f)
+            throw InvalidParameter(info.name, std::string(info.name) + " must be one line of text, got " +
+                                                  quoted(text));
+    out.value = text;
+}
+
 // ---- forms for --help -------------------------------------------------------------
 
 const char* setting_form(const double&) { return "NUM"; }
@@ -299,5 +311,6 @@ const char* setting_form(const NumberOrAuto&) { return "NUM|auto"; }
 const char* setting_form(const SeedValue&) { return "INT"; }
 const char* setting_form(const NumberList&) { return "LIST"; }
 const char* setting_form(const NumberRange&) { return "LO,HI"; }
+const char* setting_form(const TextValue&) { return "TEXT"; }
 
 } // namespace stickslip

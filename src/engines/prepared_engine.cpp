@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "driver/step_check.hpp" // check_step: the notes of a prepared run
 #include "engines/event/event_steps.hpp"
@@ -18,6 +20,8 @@ double auto_time_step(const ModelParams& p, Scheme scheme) {
 }
 
 Scheme auto_scheme(const ModelParams& p, PathUse use) {
+    // The event scheme's exact Gaussian laws are built for the affine law only.
+    if (p.has_drift_law()) return Scheme::Resolvent;
     if (p.white()) return use == PathUse::GridSamples ? Scheme::Resolvent : Scheme::Event;
     // Near-white noise (tau' below about 1e-4): the event step must resolve
     // tau, the resolvent's follows the white-noise law and is the longer.
@@ -62,6 +66,19 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
         } else {
             r.stop_rule = to_string(c.rule);
         }
+    }
+    if (p.has_drift_law()) {
+        DriftLawReport law;
+        make_drift_law(p, &law);
+        e.notes.push_back("drift law (" + law.source + ") " + law.text + ": interpolated on " +
+                          std::to_string(law.knots) + " knots over [" + detail::format_number(law.lower, 4) + ", " +
+                          detail::format_number(law.upper, 4) + "] m/s, off by at most " +
+                          detail::format_number(law.interpolation_error, 2) + " m s^-2" +
+                          (given.scheme == Scheme::Auto && s.engine == Engine::Inclusion
+                               ? "; the inclusion engine runs the resolvent scheme (the event scheme takes the "
+                                 "affine law only)"
+                               : ""));
+        e.notes.insert(e.notes.end(), law.notes.begin(), law.notes.end());
     }
     if (!p.white()) {
         r.upper_threshold = p.upper_threshold();

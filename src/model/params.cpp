@@ -2,6 +2,8 @@
 #include "core/format.hpp"
 #include "stickslip/params.hpp"
 
+#include "stickslip/drift_input.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -11,9 +13,16 @@ double ModelParams::force_amplitude() const { return std::sqrt(noise / 2.0); }
 
 double ModelParams::inverse_relaxation() const { return std::isinf(relaxation) ? 0.0 : 1.0 / relaxation; }
 
-double ModelParams::upper_threshold() const { return (friction - bias) / force_amplitude(); }
+double ModelParams::drift_at(double v) const {
+    if (!has_drift_law()) return -v * inverse_relaxation() + bias;
+    return make_drift_law(*this)(v);
+}
 
-double ModelParams::lower_threshold() const { return (-friction - bias) / force_amplitude(); }
+double ModelParams::drift_at_zero() const { return has_drift_law() ? make_drift_law(*this)(0.0) : bias; }
+
+double ModelParams::upper_threshold() const { return (friction - drift_at_zero()) / force_amplitude(); }
+
+double ModelParams::lower_threshold() const { return (-friction - drift_at_zero()) / force_amplitude(); }
 
 Scales scales_of(const ModelParams& p) {
     Scales s{};
@@ -87,10 +96,22 @@ void validate(const ModelParams& p) {
 }
 
 bool has_stationary_state(const ModelParams& p) {
+    if (p.has_drift_law()) {
+        try {
+            make_drift_law(p);
+        } catch (const InvalidParameter&) {
+            return false;
+        }
+        return true;
+    }
     return !std::isinf(p.relaxation) || std::fabs(p.bias) < p.friction;
 }
 
 void require_stationary_state(const ModelParams& p) {
+    if (p.has_drift_law()) {
+        make_drift_law(p); // throws, naming the law's setting and what is wrong
+        return;
+    }
     if (!has_stationary_state(p))
         throw InvalidParameter("bias", "with relaxation inf the bias must satisfy |bias| < friction (otherwise the "
                                        "object accelerates forever and D is undefined); got bias " +

@@ -64,8 +64,17 @@ ordered_json params_json(const RunSettings& r) {
     j["friction"] = p.friction;
     j["noise"] = p.noise;
     j["tau"] = p.tau;
-    j["relaxation"] = json_number(p.relaxation);
-    j["bias"] = p.bias;
+    if (p.has_drift_law()) {
+        // The law as given, so that the JSON reproduces the run exactly.
+        if (!p.drift.empty()) j["drift"] = p.drift;
+        if (!p.drift_params.empty()) j["drift_params"] = p.drift_params;
+        if (!p.drift_table.empty()) j["drift_table"] = p.drift_table;
+        if (!p.drift_table_v.empty()) j["drift_table"] = {{"v", p.drift_table_v}, {"b", p.drift_table_b}};
+        j["knots"] = p.knots;
+    } else {
+        j["relaxation"] = json_number(p.relaxation);
+        j["bias"] = p.bias;
+    }
     if (!has_time_step(r.engine)) j["grid"] = r.engine.grid;
     else {
         j["dt"] = r.engine.dt;
@@ -80,8 +89,10 @@ ordered_json nondimensional_json(const RunSettings& r) {
     const Scales sc = scales_of(r.params);
     ordered_json j;
     j["tau"] = nd.tau;
-    j["relaxation"] = json_number(nd.relaxation);
-    j["bias"] = nd.bias;
+    if (!r.params.has_drift_law()) { // a law other than the affine one is given in SI only
+        j["relaxation"] = json_number(nd.relaxation);
+        j["bias"] = nd.bias;
+    }
     if (!has_time_step(r.engine)) j["grid"] = r.engine.grid / sc.noise_level;
     else j["dt"] = r.engine.dt / sc.time;
     j["time_unit"] = sc.time;
@@ -158,16 +169,25 @@ std::string engine_line(const char* what, const EngineSettings& s, const std::st
     return os.str();
 }
 
+std::string drift_law_text(const ModelParams& p) {
+    if (!p.drift.empty())
+        return "drift b(v) = " + p.drift + (p.drift_params.empty() ? "" : " with " + p.drift_params) + " m/s^2";
+    if (!p.drift_table.empty()) return "drift b(v) from the table " + p.drift_table;
+    return "drift b(v) from a table of " + std::to_string(p.drift_table_v.size()) + " rows";
+}
+
 std::string param_line(const ModelParams& p, const EngineSettings& s) {
     std::ostringstream os = report_stream();
     os << "friction " << format_number(p.friction) << " m/s^2, noise " << format_number(p.noise) << " m^2/s^3, tau "
-       << format_number(p.tau) << " s, relaxation " << relaxation_text(p.relaxation) << ", bias "
-       << format_number(p.bias) << " m/s^2\n";
+       << format_number(p.tau) << " s, ";
+    if (p.has_drift_law()) os << drift_law_text(p) << "\n";
+    else os << "relaxation " << relaxation_text(p.relaxation) << ", bias " << format_number(p.bias) << " m/s^2\n";
     const ModelParams nd = to_nondimensional(p);
     const Scales sc = scales_of(p);
-    os << "nondimensional: tau' " << format_number(nd.tau) << ", relaxation' "
-       << (std::isinf(nd.relaxation) ? std::string("inf") : format_number(nd.relaxation)) << ", bias' "
-       << format_number(nd.bias);
+    os << "nondimensional: tau' " << format_number(nd.tau);
+    if (!p.has_drift_law())
+        os << ", relaxation' " << (std::isinf(nd.relaxation) ? std::string("inf") : format_number(nd.relaxation))
+           << ", bias' " << format_number(nd.bias);
     if (!has_time_step(s)) os << ", grid' " << format_number(s.grid / sc.noise_level);
     else os << ", dt' " << format_number(s.dt / sc.time);
     os << "  (time unit " << format_number(sc.time) << " s, length unit " << format_number(sc.length) << " m)\n";

@@ -61,6 +61,8 @@ std::ostringstream report_stream();
 
 /// "stickslip WHAT: ENGINE engine, dt X s" + extra + "\n".
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra);
+/// The drift law as the reports name it: "drift b(v) = EXPR m/s^2", or its table.
+std::string drift_law_text(const ModelParams& p);
 /// The physical and nondimensional parameter lines.
 std::string param_line(const ModelParams& p, const EngineSettings& s);
 /// "N WHAT (seed S), W steps, T s on K threads" + extra + "\n".

@@ -82,8 +82,8 @@ TEST(Params, ForceAmplitudeThresholdsAndDrift) {
     EXPECT_NEAR(p.upper_threshold(), (3.84 - 0.342) / a, 1e-14);
     EXPECT_NEAR(p.lower_threshold(), (-3.84 - 0.342) / a, 1e-14);
     EXPECT_NEAR(p.inverse_relaxation(), 1.0 / 0.067, 1e-12);
-    EXPECT_NEAR(p.drift(0.5), -0.5 / 0.067 + 0.342, 1e-13);
-    EXPECT_EQ(p.drift(0.0), 0.342);
+    EXPECT_NEAR(p.drift_at(0.5), -0.5 / 0.067 + 0.342, 1e-13);
+    EXPECT_EQ(p.drift_at(0.0), 0.342);
     EXPECT_FALSE(p.white());
     p.tau = 0.0;
     EXPECT_TRUE(p.white());

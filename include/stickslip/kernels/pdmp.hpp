@@ -23,6 +23,7 @@
 #include <limits>
 
 #include "stickslip/config.hpp"
+#include "stickslip/drift_law.hpp"
 #include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
 
@@ -44,6 +45,12 @@ struct PdmpConstants {
     int k_plus;       ///< last index with a x <= Delta - gbar (top of the static band)
     int k_minus;      ///< first index with a x >= -Delta - gbar (bottom of the band)
     std::uint64_t max_events; ///< runaway guard per long excursion
+    /// A law other than the affine one: the flow is linear within each of its
+    /// pieces (bias then holds b(0), relaxation is unused), and reaching a
+    /// piece's end is one more event beside the next jump and V = 0.
+    bool knots_law;
+    int zero_piece;   ///< knots law: the piece just above v = 0 (0 is a knot)
+    DriftLaw drift;   ///< knots law: b(v) [m s^-2]
 };
 
 /// Validates and precomputes; chooses L when s.lattice_bound == 0:
@@ -112,15 +119,81 @@ struct PdmpState {
     int y;
     /// Velocity V [m/s]; 0 in the static mode.
     double v;
+    /// Knots law: the piece of the drift law the velocity is in (kept, not
+    /// recomputed from v, so that a state on a knot knows its side); 0 otherwise.
+    int piece = 0;
 };
+
+/// expm1(x)/x, 1 at x = 0.
+STICKSLIP_HD inline double pdmp_phi1(double x) { return x == 0.0 ? 1.0 : std::expm1(x) / x; }
+/// (expm1(x) - x)/x^2, 1/2 at x = 0 (a series near 0, where the quotient cancels).
+STICKSLIP_HD inline double pdmp_phi2(double x) {
+    if (std::fabs(x) < 1e-2) return 0.5 + x * (1.0 / 6.0 + x * (1.0 / 24.0 + x * (1.0 / 120.0 + x / 720.0)));
+    return (std::expm1(x) - x) / (x * x);
+}
+
+/// Knots law: net acceleration on the piece of s, dV/dt = slope V + k: writes slope [s^-1] and k [m s^-2].
+STICKSLIP_HD inline void pdmp_piece_line(const PdmpConstants& c, const PdmpState& s, double& slope, double& k) {
+    slope = c.drift.piece_slope(s.piece);
+    k = c.drift.piece_intercept(s.piece) + c.amp * c.delta * s.i - s.y * c.friction;
+}
+
+/// Knots law: time [s] for the flow dV/dt = slope V + k from v to reach `level`; +inf if never.
+STICKSLIP_HD inline double pdmp_time_to_level(double slope, double k, double v, double level) {
+    const double inf = std::numeric_limits<double>::infinity();
+    if (!(std::fabs(level) < inf)) return inf;
+    if (slope == 0.0) {
+        const double t = (level - v) / k;
+        return t >= 0.0 ? t : inf; // also NaN (k = 0)
+    }
+    // V(t) - v* = (v - v*) e^{slope t} with v* = -k/slope.
+    const double w = v + k / slope;
+    const double t = std::log1p((level - v) / w) / slope;
+    return t >= 0.0 ? t : inf;
+}
+
+/// Knots law: the end of s's piece its flow moves towards [m/s] (+-inf: none; NaN: it stays).
+STICKSLIP_HD inline double pdmp_piece_target(const PdmpConstants& c, const PdmpState& s) {
+    double slope, k;
+    pdmp_piece_line(c, s, slope, k);
+    const double rate = slope * s.v + k;
+    if (rate > 0.0) return c.drift.piece_upper(s.piece);
+    if (rate < 0.0) return c.drift.piece_lower(s.piece);
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// Flow of duration t from state s, for either law: writes the new velocity
+/// and adds the displacement [m] to du.
+STICKSLIP_HD inline void pdmp_flow_state(const PdmpConstants& c, const PdmpState& s, double t, double& v_out,
+                                         double& du) {
+    if (!c.knots_law || s.y == 0) {
+        pdmp_flow(c, s.i, s.y, s.v, t, v_out, du);
+        return;
+    }
+    double slope, k;
+    pdmp_piece_line(c, s, slope, k);
+    const double st = slope * t;
+    v_out = s.v + (slope * s.v + k) * t * pdmp_phi1(st);
+    du += s.v * t * pdmp_phi1(st) + k * t * t * pdmp_phi2(st);
+}
+
+/// Knots law: the piece a motion from v = 0 in direction y starts in.
+STICKSLIP_HD inline int pdmp_piece_from_rest(const PdmpConstants& c, int y) {
+    return y > 0 ? c.zero_piece : c.zero_piece - 1;
+}
 
 /// Advances the state by one event: either the next jump of X or V reaching 0,
 /// whichever is first. Adds elapsed time [s] and displacement [m]. If `horizon`
 /// is finite and the event would end after it, stops exactly at the horizon
 /// and returns false.
 template <class Rng>
+STICKSLIP_HD inline bool pdmp_event_knots(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time,
+                                          double& disp, double horizon);
+
+template <class Rng>
 STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time,
                                     double& disp, double horizon) {
+    if (c.knots_law) return pdmp_event_knots(c, s, rng, time, disp, horizon);
     double e, u1; // the wait in units of the mean wait, and the jump direction's uniform
     rng.exponential_uniform(e, u1);
     const double wait = e / c.rate;
@@ -155,6 +228,56 @@ STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& r
     return true;
 }
 
+/// pdmp_event for a knots law: the next event is the first of the jump of X,
+/// V reaching 0 (a landing, as above) and V reaching another knot (the piece
+/// changes; X does not jump: its wait, exponential, is drawn afresh after any
+/// event, which memorylessness allows).
+template <class Rng>
+STICKSLIP_HD inline bool pdmp_event_knots(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time,
+                                          double& disp, double horizon) {
+    double e, u1;
+    rng.exponential_uniform(e, u1);
+    const double wait = e / c.rate;
+    double level = std::numeric_limits<double>::infinity(), t_end = level;
+    if (s.y != 0) {
+        double slope, k;
+        pdmp_piece_line(c, s, slope, k);
+        level = pdmp_piece_target(c, s);
+        t_end = pdmp_time_to_level(slope, k, s.v, level);
+    }
+    const bool ends = t_end <= wait;
+    const double dt = ends ? t_end : wait;
+    double v_out;
+    if (time + dt > horizon) {
+        pdmp_flow_state(c, s, horizon - time, v_out, disp);
+        s.v = v_out;
+        time = horizon;
+        return false;
+    }
+    pdmp_flow_state(c, s, dt, v_out, disp);
+    time += dt;
+    if ((ends && level == 0.0) || (s.y != 0 && s.v != 0.0 && s.y * v_out <= 0.0)) { // landing
+        s.v = 0.0;
+        s.y = pdmp_mode_at_rest(c, s.i, s.y);
+        if (s.y != 0) s.piece = pdmp_piece_from_rest(c, s.y);
+        return true;
+    }
+    if (ends) { // a knot: the next piece, on the knot exactly
+        s.v = level;
+        s.piece += level == c.drift.piece_upper(s.piece) ? 1 : -1;
+        return true;
+    }
+    s.v = v_out;
+    const bool up = u1 <= pdmp_up_probability(c, s.i);
+    if (s.y == 0) {
+        if (up && s.i >= c.k_plus) s.y = 1;
+        if (!up && s.i <= c.k_minus) s.y = -1;
+        if (s.y != 0) s.piece = pdmp_piece_from_rest(c, s.y);
+    }
+    s.i += up ? 1 : -1;
+    return true;
+}
+
 /// What observes a PDMP path: observe(start state, start time [s], start
 /// displacement [m], duration [s]) for every segment between two events.
 template <class O>
@@ -181,6 +304,7 @@ STICKSLIP_HD inline bool pdmp_half(const PdmpConstants& c, int dir, Rng& rng, do
                                    double& disp, std::uint64_t& events, Observer&& observe = Observer{}) {
     const double inf = std::numeric_limits<double>::infinity();
     PdmpState s{dir > 0 ? c.k_plus + 1 : c.k_minus - 1, dir, 0.0};
+    if (c.knots_law) s.piece = pdmp_piece_from_rest(c, dir);
     const int target_i = dir > 0 ? c.k_minus - 1 : c.k_plus + 1;
     for (;;) {
         if (events >= c.max_events) return false;
@@ -222,6 +346,8 @@ STICKSLIP_HD inline PdmpState pdmp_initial_state(const PdmpConstants& c, double 
     else if (v0 < 0) s.y = -1;
     else if (s.i > c.k_plus) s.y = 1;
     else if (s.i < c.k_minus) s.y = -1;
+    if (c.knots_law)
+        s.piece = v0 != 0.0 ? c.drift.piece(v0) : s.y != 0 ? pdmp_piece_from_rest(c, s.y) : c.zero_piece;
     return s;
 }
 

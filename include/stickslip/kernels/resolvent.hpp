@@ -26,6 +26,7 @@
 #include <type_traits>
 
 #include "stickslip/config.hpp"
+#include "stickslip/drift_law.hpp"
 #include "stickslip/excursion.hpp"
 #include "stickslip/kernels/noise.hpp"
 #include "stickslip/params.hpp"
@@ -52,6 +53,10 @@ struct ResolventConstants {
     StopRule rule;     ///< resolved rule: Bridge or Stuck (colored only)
     double level;      ///< white only: regeneration velocity level c > 0 [m/s]
     std::uint64_t max_steps; ///< runaway guard per long excursion
+    /// A law other than the affine one (then keep and h_bias are unused and
+    /// the free flight is V + h b(V), the paper's Algorithm 3 for any b).
+    bool knots_law;
+    DriftLaw drift;    ///< b(v) [m s^-2] when knots_law
 };
 
 /// Validates p and s (throws InvalidParameter) and precomputes the constants.
@@ -105,12 +110,16 @@ STICKSLIP_HD inline bool bridge_crossed(const ResolventConstants& c, double x0, 
 STICKSLIP_HD inline void resolvent_colored_step(const ResolventConstants& c, double x, double v,
                                                 double z1, double z2, double& x_next, double& f) {
     x_next = c.ou.end_coef * x + (c.ou.l21 * z1 + c.ou.l22 * z2);
-    f = c.keep * v + ((c.h_bias + c.f_x * x) + c.f_z * z1);
+    if (c.knots_law) // a well-predicted branch: the law is fixed for the run
+        f = (v + c.h * c.drift(v)) + (c.f_x * x + c.f_z * z1);
+    else
+        f = c.keep * v + ((c.h_bias + c.f_x * x) + c.f_z * z1);
 }
 
 /// One white-noise step from v with the standard normal z: the velocity at the
 /// end of the step [m/s] (the free flight, then the friction's resolvent).
 STICKSLIP_HD inline double resolvent_white_step(const ResolventConstants& c, double v, double z) {
+    if (c.knots_law) return soft_threshold((v + c.h * c.drift(v)) + c.h_amp * z, c.h_friction);
     return soft_threshold(c.keep * v + (c.h_bias + c.h_amp * z), c.h_friction);
 }
 

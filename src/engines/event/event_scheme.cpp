@@ -14,6 +14,9 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
     validate(p);
     validate(s);
     require_stationary_state(p);
+    if (p.has_drift_law())
+        throw InvalidParameter("scheme", "the event scheme takes the affine drift law only (--relaxation, --bias); "
+                                         "with --drift or --drift-table use --scheme resolvent or --engine pdmp");
     EventConstants c{};
     c.h = s.dt;
     c.leaf = std::ldexp(s.dt, -event_depth);

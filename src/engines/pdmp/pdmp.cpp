@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
 
 namespace stickslip {
 
@@ -24,6 +25,15 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
     c.bias = p.bias;
     c.relaxation = p.relaxation;
     c.viscous = !std::isinf(p.relaxation);
+    c.knots_law = p.has_drift_law();
+    if (c.knots_law) {
+        c.drift = make_drift_law(p);
+        c.bias = c.drift(0.0); // b(0): the static band and the acceleration at rest
+        c.viscous = false;
+        c.zero_piece = static_cast<int>(std::lround(-c.drift.first * c.drift.inv_spacing));
+        if (c.drift.knot(c.zero_piece) != 0.0)
+            throw InvalidParameter("knots", "the drift law's knots must include v = 0"); // make_drift_law's invariant
+    }
     c.max_events = s.max_work_per_excursion;
     // k+ is the last lattice index with a x <= friction - bias, k- the first
     // with a x >= -friction - bias. The rounded quotients can disagree with the
@@ -31,8 +41,8 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
     // object moves) when a threshold falls on a lattice point, so they are
     // settled with that very expression: the object at s+ accelerates strictly
     // up, at s- strictly down, and the static band is exactly where it cannot move.
-    const double kp_est = std::floor((p.friction - p.bias) / (c.amp * s.grid));
-    const double km_est = std::ceil((-p.friction - p.bias) / (c.amp * s.grid));
+    const double kp_est = std::floor((p.friction - c.bias) / (c.amp * s.grid));
+    const double km_est = std::ceil((-p.friction - c.bias) / (c.amp * s.grid));
     const auto too_many_points = [&](double points) {
         return InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " +
                                             detail::format_number(points) +

@@ -60,7 +60,7 @@ public:
     template <class F>
     void sample_piece(const Piece& p, double g, double offset, F& f) const {
         double v = 0.0, u = p.u0;
-        pdmp_flow(c_, p.s.i, p.s.y, p.s.v, g - offset - p.t0, v, u);
+        pdmp_flow_state(c_, p.s, g - offset - p.t0, v, u);
         f(c_.delta * p.s.i, p.s.y, v, u);
     }
 
@@ -84,6 +84,7 @@ public:
         sampler.offset = o.duration;
         sampler.stop_at = sampler.next + extra;
         PdmpState s{c_.k_plus + 1, +1, 0.0};
+        if (c_.knots_law) s.piece = pdmp_piece_from_rest(c_, +1);
         const double horizon = sampler.phase + static_cast<double>(sampler.stop_at + 1) * dt - o.duration;
         o.work += pdmp_path(c_, s, horizon, rng, observe).work;
         return o;
@@ -132,7 +133,7 @@ public:
             o = pdmp_path(c_, s, horizon, rng, [&](const PdmpState& st, double t0, double, double dur) {
                 while (j < nt && times[j] < t0 + dur) {
                     double v = 0.0, du = 0.0;
-                    pdmp_flow(c_, st.i, st.y, st.v, times[j] - t0, v, du);
+                    pdmp_flow_state(c_, st, times[j] - t0, v, du);
                     record(j++, v);
                 }
             });

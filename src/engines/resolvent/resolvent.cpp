@@ -5,12 +5,14 @@
 #include <cmath>
 
 #include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
 
 namespace stickslip {
 
 double white_level_default(const ModelParams& p) {
     double scale = 0.7 * p.noise / p.friction;
-    if (!std::isinf(p.relaxation)) scale = std::fmin(scale, std::sqrt(p.noise * p.relaxation / 2.0));
+    const double relaxation = drift_time_scale(p); // 1/L for a general law
+    if (!std::isinf(relaxation)) scale = std::fmin(scale, std::sqrt(p.noise * relaxation / 2.0));
     return 0.5 * scale;
 }
 
@@ -26,6 +28,20 @@ ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSe
                                          " s, relaxation = " + detail::format_number(p.relaxation) +
                                          " s): the explicit drift step would overshoot");
     c.h_bias = s.dt * p.bias;
+    c.knots_law = p.has_drift_law();
+    if (c.knots_law) {
+        c.drift = make_drift_law(p);
+        c.keep = 1.0;
+        c.h_bias = 0.0;
+        const double lip = lipschitz_constant(c.drift);
+        // The explicit drift step of a law with slope -L overshoots when h L > 1.
+        if (!(s.dt * lip < 1.0))
+            throw InvalidParameter("dt", "dt = " + detail::format_number(s.dt) + " s times the drift law's largest slope " +
+                                             detail::format_number(lip) + " s^-1 is " +
+                                             detail::format_number(s.dt * lip) +
+                                             ": the explicit drift step needs dt * L < 1; use dt <= " +
+                                             detail::format_number(0.5 / lip) + " s");
+    }
     c.h_friction = s.dt * p.friction;
     c.white = p.white();
     c.max_steps = s.max_work_per_excursion;

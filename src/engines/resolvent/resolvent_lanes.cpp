@@ -233,7 +233,7 @@ bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, 
 bool detail::resolvent_long_excursions_in_lanes(const ResolventConstants& c, std::uint64_t seed,
                                                 std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
                                                 const std::atomic<bool>* cancel) {
-    if (c.white) return one_at_a_time(c, seed, first, count, out, cancel);
+    if (c.white || c.knots_law) return one_at_a_time(c, seed, first, count, out, cancel);
     return c.rule == StopRule::Bridge ? run_lanes_bridge(c, seed, first, count, out, cancel)
                                       : run_lanes_stuck(c, seed, first, count, out, cancel);
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/errors.hpp"
 
 namespace stickslip::detail {
@@ -46,7 +47,8 @@ double resolvent_step_for_bias(const ModelParams& p, double bias) {
 
 double resolvent_auto_step(const ModelParams& p) {
     const double law = resolvent_step_for_bias(p, kAutoBias);
-    return std::isfinite(p.relaxation) ? std::fmin(law, kAutoRelaxation * p.relaxation) : law;
+    const double relaxation = drift_time_scale(p);
+    return std::isfinite(relaxation) ? std::fmin(law, kAutoRelaxation * relaxation) : law;
 }
 
 void check_resolvent_step(const ModelParams& p, double dt, std::vector<std::string>& notes) {
@@ -70,11 +72,13 @@ void check_resolvent_step(const ModelParams& p, double dt, std::vector<std::stri
     // dt approaches the relaxation time: measured, the Fig. 2 case is
     // +3.1% at dt = 0.45 relaxation (as the law says) but -5% at 0.9
     // (the law says +6%).
-    if (std::isfinite(p.relaxation) && dt > 0.5 * p.relaxation)
-        notes.push_back("dt = " + format_number(dt) + " s is " + rounded(dt / p.relaxation) +
-                        " relaxation times: the explicit drift step's own error adds to the bias, in either "
+    const double relaxation = drift_time_scale(p); // 1/L for a general law
+    if (std::isfinite(relaxation) && dt > 0.5 * relaxation)
+        notes.push_back("dt = " + format_number(dt) + " s is " + rounded(dt / relaxation) +
+                        (p.has_drift_law() ? " times the drift law's time 1/L" : " relaxation times") +
+                        ": the explicit drift step's own error adds to the bias, in either "
                         "direction (Fig. 2 case at 0.9 relaxation times: D -5%); use --dt " +
-                        rounded(0.3 * p.relaxation) + " or smaller" +
+                        rounded(0.3 * relaxation) + " or smaller" +
                         (p.white() ? "" : ", or --scheme event or --engine pdmp"));
 }
 

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// stickslip/drift_input.hpp -- a user's drift law (expression, table, callable)
+// made into the knots the engines run (drift_law.hpp), once per run.
+//
+// The law is sampled, never evaluated in a kernel. Its knots are uniform with
+// one of them at v = 0, where friction makes the force jump anyway: b(0), which
+// sets the noise thresholds x* and x-*, is then the law's own value, and the
+// friction kink and a knot coincide. The range is chosen from the model so that
+// the velocities a run reaches lie inside the knots (beyond them the outer
+// pieces continue the law): the larger of
+//  * where the white-noise potential (2/noise) int (b - friction sgn v) has
+//    fallen 36 below its maximum (density < e^-36), and
+//  * for coloured noise, the terminal velocities under a force 6 standard
+//    deviations of a X (or that force held for 3 tau),
+// widened by a quarter. The interpolation error is measured at the middle of
+// every piece against the law itself and reported.
+#pragma once
+
+/// \file
+/// Making the run's drift law from the model's parameters. The comment at the
+/// top of this header explains the design.
+
+#include <string>
+#include <vector>
+
+#include "stickslip/drift_law.hpp"
+#include "stickslip/params.hpp"
+
+namespace stickslip {
+
+/// How the run's law was made from the user's input.
+struct DriftLawReport {
+    std::string source;          ///< "affine", "expression", "table" or "function"
+    std::string text;            ///< the law as given: the expression, the table's path, "b = -v/relaxation + bias"
+    double interpolation_error = 0.0; ///< max |b - interpolant| at the pieces' midpoints [m s^-2]
+    double lower = 0.0, upper = 0.0;  ///< range of the knots [m/s]
+    int knots = 0;                    ///< knots used (0: affine)
+    std::vector<std::string> notes;   ///< e.g. the knot count a finer interpolation needs
+};
+
+/// The run's law: the affine law of relaxation and bias when p gives no other
+/// law, else the knots of p.drift, p.drift_table or p.drift_function (in that
+/// order of precedence; give one). Throws InvalidParameter naming the setting
+/// ("drift", "drift-table", "knots") for input that does not parse, names
+/// another variable, is not finite on the range, a table that is not sorted,
+/// has duplicates, NaN or fewer than two rows, and a law that does not confine
+/// the velocity (no stationary state). `report`, when given, says how the law
+/// was made.
+DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report = nullptr);
+
+/// The drift law's own time scale [s]: relaxation for the affine law, 1/L for
+/// another (L its largest slope; +inf for a law without slope). What the
+/// automatic steps and the step checks compare a step with.
+double drift_time_scale(const ModelParams& p);
+
+/// The rows of a table file: one "v,b" pair per line (SI: m/s, m s^-2), '#'
+/// comments, blank lines and one header line of non-numbers allowed. Throws
+/// InvalidParameter("drift-table", ...) when the file cannot be read or a row is
+/// not two numbers.
+void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b);
+
+} // namespace stickslip
