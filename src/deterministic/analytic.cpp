@@ -53,6 +53,7 @@
 // t' > 100 the autocorrelation switches to its asymptotic series, where the
 // closed form would lose more than six digits.
 #include "stickslip/analytic.hpp"
+#include "stickslip/drift_law_quadrature.hpp"
 
 #include <algorithm>
 #include <array>
@@ -445,6 +446,7 @@ double hayakawa_density(const ModelParams& p, double v) {
 }
 
 WhiteNoiseReference white_noise_reference(const ModelParams& p) {
+    if (p.has_drift_law()) return DriftLawWhiteNoise(p).reference(); // any law: drift_law_quadrature.hpp
     check(p);
     const Shape sh(p);
     const Moments m = moments_of(p, sh, segments_of(sh), true);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/format.hpp"
+#include "stickslip/drift_law_quadrature.hpp"
 #include "stickslip/fokker_planck.hpp"
 
 namespace stickslip {
@@ -16,7 +17,9 @@ namespace {
 constexpr double fokker_planck_accuracy = 1e-6;
 } // namespace
 
-bool is_pure_dry_friction(const ModelParams& p) { return std::isinf(p.relaxation) && p.bias == 0.0; }
+bool is_pure_dry_friction(const ModelParams& p) {
+    return !p.has_drift_law() && std::isinf(p.relaxation) && p.bias == 0.0;
+}
 
 void validate(const WhiteNoiseRequest& req) {
     ModelParams p = req.params;
@@ -43,6 +46,19 @@ WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req) {
     out.request = req;
     out.request.params.tau = 0.0;
     const ModelParams& p = out.request.params;
+    if (p.has_drift_law()) {
+        // Any law: the stationary quantities by quadrature; the transient
+        // Fokker-Planck solver is written for the affine law.
+        if (!req.times.empty())
+            throw InvalidParameter("times", "transient references (--times) are computed for the affine law only "
+                                            "(--relaxation, --bias); for this drift law use `stickslip moments` "
+                                            "or `correlation` with --tau 0");
+        const DriftLawWhiteNoise law(p);
+        out.reference = law.reference();
+        out.details = GridDetails{"quadrature of the drift law's interpolant (drift_law_quadrature.hpp)"};
+        for (double v : req.velocities) out.stationary_density.push_back(law.density(v));
+        return out;
+    }
     out.reference = white_noise_reference(p);
     // The stationary references are closed forms; the transient ones too for
     // pure dry friction, else the Fokker-Planck grid.

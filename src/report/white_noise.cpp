@@ -42,18 +42,32 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
     ordered_json params;
     params["friction"] = q.params.friction;
     params["noise"] = q.params.noise;
-    params["relaxation"] = json_number(q.params.relaxation);
-    params["bias"] = q.params.bias;
+    const bool law = q.params.has_drift_law();
+    if (law) {
+        if (!q.params.drift.empty()) params["drift"] = q.params.drift;
+        if (!q.params.drift_params.empty()) params["drift_params"] = q.params.drift_params;
+        if (!q.params.drift_table.empty()) params["drift_table"] = q.params.drift_table;
+        params["knots"] = q.params.knots;
+        j["method"] = r.grid().solver;
+    } else {
+        params["relaxation"] = json_number(q.params.relaxation);
+        params["bias"] = q.params.bias;
+    }
     j["params"] = params;
     const ModelParams nd = to_nondimensional(q.params);
-    j["nondimensional"] = {{"relaxation", json_number(nd.relaxation)},
-                           {"bias", nd.bias},
-                           {"mobility", r.reference.mobility / sc.velocity},
+    ordered_json ndj;
+    if (!law) {
+        ndj["relaxation"] = json_number(nd.relaxation);
+        ndj["bias"] = nd.bias;
+    }
+    const ordered_json values{{"mobility", r.reference.mobility / sc.velocity},
                            {"diffusivity", r.reference.diffusivity / sc.diffusivity},
                            {"variance", r.reference.variance / (sc.velocity * sc.velocity)},
                            {"time_unit", sc.time},
                            {"velocity_unit", sc.velocity},
                            {"diffusivity_unit", sc.diffusivity}};
+    for (const auto& [key, value] : values.items()) ndj[key] = value;
+    j["nondimensional"] = ndj;
     add_report_tail(j, nullptr, r.warnings);
     return dump(j, indent);
 }
@@ -64,8 +78,10 @@ std::string to_table(const WhiteNoiseResult& r) {
     std::ostringstream os = report_stream();
     os << "stickslip analytic: exact white-noise references\n";
     os << "friction " << format_number(q.params.friction) << " m/s^2, noise " << format_number(q.params.noise)
-       << " m^2/s^3, relaxation " << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias)
-       << " m/s^2\n\n";
+       << " m^2/s^3, ";
+    if (q.params.has_drift_law()) os << drift_law_text(q.params) << "\n\n";
+    else os << "relaxation " << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias)
+            << " m/s^2\n\n";
     using number_text::pad;
     const auto row = [&os](const char* name, double value, const char* unit, double nondim) {
         os << pad(name, -16) << " " << pad(format_number(value, 10), 15) << " " << pad(unit, -8) << " "

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// stickslip/drift_law_quadrature.hpp -- white-noise references for any drift law.
+//
+// With white noise, dV = (b(V) - friction sgn V) dt + sqrt(noise) dW is a
+// one-dimensional diffusion (theory.md, "Any drift law"): its stationary density
+// is p = exp(Phi)/Z with Phi(v) = (2/noise) int_0^v (b(u) - friction sgn u) du,
+// M0 = int v p, and the Poisson equation gives
+//     D = (4/noise) int F(v)^2 / p(v) dv,   F(v) = int_{-inf}^v (u - M0) p(u) du.
+// For the run's law (the interpolant on knots, drift_input.hpp) Phi is exactly
+// piecewise quadratic, so each piece is integrated by Gauss-Legendre panels
+// short enough that Phi changes by at most 1/2 across one: the quadrature
+// error is then far below 1e-10 relative. F is accumulated from the nearer
+// tail (F(+inf) = 0), so F^2/p keeps its digits where p is tiny; the domain
+// ends where Phi has fallen 60 below its maximum (mass beyond < 1e-26).
+// For the affine law this reproduces white_noise_reference (analytic.hpp) to
+// 1e-9 (tests/unit/drift_law_test.cpp), which is what that function uses.
+#pragma once
+
+/// \file
+/// White-noise stationary density, M0, D and Var(V) for any drift law, by
+/// exact-exponent quadrature. The comment at the top of this header explains
+/// the design.
+
+#include <vector>
+
+#include "stickslip/analytic.hpp"
+#include "stickslip/drift_law.hpp"
+#include "stickslip/params.hpp"
+
+namespace stickslip {
+
+/// The white-noise stationary law of p's drift law (p.tau is ignored), built
+/// once (a few milliseconds), then evaluated.
+class DriftLawWhiteNoise {
+public:
+    /// Throws InvalidParameter as make_drift_law does (no stationary state, bad law).
+    explicit DriftLawWhiteNoise(const ModelParams& p);
+    /// Stationary density p(v) [s/m].
+    double density(double v) const;
+    /// P(a < V < b) [1].
+    double probability(double a, double b) const;
+    /// M0, D and Var(V) (SI).
+    const WhiteNoiseReference& reference() const { return reference_; }
+    /// The law integrated (SI).
+    const DriftLaw& law() const { return law_; }
+
+private:
+    double phi(double v) const; // Phi(v) - Phi_max [1]
+    template <class F>
+    double integrate(double a, double b, F&& f) const;
+    DriftLaw law_;
+    double friction_ = 0, noise_ = 0, phi_max_ = 0, inv_z_ = 0, lo_ = 0, hi_ = 0;
+    std::vector<double> cuts_; // panel ends, increasing, from lo_ to hi_
+    WhiteNoiseReference reference_{};
+};
+
+} // namespace stickslip
