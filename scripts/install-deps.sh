@@ -20,6 +20,7 @@ PACKAGES=(
   libcli11-dev        # CLI11: the command-line parser
   nlohmann-json3-dev  # nlohmann/json: JSON reports
   libboost-dev        # Boost.Math (header-only): quadrature and distributions
+  libeigen3-dev       # Eigen (header-only): sparse LU of the Kolmogorov grid solver
   python3             # Debian's /usr/bin/python3: figures and validation scripts
   python3-numpy       # arrays for the figures, the NumPy baseline of bench/
   python3-matplotlib  # the paper's figures (scripts/figures)
