@@ -65,11 +65,12 @@ struct KolmogorovSettings {
     double x_range = 7.0;           ///< x nodes cover +-x_range standard deviations of X (1/sqrt(tau))
     double v_lower = 0;             ///< lower end of the velocity range [m/s] (< 0; 0: auto)
     double v_upper = 0;             ///< upper end of the velocity range [m/s] (> 0; 0: auto)
-    double v_stretch = 4.0;         ///< stretching of the velocity cells (KolmogorovGrid::v_stretch)
-    double v_grading = 1.0;         ///< grading of the velocity cells at 0 (KolmogorovGrid::v_grading)
+    double v_stretch = 0.0;         ///< stretching of the velocity cells (KolmogorovGrid::v_stretch)
+    double v_grading = 3.0;         ///< grading of the velocity cells at 0 (KolmogorovGrid::v_grading)
     double rel_precision = 1e-3;    ///< target relative error of D
     double memory_budget = 2e9;     ///< bytes the factorisation may take
     double time_budget = 10.0;      ///< seconds the whole solve may take
+    int threads = 2;                ///< threads (1 or 2: the finest grid of a round beside the others)
 };
 
 /// A value with its estimated discretisation error (an absolute error, in the
@@ -87,11 +88,19 @@ struct KolmogorovResult : MethodResult {
     KolmogorovEstimate diffusivity;      ///< D [m^2/s]
     KolmogorovEstimate mobility;         ///< M0 [m/s]
     KolmogorovEstimate stuck_probability; ///< P(V = 0)
+    /// D from the x moves' carre du champ of chi, E[(2/tau^2) chi_x^2], extrapolated
+    /// like D: the same continuum limit with a different discretisation error,
+    /// a check on the extrapolation [m^2/s].
+    KolmogorovEstimate diffusivity_x;
     std::vector<KolmogorovGridSolution> levels; ///< the grids solved, coarse to fine
     bool converged = false;              ///< whether D's estimated error is below rel_precision
     std::string note;                    ///< why not, or other remarks; empty when none
     double seconds = 0;                  ///< wall time [s]
 };
+
+/// Bytes of memory per nonzero of the LU factors, for the memory budget
+/// (value, row index and the supernodal structure's overhead; measured).
+inline constexpr double kolmogorov_bytes_per_lu_nonzero = 16.0;
 
 /// The smallest nondimensional tau' = tau friction^2/noise the solver takes.
 inline constexpr double kolmogorov_min_tau_prime = 0.01;
@@ -102,6 +111,9 @@ KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const Kolmogo
 /// The grid of refinement level `level` (0: coarsest; each level halves the
 /// x spacing and the velocity cells' widths) that solve_kolmogorov uses.
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& settings, int level);
+
+/// Throws InvalidParameter for what solve_kolmogorov refuses.
+void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings);
 
 /// D, M0 and P(V = 0) of p by grid refinement and extrapolation.
 KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings = {});

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <string>
 
@@ -45,7 +46,7 @@ KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s
     const double band = g.upper_threshold - g.lower_threshold;
     const std::size_t scale = std::size_t{1} << level;
     const std::size_t coarse_band =
-        s.band_intervals > 0 ? s.band_intervals
+        s.band_intervals > 0 ? s.band_intervals / 4
                              : static_cast<std::size_t>(std::max(2.0, std::ceil(band / (0.25 * std::min(band, sd)))));
     const double coarse_h = band / static_cast<double>(coarse_band);
     const double reach = s.x_range * sd;
@@ -58,17 +59,23 @@ KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s
     g.band_first = below * scale;
     g.x_nodes = (below + coarse_band + above) * scale + 1;
 
-    // Velocity range: without drag the slip a force a x sustains for about tau
-    // reaches (a x + b(0) - friction) tau; drag stops it at its terminal velocity.
+    // Velocity range. Without drag, the slip that a force a x sustains for
+    // about tau reaches (a x + b(0) - friction) tau: twice that from the end
+    // nodes (D, weighted by v^2 and long correlations, needs more of the tail
+    // than the mass does: 2 was within 0.06% of 3 at tau' = 1). Near the
+    // white-noise limit the velocity's own scale noise/friction takes over:
+    // 10 of it is where Hayakawa's density for pure dry friction has fallen by
+    // e^-20. Drag stops the velocity at the terminal velocity of the end node,
+    // which no path can exceed.
     const double x_top = g.x_upper(), x_bottom = g.x_lower();
     const double push_up = std::max(a * x_top + drift(0.0) - p.friction, 0.0);
     const double push_down = std::max(-(a * x_bottom + drift(0.0) + p.friction), 0.0);
-    const double floor = 0.05 * a * sd * p.tau; // a range even when the force can hardly slide
+    const double white_scale = 10.0 * p.noise / p.friction;
     g.v_upper = s.v_upper > 0 ? s.v_upper
-                              : stopping_velocity(drift, a * x_top - p.friction, +1.0, std::max(push_up * p.tau, floor));
+                              : stopping_velocity(drift, a * x_top - p.friction, +1.0, std::max(2.0 * push_up * p.tau, white_scale));
     g.v_lower = s.v_lower < 0 ? s.v_lower
-                              : -stopping_velocity(drift, a * x_bottom + p.friction, -1.0, std::max(push_down * p.tau, floor));
-    const std::size_t coarse_cells = s.v_cells > 0 ? s.v_cells : 16;
+                              : -stopping_velocity(drift, a * x_bottom + p.friction, -1.0, std::max(2.0 * push_down * p.tau, white_scale));
+    const std::size_t coarse_cells = (s.v_cells > 0 ? s.v_cells : 64) / 4;
     g.v_cells_pos = g.v_cells_neg = coarse_cells * scale;
     g.v_stretch = s.v_stretch;
     g.v_grading = s.v_grading;
@@ -112,6 +119,146 @@ KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const Kolmogo
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+namespace {
+
+/// R0 from three values at steps h, h/2, h/4 under R = R0 + C1 h + C2 h^2
+/// (first-order upwind transport has C1 != 0; the x moves often C1 ~ 0), and
+/// the size of the second-order correction as its error: the difference from
+/// the first-order extrapolation 2 R(h/4) - R(h/2) of the two finest.
+struct Extrapolated {
+    double value = 0, error = 0;
+};
+Extrapolated richardson(double coarse, double middle, double fine) {
+    const double second = (8.0 * fine - 6.0 * middle + coarse) / 3.0, first = 2.0 * fine - middle;
+    return {second, std::abs(second - first)};
+}
+
+void validate_settings(const KolmogorovSettings& s) {
+    auto require = [](bool ok, const char* name, const std::string& what) {
+        if (!ok) throw InvalidParameter(name, std::string(name) + " must be " + what);
+    };
+    require(s.band_intervals == 0 || (s.band_intervals >= 4 && s.band_intervals % 4 == 0), "band_intervals",
+            "0 (automatic) or a multiple of 4 (the x refinement takes a quarter of it), got " +
+                std::to_string(s.band_intervals));
+    require(s.v_cells == 0 || (s.v_cells >= 16 && s.v_cells % 4 == 0), "v_cells",
+            "0 (automatic) or a multiple of 4 >= 16, got " + std::to_string(s.v_cells));
+    require(std::isfinite(s.x_range) && s.x_range >= 3, "x_range", ">= 3 standard deviations, got " + detail::format_number(s.x_range));
+    require(std::isfinite(s.v_lower) && s.v_lower <= 0, "v_lower", "<= 0 m/s (0: automatic), got " + detail::format_number(s.v_lower));
+    require(std::isfinite(s.v_upper) && s.v_upper >= 0, "v_upper", ">= 0 m/s (0: automatic), got " + detail::format_number(s.v_upper));
+    require(std::isfinite(s.v_stretch) && s.v_stretch >= 0 && s.v_stretch <= 20, "v_stretch",
+            "in [0, 20], got " + detail::format_number(s.v_stretch));
+    require(std::isfinite(s.v_grading) && s.v_grading >= 1 && s.v_grading <= 5, "v_grading",
+            "in [1, 5], got " + detail::format_number(s.v_grading));
+    require(s.rel_precision > 0 && s.rel_precision < 1, "rel_precision", "in (0, 1), got " + detail::format_number(s.rel_precision));
+    require(s.memory_budget > 0, "memory_budget", "> 0 bytes, got " + detail::format_number(s.memory_budget));
+    require(s.time_budget > 0, "time_budget", "> 0 s, got " + detail::format_number(s.time_budget));
+    require(s.threads == 1 || s.threads == 2, "threads", "1 or 2, got " + std::to_string(s.threads));
+}
+
+} // namespace
+
+void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
+    validate(p);
+    if (p.white())
+        throw InvalidParameter("tau", "the Kolmogorov grid solver needs coloured noise (tau > 0): for white noise "
+                                      "(tau = 0) the velocity alone is Markov; use the exact white-noise references "
+                                      "(`stickslip analytic`, white_noise_reference())");
+    const double tau_prime = to_nondimensional(p).tau;
+    if (tau_prime < kolmogorov_min_tau_prime)
+        throw InvalidParameter("tau", "tau' = tau friction^2/noise = " + detail::format_number(tau_prime) +
+                                          " is below " + detail::format_number(kolmogorov_min_tau_prime) +
+                                          ", where the x grid of the Kolmogorov solver grows like 1/sqrt(tau') and its "
+                                          "rates stiffen: use the inclusion engine (Monte Carlo), or for tau' -> 0 "
+                                          "the white-noise references (`stickslip analytic`)");
+    require_stationary_state(p);
+    validate_settings(s);
+}
+
+KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings) {
+    validate_kolmogorov(p, settings);
+    const auto start = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+    KolmogorovResult result;
+    result.params = p;
+    // Refinement levels of x and v (kolmogorov_grid); each round solves its
+    // finest grid and, for the extrapolation, v cells halved once and twice at
+    // its x spacing and x spacing doubled once and twice at its v cells.
+    int level_x = 2, level_v = 2;
+    for (int round = 0;; ++round) {
+        const KolmogorovGrid finest_x = kolmogorov_grid(p, settings, level_x);
+        const KolmogorovGrid finest_v = kolmogorov_grid(p, settings, level_v);
+        auto grid = [&](int x_coarsening, int v_coarsening) {
+            KolmogorovGrid g = finest_x;
+            const std::size_t fx = std::size_t{1} << x_coarsening, fv = std::size_t{1} << v_coarsening;
+            g.band_intervals /= fx;
+            g.band_first /= fx;
+            g.x_nodes = (g.x_nodes - 1) / fx + 1;
+            g.x_spacing = (g.upper_threshold - g.lower_threshold) / static_cast<double>(g.band_intervals);
+            g.v_cells_pos = finest_v.v_cells_pos / fv;
+            g.v_cells_neg = finest_v.v_cells_neg / fv;
+            return g;
+        };
+        const double round_start = elapsed();
+        // The finest grid costs about as much as the four others together: it
+        // runs on a second thread while they run on this one.
+        std::future<KolmogorovGridSolution> finest_solution;
+        if (settings.threads > 1)
+            finest_solution = std::async(std::launch::async, [&] { return solve_kolmogorov_grid(p, grid(0, 0)); });
+        std::vector<KolmogorovGridSolution> solved;
+        for (auto [cx, cv] : {std::pair{2, 0}, {1, 0}, {0, 2}, {0, 1}})
+            solved.push_back(solve_kolmogorov_grid(p, grid(cx, cv)));
+        solved.push_back(settings.threads > 1 ? finest_solution.get() : solve_kolmogorov_grid(p, grid(0, 0)));
+        const double round_seconds = elapsed() - round_start;
+        double round_bytes = 0;
+        for (const auto& s : solved) round_bytes += kolmogorov_bytes_per_lu_nonzero * static_cast<double>(s.lu_nonzeros);
+
+        // Independent corrections in the two directions, from the finest grid.
+        const KolmogorovGridSolution& fine = solved[4];
+        double x_error = 0, v_error = 0;
+        auto estimate = [&](auto field, bool record) {
+            const Extrapolated in_x = richardson(field(solved[0]), field(solved[1]), field(fine));
+            const Extrapolated in_v = richardson(field(solved[2]), field(solved[3]), field(fine));
+            if (record) x_error = in_x.error, v_error = in_v.error;
+            return KolmogorovEstimate{in_x.value + in_v.value - field(fine), in_x.error + in_v.error};
+        };
+        result.diffusivity = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity; }, true);
+        result.diffusivity_x = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity_x; }, false);
+        result.mobility = estimate([](const KolmogorovGridSolution& s) { return s.mobility; }, false);
+        result.stuck_probability = estimate([](const KolmogorovGridSolution& s) { return s.stuck_probability; }, false);
+        for (auto& s : solved) result.levels.push_back(std::move(s));
+
+        const double relative = result.diffusivity.error / std::abs(result.diffusivity.value);
+        result.converged = relative <= settings.rel_precision;
+        if (result.converged) break;
+        // Refine v always (first-order transport: its error dominates), x only
+        // while its error is more than a quarter of v's. Doubling one direction
+        // doubles the states, both quadruples them; time and factors grow
+        // faster than the states (measured: 2.6 and 5.5 times).
+        const bool refine_x = x_error > 0.25 * v_error;
+        const double growth = refine_x ? 5.5 : 2.6;
+        const bool over_memory = growth * round_bytes > settings.memory_budget;
+        if (elapsed() + growth * round_seconds > settings.time_budget || over_memory) {
+            result.note = "the estimated error of D, " + detail::format_number(relative, 3) +
+                          " relative, is above rel_precision " + detail::format_number(settings.rel_precision, 3) +
+                          ": the next refinement would exceed the " + (over_memory ? "memory" : "time") + " budget";
+            break;
+        }
+        ++level_v;
+        if (refine_x) ++level_x;
+    }
+    const KolmogorovGridSolution& fine = result.levels.back();
+    result.seconds = elapsed();
+    GridDetails details;
+    details.solver = "kolmogorov";
+    details.cells = fine.states;
+    details.lower = fine.grid.v_lower;
+    details.upper = fine.grid.v_upper;
+    details.discretisation_error = result.diffusivity.error / std::abs(result.diffusivity.value);
+    result.details = details;
+    return result;
 }
 
 } // namespace stickslip
