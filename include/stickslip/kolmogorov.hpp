@@ -103,7 +103,7 @@ struct KolmogorovResult : MethodResult {
 inline constexpr double kolmogorov_bytes_per_lu_nonzero = 16.0;
 
 /// The smallest nondimensional tau' = tau friction^2/noise the solver takes.
-inline constexpr double kolmogorov_min_tau_prime = 0.01;
+inline constexpr double kolmogorov_min_tau_prime = 0.05;
 
 /// Solves the chain on one given grid (SI units; p validated, tau > 0).
 KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const KolmogorovGrid& grid);

@@ -50,8 +50,8 @@ ss::ModelParams fig2() { return ss::ModelParams{}; } // the SI defaults are the 
 
 ss::KolmogorovGrid small_grid(const ss::ModelParams& p, std::size_t band, std::size_t cells, double x_range = 4.0) {
     ss::KolmogorovSettings s;
-    s.band_intervals = band * 4; // level 0 is a quarter of the settings' grid
-    s.v_cells = cells * 4;
+    s.band_intervals = band * 4; // level 0 has a quarter of the settings' x intervals
+    s.v_cells = cells * 8;       // and an eighth of its v cells
     s.x_range = x_range;
     return ss::kolmogorov_grid(p, s, 0);
 }
