@@ -102,10 +102,10 @@ namespace stickslip {
 /// The geometry of one grid, in SI units. solve_kolmogorov chooses it from
 /// KolmogorovSettings; solve_kolmogorov_grid takes it as it is.
 struct KolmogorovGrid {
-    double lower_threshold = 0;   ///< x-* = (-friction - b(0))/a [s^-1/2], a node
-    double upper_threshold = 0;   ///< x* = (friction - b(0))/a [s^-1/2], a node
+    double lower_threshold = 0;   ///< x-* = (-friction - b(0))/a [s^-1/2], a node (an exit of the stuck states)
+    double upper_threshold = 0;   ///< x* = (friction - b(0))/a [s^-1/2], a node (an exit of the stuck states)
     double x_spacing = 0;         ///< h = (x* - x-*)/band_intervals [s^-1/2]
-    std::size_t band_intervals = 0; ///< grid intervals across the static band (>= 2)
+    std::size_t band_intervals = 0; ///< grid intervals across the static band (>= 2; its interior nodes carry stuck states)
     std::size_t band_first = 0;   ///< index of the node x-*: nodes x-* + (j - band_first) h
     std::size_t x_nodes = 0;      ///< number of x nodes
     double v_lower = 0;           ///< lower end of the velocity range [m/s], < 0
@@ -125,29 +125,46 @@ struct KolmogorovGrid {
 struct KolmogorovGridSolution {
     KolmogorovGrid grid;            ///< the grid
     std::size_t states = 0;         ///< states of the chain (unknowns)
-    std::size_t lu_nonzeros = 0;    ///< nonzeros of the sparse LU factors (memory ~ 12 bytes each)
+    std::size_t lu_nonzeros = 0;    ///< nonzeros of the sparse LU factors (kolmogorov_bytes_per_lu_nonzero each)
     double diffusivity = 0;         ///< D of the chain [m^2/s]
     double diffusivity_x = 0;       ///< the x moves' carre du champ of chi [m^2/s] (D less the upwind diffusion)
     double mobility = 0;            ///< M0 of the chain [m/s]
     double stuck_probability = 0;   ///< P(V = 0) of the chain
-    double tail_mass = 0;           ///< stationary mass on the end x nodes and outermost v cells
+    /// Stationary mass on the end x nodes and in the outermost v cell of each
+    /// half line: a check that the domain is wide enough.
+    double tail_mass = 0;
     double seconds = 0;             ///< wall time of building and solving [s]
-    std::vector<double> velocity_faces;   ///< faces of the velocity cells, increasing [m/s]
-    std::vector<double> velocity_density; ///< v-marginal density of the sliding states per cell [s/m]
+    /// Faces of the velocity cells, increasing, 0 among them [m/s].
+    std::vector<double> velocity_faces;
+    /// The stationary velocity density of the sliding states, one value per
+    /// cell (its mass divided by its width) [s/m]; the stuck states' atom at
+    /// v = 0 is stuck_probability. Integrates to 1 - stuck_probability.
+    std::vector<double> velocity_density;
 };
 
 /// Resolution and budget of solve_kolmogorov. Zero means automatic where said.
+/// Invalid values throw InvalidParameter named after the field.
 struct KolmogorovSettings {
-    std::size_t band_intervals = 0; ///< x intervals across the static band on the coarsest grid (0: auto)
-    std::size_t v_cells = 0;        ///< velocity cells per half line on the coarsest grid (0: auto)
+    /// x intervals across the static band on the finest grid of the first
+    /// round (a multiple of 4; 0: automatic, the spacing a quarter of the
+    /// smaller of the band and X's standard deviation 1/sqrt(tau), at least 2
+    /// intervals on the coarsest grid).
+    std::size_t band_intervals = 0;
+    /// Velocity cells per half line on the finest grid of the first round (a
+    /// multiple of 8, >= 32; 0: automatic, 128).
+    std::size_t v_cells = 0;
     double x_range = 7.0;           ///< x nodes cover +-x_range standard deviations of X (1/sqrt(tau))
     double v_lower = 0;             ///< lower end of the velocity range [m/s] (< 0; 0: auto)
     double v_upper = 0;             ///< upper end of the velocity range [m/s] (> 0; 0: auto)
     double v_stretch = 0.0;         ///< stretching of the velocity cells (KolmogorovGrid::v_stretch)
     double v_grading = 3.0;         ///< grading of the velocity cells at 0 (KolmogorovGrid::v_grading)
-    double rel_precision = 1e-3;    ///< target relative error of D
-    double memory_budget = 2e9;     ///< bytes the factorisation may take
-    double time_budget = 10.0;      ///< seconds the whole solve may take
+    double rel_precision = 1e-3;    ///< target estimated relative error of D, in (0, 1)
+    /// Bytes the factorisations of a round may take at once [bytes]: no round is
+    /// started whose predicted peak exceeds it.
+    double memory_budget = 2e9;
+    /// Seconds the whole solve may take [s]: no round is started whose
+    /// predicted end is later (a prediction: the end may be ~10% later).
+    double time_budget = 10.0;
     int threads = 2;                ///< threads (1 or 2: the finest grid of a round beside the others)
 };
 
@@ -170,7 +187,10 @@ struct KolmogorovResult : MethodResult {
     /// like D: the same continuum limit with a different discretisation error,
     /// a check on the extrapolation [m^2/s].
     KolmogorovEstimate diffusivity_x;
-    std::vector<KolmogorovGridSolution> levels; ///< the grids solved, coarse to fine
+    /// The grids solved, six per round in the order: x spacing 4 and 2 times
+    /// the finest, v cells 1/8, 1/4, 1/2 of the finest, the finest. The last
+    /// one is the finest grid; its velocity_density is the stationary density.
+    std::vector<KolmogorovGridSolution> levels;
     bool converged = false;              ///< whether D's estimated error is below rel_precision
     std::string note;                    ///< why not, or other remarks; empty when none
     double seconds = 0;                  ///< wall time [s]
@@ -183,17 +203,31 @@ inline constexpr double kolmogorov_bytes_per_lu_nonzero = 16.0;
 /// The smallest nondimensional tau' = tau friction^2/noise the solver takes.
 inline constexpr double kolmogorov_min_tau_prime = 0.05;
 
-/// Solves the chain on one given grid (SI units; p validated, tau > 0).
+/// Solves the chain on one given grid, without extrapolation: D, M0 and
+/// P(V = 0) exact for the chain, the stationary velocity density. SI units;
+/// p must be valid with tau > 0 (validate_kolmogorov), the grid as
+/// kolmogorov_grid makes it (band_intervals >= 2, cells >= 1 on each side).
+/// std::runtime_error if the factorisation fails.
 KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const KolmogorovGrid& grid);
 
-/// The grid of refinement level `level` (0: coarsest; each level halves the
-/// x spacing and the velocity cells' widths) that solve_kolmogorov uses.
+/// The grid of refinement level `level` >= 0 that solve_kolmogorov uses, in
+/// both directions: level 0 has a quarter of settings.band_intervals and an
+/// eighth of settings.v_cells (or of their automatic values), and each level
+/// doubles both. The x domain and the velocity range are the same at every
+/// level. A round's finest grid takes its x spacing from one level and its v
+/// cells from another (solve_kolmogorov starts at levels 2 and 3).
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& settings, int level);
 
-/// Throws InvalidParameter for what solve_kolmogorov refuses.
+/// Throws InvalidParameter for what solve_kolmogorov refuses: an invalid
+/// model (validate), white noise or tau' < kolmogorov_min_tau_prime ("tau"),
+/// no stationary state ("bias"), invalid settings (the field's name).
 void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings);
 
-/// D, M0 and P(V = 0) of p by grid refinement and extrapolation.
+/// D [m^2/s], M0 [m/s] and P(V = 0) of p (SI units) by rounds of grid
+/// refinement and Richardson extrapolation, each with its estimated
+/// discretisation error, until the error of D is below
+/// settings.rel_precision or a budget stops it (converged false, note says
+/// why). Throws InvalidParameter as validate_kolmogorov.
 KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings = {});
 
 } // namespace stickslip

@@ -104,6 +104,19 @@ TEST(KolmogorovChain, StationaryLawIsAProbabilityWithTheDiscreteGaussianInX) {
     double z = 0;
     for (std::size_t j = 0; j < grid.x.size(); ++j) z += gauss[j] = std::exp(-0.5 * p.tau * grid.x[j] * grid.x[j]);
     for (std::size_t j = 0; j < grid.x.size(); ++j) EXPECT_NEAR(marginal[j], gauss[j] / z, 1e-12) << "node " << j;
+
+    // The published velocity density and the atom at 0 make up the whole law.
+    const ss::KolmogorovGridSolution published = ss::solve_kolmogorov_grid(p, g);
+    double mass = published.stuck_probability, mean = 0;
+    for (std::size_t i = 0; i < published.velocity_density.size(); ++i) {
+        const double width = published.velocity_faces[i + 1] - published.velocity_faces[i];
+        EXPECT_GE(published.velocity_density[i], -1e-12);
+        mass += published.velocity_density[i] * width;
+        mean += published.velocity_density[i] * width * 0.5 * (published.velocity_faces[i + 1] + published.velocity_faces[i]);
+    }
+    EXPECT_NEAR(mass, 1.0, 1e-12);
+    EXPECT_NEAR(mean, published.mobility, 1e-12 * std::abs(published.mobility) + 1e-15);
+    EXPECT_NEAR(published.stuck_probability, sol.stuck_probability, 1e-15);
 }
 
 TEST(KolmogorovChain, DiffusivityMatchesItsDefinitionByTwoOtherRoutes) {
@@ -199,16 +212,20 @@ TEST(KolmogorovConvergence, DiffusivityIsFirstOrderInTheVelocityCells) {
 TEST(KolmogorovLimits, NearWhiteLimitApproachesTheQuadrature) {
     const double white = ss::white_noise_reference(dry(0.0, 0.3)).mobility;
     ss::KolmogorovSettings s;
-    s.time_budget = 1.0;
+    s.time_budget = 1.0; // one round on small grids: the trend, not the digits
     s.rel_precision = 0.5;
+    s.v_cells = 64;
     std::vector<double> gap;
     for (double tau_prime : {1.0, 0.3, 0.1}) {
         const ss::KolmogorovResult r = ss::solve_kolmogorov(dry(tau_prime, 0.3), s);
         gap.push_back(std::abs(r.mobility.value - white) / white);
     }
-    EXPECT_LT(gap[1], gap[0]);
-    EXPECT_LT(gap[2], gap[1]);
-    EXPECT_LT(gap[2], 0.2);
+    // Measured: M0 = 0.115, 0.237, 0.298 at tau' = 1, 0.3, 0.1; white noise 0.330.
+    const std::string gaps = "relative gaps " + std::to_string(gap[0]) + ", " + std::to_string(gap[1]) + ", " +
+                             std::to_string(gap[2]);
+    EXPECT_LT(gap[1], gap[0]) << gaps;
+    EXPECT_LT(gap[2], gap[1]) << gaps;
+    EXPECT_LT(gap[2], 0.2) << gaps;
 }
 
 // Stored Monte Carlo references (docs/kolmogorov_measurements.md): the paper's
