@@ -57,7 +57,7 @@ ss::KolmogorovGrid small_grid(const ss::ModelParams& p, std::size_t band, std::s
 }
 
 kc::Chain chain_of(const ss::ModelParams& p, const ss::KolmogorovGrid& g) {
-    return kc::build_chain(p, kc::make_grid(g), kc::DriftLaw{p});
+    return kc::build_chain(p, kc::make_grid(p, g), kc::DriftLaw{p});
 }
 
 std::string z_message(const char* what, double got, double want, double tolerance, double se) {
@@ -88,7 +88,7 @@ TEST(KolmogorovChain, RowsSumToZeroAndRatesArePositive) {
 TEST(KolmogorovChain, StationaryLawIsAProbabilityWithTheDiscreteGaussianInX) {
     const ss::ModelParams p = fig2();
     const ss::KolmogorovGrid g = small_grid(p, 8, 16);
-    const kc::ChainGrid grid = kc::make_grid(g);
+    const kc::ChainGrid grid = kc::make_grid(p, g);
     const kc::Chain chain = kc::build_chain(p, grid, kc::DriftLaw{p});
     const kc::ChainSolution sol = kc::solve_chain(chain);
     double total = 0;
@@ -229,7 +229,8 @@ TEST(KolmogorovLimits, NearWhiteLimitApproachesTheQuadrature) {
 }
 
 // Stored Monte Carlo references (docs/kolmogorov_measurements.md): the paper's
-// Fig. 2 case (PDMP, grid 0.0625) and pure dry friction at tau' = 1.
+// Fig. 2 case (PDMP, grid 0.0625: its lattice bias is 0.1%, measured with the
+// lattice mode) and pure dry friction at tau' = 1.
 TEST(KolmogorovReferences, Fig2CaseMatchesMonteCarlo) {
     ss::KolmogorovSettings s;
     s.time_budget = 2.0; // two rounds: D to ~0.3%
@@ -256,6 +257,31 @@ TEST(KolmogorovReferences, PureDryFrictionTauOneMatchesMonteCarlo) {
     const double d_tol = 3 * d_se + r.diffusivity.error;
     EXPECT_NEAR(r.diffusivity.value, d_ref, d_tol) << z_message("D", r.diffusivity.value, d_ref, d_tol, d_se);
     EXPECT_NEAR(r.mobility.value, 0.0, 1e-9); // symmetric: the chain is symmetric too
+}
+
+// Item 5 of the issue: with the PDMP engine's own chain in x (its lattice at
+// --grid 0.2) and only v refined, the solver must give the PDMP's D and M0 at
+// that grid. Reference: `stickslip diffusivity --friction 3.84 --noise 3 --tau
+// 0.1 --relaxation 0.067 --bias 2 --engine pdmp --grid 0.2 --excursions
+// 2000000 --threads 1` (seed 1): D = 1.834535e-3 +- 3.81e-6, M0 = 3.714232e-2
+// +- 3.54e-5. The solver (measured): 1.83726e-3 +- 0.023%, 3.71682e-2 (z =
+// +0.7 for both).
+TEST(KolmogorovReferences, PdmpLatticeModeMatchesPdmpMonteCarloAtItsGrid) {
+    ss::ModelParams p;
+    p.noise = 3.0;
+    p.tau = 0.1;
+    p.relaxation = 0.067;
+    p.bias = 2.0;
+    ss::KolmogorovSettings s;
+    s.pdmp_grid = 0.2;
+    s.time_budget = 3.0;
+    const ss::KolmogorovResult r = ss::solve_kolmogorov(p, s);
+    EXPECT_EQ(r.grid().solver, "kolmogorov (pdmp lattice in x)");
+    const double d_ref = 1.834535e-3, d_se = 3.81e-6, m_ref = 3.714232e-2, m_se = 3.54e-5;
+    const double d_tol = 3 * d_se + r.diffusivity.error, m_tol = 3 * m_se + r.mobility.error;
+    EXPECT_NEAR(r.diffusivity.value, d_ref, d_tol) << z_message("D", r.diffusivity.value, d_ref, d_tol, d_se);
+    EXPECT_NEAR(r.mobility.value, m_ref, m_tol) << z_message("M0", r.mobility.value, m_ref, m_tol, m_se);
+    EXPECT_LT(r.diffusivity.error, 0.002 * r.diffusivity.value);
 }
 
 TEST(KolmogorovRefusals, WhiteNoiseSmallTauAndBadSettings) {

@@ -23,8 +23,14 @@
 //    cell of the other half line (the flow there points away from 0). No flux
 //    through the outermost faces.
 // Band membership is decided by node index (the band's edges are nodes), never
-// by a floating comparison of the force with Delta.
+// by a floating comparison of the force with Delta. In the PDMP-lattice mode
+// the x moves are the PDMP engine's jumps (rate 2/(tau delta)^2, up with
+// probability (1 - tau delta x/2)/2, all of it inwards at the ends) and the
+// stuck states those of its static band k- .. k+.
 #include "deterministic/kolmogorov/chain.hpp"
+
+#include "stickslip/engine.hpp"
+#include "stickslip/kernels/pdmp.hpp"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseLU>
@@ -39,14 +45,47 @@ double bernoulli_weight(double z) {
     return z / std::expm1(z);
 }
 
-ChainGrid make_grid(const KolmogorovGrid& g) {
+ChainGrid make_grid(const ModelParams& p, const KolmogorovGrid& g) {
     ChainGrid grid;
-    grid.x.resize(g.x_nodes);
-    for (std::size_t j = 0; j < g.x_nodes; ++j)
-        grid.x[j] = g.lower_threshold + (static_cast<double>(j) - static_cast<double>(g.band_first)) * g.x_spacing;
-    grid.band_first = g.band_first;
-    grid.band_last = g.band_first + g.band_intervals;
-    grid.x[grid.band_last] = g.upper_threshold; // exactly, not lower + n h rounded
+    if (g.lattice_step > 0) {
+        // The PDMP engine's own chain in x: its lattice, jump rate, up
+        // probabilities, reflecting ends and static band, from the very
+        // constants the engine computes (kernels/pdmp.hpp).
+        EngineSettings engine;
+        engine.grid = g.lattice_step;
+        engine.lattice_bound = g.lattice_bound;
+        const PdmpConstants c = make_pdmp_constants(p, engine);
+        const std::size_t n = 2 * static_cast<std::size_t>(c.n_max) + 1;
+        grid.x.resize(n);
+        grid.up.resize(n);
+        grid.down.resize(n);
+        for (std::size_t j = 0; j < n; ++j) {
+            const int i = static_cast<int>(j) - c.n_max;
+            grid.x[j] = c.delta * i;
+            const double alpha = pdmp_up_probability(c, i);
+            grid.up[j] = c.rate * alpha;
+            grid.down[j] = c.rate * (1.0 - alpha);
+        }
+        grid.stuck_first = static_cast<std::size_t>(c.k_minus + c.n_max);
+        grid.stuck_last = static_cast<std::size_t>(c.k_plus + c.n_max);
+    } else {
+        grid.x.resize(g.x_nodes);
+        for (std::size_t j = 0; j < g.x_nodes; ++j)
+            grid.x[j] = g.lower_threshold + (static_cast<double>(j) - static_cast<double>(g.band_first)) * g.x_spacing;
+        const std::size_t band_last = g.band_first + g.band_intervals;
+        grid.x[band_last] = g.upper_threshold; // exactly, not lower + n h rounded
+        grid.stuck_first = g.band_first + 1;
+        grid.stuck_last = band_last - 1;
+        // Scharfetter-Gummel rates (file comment).
+        grid.up.assign(g.x_nodes, 0.0);
+        grid.down.assign(g.x_nodes, 0.0);
+        const double d_over_h2 = 1.0 / (p.tau * p.tau * g.x_spacing * g.x_spacing);
+        for (std::size_t j = 0; j + 1 < g.x_nodes; ++j) {
+            const double drop = -0.5 * p.tau * (grid.x[j + 1] - grid.x[j]) * (grid.x[j + 1] + grid.x[j]);
+            grid.up[j] = d_over_h2 * bernoulli_weight(-drop);
+            grid.down[j + 1] = d_over_h2 * bernoulli_weight(drop);
+        }
+    }
     auto faces = [&](double end, std::size_t cells) {
         // Geometric stretching: f_k = end (e^{s k/m} - 1)/(e^s - 1), cells
         // growing by e^{s/m} from 0 outwards (a smooth map, so that refining m
@@ -68,8 +107,7 @@ ChainGrid make_grid(const KolmogorovGrid& g) {
 
 Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& drift) {
     const std::size_t nx = grid.x.size(), mp = grid.cells_pos(), mn = grid.cells_neg();
-    const double a = p.force_amplitude(), friction = p.friction, tau = p.tau;
-    const double h = grid.x[1] - grid.x[0];
+    const double a = p.force_amplitude(), friction = p.friction;
 
     Chain chain;
     chain.first.resize(nx + 1);
@@ -108,7 +146,7 @@ Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& d
         }
     }
     // Pin chi at the stuck state nearest the middle of the band.
-    chain.pinned = stuck((grid.band_first + grid.band_last) / 2);
+    chain.pinned = stuck((grid.stuck_first + grid.stuck_last) / 2);
 
     // Rates, row by row; each row's diagonal is minus the sum of its
     // off-diagonal entries accumulated in the order they are added.
@@ -122,10 +160,8 @@ Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& d
     };
 
     // x moves.
-    const double d_over_h2 = 1.0 / (tau * tau * h * h);
     for (std::size_t j = 0; j + 1 < nx; ++j) {
-        const double drop = -0.5 * tau * (grid.x[j + 1] - grid.x[j]) * (grid.x[j + 1] + grid.x[j]);
-        const double up = d_over_h2 * bernoulli_weight(-drop), down = d_over_h2 * bernoulli_weight(drop);
+        const double up = grid.up[j], down = grid.down[j + 1];
         // Sliding states keep their cell.
         for (std::size_t k = 0; k < mn; ++k) {
             rate(neg(j, k), neg(j + 1, k), up);
@@ -167,7 +203,7 @@ Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& d
         if (band) {
             rate(pos(j, 0), stuck(j), std::max(-c_pos, 0.0) / chain.width[pos(j, 0)]);
             rate(neg(j, 0), stuck(j), std::max(c_neg, 0.0) / chain.width[neg(j, 0)]);
-        } else if (2 * j > grid.band_first + grid.band_last) {
+        } else if (j > grid.stuck_last) {
             rate(neg(j, 0), pos(j, 0), std::max(c_neg, 0.0) / chain.width[neg(j, 0)]);
         } else {
             rate(pos(j, 0), neg(j, 0), std::max(-c_pos, 0.0) / chain.width[pos(j, 0)]);

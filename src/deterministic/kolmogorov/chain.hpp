@@ -25,24 +25,30 @@ struct DriftLaw {
     double operator()(double v) const { return params.drift(v); }
 };
 
-/// One grid, resolved: the x nodes (uniform, the band's edges on nodes) and
-/// the faces of the velocity cells on each half line. SI units.
+/// One grid, resolved: the x nodes with the rates of the x moves between
+/// them, which nodes carry a stuck state, and the faces of the velocity cells
+/// on each half line. SI units.
 struct ChainGrid {
-    std::vector<double> x;          ///< x nodes [s^-1/2], increasing, uniform
-    std::size_t band_first = 0;     ///< index of the node x-* (lower edge of the static band)
-    std::size_t band_last = 0;      ///< index of the node x* (upper edge)
+    std::vector<double> x;          ///< x nodes [s^-1/2], increasing
+    std::vector<double> up;         ///< rate of the x move from node j to j+1 [s^-1] (0 at the top)
+    std::vector<double> down;       ///< rate of the x move from node j to j-1 [s^-1] (0 at the bottom)
+    std::size_t stuck_first = 0;    ///< the first node with a stuck state
+    std::size_t stuck_last = 0;     ///< the last node with a stuck state
     std::vector<double> faces_pos;  ///< 0 = f_0 < f_1 < ... < f_m [m/s]: faces of the cells on v > 0
     std::vector<double> faces_neg;  ///< 0 = g_0 > g_1 > ... > g_m [m/s]: faces of the cells on v < 0
 
-    /// Whether node j carries a stuck state: the nodes strictly inside the band
-    /// (kolmogorov.hpp: a stuck path leaves the band when X reaches an edge node).
-    bool in_band(std::size_t j) const { return j > band_first && j < band_last; }
+    /// Whether node j carries a stuck state. On the Scharfetter-Gummel grid,
+    /// the nodes strictly inside the band (kolmogorov.hpp: a stuck path leaves
+    /// the band when X reaches an edge node); on the PDMP lattice, the nodes
+    /// k- .. k+ of its static band.
+    bool in_band(std::size_t j) const { return j >= stuck_first && j <= stuck_last; }
     std::size_t cells_pos() const { return faces_pos.size() - 1; }
     std::size_t cells_neg() const { return faces_neg.size() - 1; }
 };
 
-/// Builds the grid of one level from the resolved geometry (kolmogorov.cpp).
-ChainGrid make_grid(const KolmogorovGrid& g);
+/// Builds the grid of one level from its geometry, for the model p (the x
+/// rates depend on tau).
+ChainGrid make_grid(const ModelParams& p, const KolmogorovGrid& g);
 
 /// The generator of the chain on one grid and what each state stands for.
 /// States are ordered x-major: for each x node, its negative cells from the

@@ -6,13 +6,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <future>
 #include <limits>
 #include <string>
 
 #include "core/format.hpp"
 #include "deterministic/kolmogorov/chain.hpp"
+#include "stickslip/engine.hpp"
 #include "stickslip/errors.hpp"
+#include "stickslip/kernels/pdmp.hpp"
 
 namespace stickslip {
 
@@ -58,6 +61,21 @@ KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s
     g.x_spacing = band / static_cast<double>(g.band_intervals);
     g.band_first = below * scale;
     g.x_nodes = (below + coarse_band + above) * scale + 1;
+    if (s.pdmp_grid > 0) {
+        // The PDMP engine's lattice, the same at every level.
+        EngineSettings engine;
+        engine.grid = s.pdmp_grid;
+        engine.lattice_bound = s.pdmp_lattice_bound;
+        const PdmpConstants c = make_pdmp_constants(p, engine);
+        g.lattice_step = c.delta;
+        g.lattice_bound = c.n_max * c.delta;
+        g.x_spacing = c.delta;
+        g.lower_threshold = c.k_minus * c.delta;
+        g.upper_threshold = c.k_plus * c.delta;
+        g.band_intervals = static_cast<std::size_t>(c.k_plus - c.k_minus);
+        g.band_first = static_cast<std::size_t>(c.k_minus + c.n_max);
+        g.x_nodes = 2 * static_cast<std::size_t>(c.n_max) + 1;
+    }
 
     // Velocity range. Without drag, the slip that a force a x sustains for
     // about tau reaches (a x + b(0) - friction) tau: twice that from the end
@@ -85,7 +103,7 @@ KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s
 KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const KolmogorovGrid& grid) {
     namespace k = detail::kolmogorov;
     const auto start = std::chrono::steady_clock::now();
-    const k::ChainGrid chain_grid = k::make_grid(grid);
+    const k::ChainGrid chain_grid = k::make_grid(p, grid);
     const k::Chain chain = k::build_chain(p, chain_grid, k::DriftLaw{p});
     const k::ChainSolution sol = k::solve_chain(chain);
 
@@ -165,6 +183,10 @@ void validate_settings(const KolmogorovSettings& s) {
     require(s.memory_budget > 0, "memory_budget", "> 0 bytes, got " + detail::format_number(s.memory_budget));
     require(s.time_budget > 0, "time_budget", "> 0 s, got " + detail::format_number(s.time_budget));
     require(s.threads == 1 || s.threads == 2, "threads", "1 or 2, got " + std::to_string(s.threads));
+    require(std::isfinite(s.pdmp_grid) && s.pdmp_grid >= 0, "pdmp_grid",
+            ">= 0 s^-1/2 (0: the continuum solver), got " + detail::format_number(s.pdmp_grid));
+    require(std::isfinite(s.pdmp_lattice_bound) && s.pdmp_lattice_bound >= 0, "pdmp_lattice_bound",
+            ">= 0 s^-1/2 (0: the engine's choice), got " + detail::format_number(s.pdmp_lattice_bound));
 }
 
 } // namespace
@@ -204,6 +226,7 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         auto grid = [&](int x_coarsening, int v_coarsening) {
             KolmogorovGrid g = finest_x;
             const std::size_t fx = std::size_t{1} << x_coarsening, fv = std::size_t{1} << v_coarsening;
+            if (fx > 1 && g.lattice_step > 0) throw std::logic_error("kolmogorov: the PDMP lattice is not coarsened");
             g.band_intervals /= fx;
             g.band_first /= fx;
             g.x_nodes = (g.x_nodes - 1) / fx + 1;
@@ -218,9 +241,11 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         std::future<KolmogorovGridSolution> finest_solution;
         if (settings.threads > 1)
             finest_solution = std::async(std::launch::async, [&] { return solve_kolmogorov_grid(p, grid(0, 0)); });
+        // On the PDMP lattice x is not refined: no x levels.
+        const bool lattice = settings.pdmp_grid > 0;
         std::vector<KolmogorovGridSolution> solved;
         for (auto [cx, cv] : {std::pair{2, 0}, {1, 0}, {0, 3}, {0, 2}, {0, 1}})
-            solved.push_back(solve_kolmogorov_grid(p, grid(cx, cv)));
+            if (!lattice || cx == 0) solved.push_back(solve_kolmogorov_grid(p, grid(cx, cv)));
         solved.push_back(settings.threads > 1 ? finest_solution.get() : solve_kolmogorov_grid(p, grid(0, 0)));
         const double round_seconds = elapsed() - round_start;
         // Peak memory: the finest grid's factors beside the largest other's.
@@ -230,11 +255,14 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
             kolmogorov_bytes_per_lu_nonzero * static_cast<double>(solved.back().lu_nonzeros + other);
 
         // Independent corrections in the two directions, from the finest grid.
-        const KolmogorovGridSolution& fine = solved[5];
+        const KolmogorovGridSolution& fine = solved.back();
+        const std::size_t v0 = lattice ? 0 : 2; // the first v level in `solved`
         double x_error = 0, v_error = 0;
         auto estimate = [&](auto field, bool record) {
-            const Extrapolated in_x = richardson(field(solved[0]), field(solved[1]), field(fine));
-            const Extrapolated in_v = richardson(field(solved[2]), field(solved[3]), field(solved[4]), field(fine));
+            const Extrapolated in_x = lattice ? Extrapolated{field(fine), 0.0}
+                                              : richardson(field(solved[0]), field(solved[1]), field(fine));
+            const Extrapolated in_v =
+                richardson(field(solved[v0]), field(solved[v0 + 1]), field(solved[v0 + 2]), field(fine));
             if (record) x_error = in_x.error, v_error = in_v.error;
             return KolmogorovEstimate{in_x.value + in_v.value - field(fine), in_x.error + in_v.error};
         };
@@ -266,7 +294,7 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
     const KolmogorovGridSolution& fine = result.levels.back();
     result.seconds = elapsed();
     GridDetails details;
-    details.solver = "kolmogorov";
+    details.solver = settings.pdmp_grid > 0 ? "kolmogorov (pdmp lattice in x)" : "kolmogorov";
     details.cells = fine.states;
     details.lower = fine.grid.v_lower;
     details.upper = fine.grid.v_upper;
