@@ -21,7 +21,7 @@ PACKAGES=(
   nlohmann-json3-dev  # nlohmann/json: JSON reports
   libboost-dev        # Boost.Math (header-only): quadrature and distributions
   libmuparser-dev     # muParser: drift laws b(v) given as expressions (--drift)
-  libeigen3-dev       # Eigen (header-only): the Kolmogorov engine's sparse LU
+  libeigen3-dev       # Eigen (header-only): sparse LU of the Kolmogorov grid solver
   python3             # Debian's /usr/bin/python3: figures and validation scripts
   python3-numpy       # arrays for the figures, the NumPy baseline of bench/
   python3-matplotlib  # the paper's figures (scripts/figures)

@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// stickslip/kolmogorov.hpp -- D, M0, P(V = 0) and the stationary velocity law
+// with coloured noise, without sampling: the Kolmogorov equations of (X, V)
+// solved on a grid.
+//
+// Why. (X, V) is a two-dimensional Markov process, so its mobility, its
+// diffusivity and its stationary law are linear-algebra problems. Monte Carlo
+// pays for D with variance (U^2 per excursion is heavy-tailed: 0.3% on the
+// Fig. 2 case takes ~4e6 long excursions); a grid pays with a discretisation
+// error that shrinks with the grid and can be extrapolated and estimated.
+//
+// The equations (theory.md's convention: tau dX = -X dt + sqrt(2) dW, force
+// a X with a = sqrt(noise/2)). The generator is
+//   sliding (v != 0):  L f = -(x/tau) f_x + (1/tau^2) f_xx + (b(v) + a x - Delta sgn v) f_v,
+//   stuck (v = 0, |b(0) + a x| <= Delta):  L f = -(x/tau) f_x + (1/tau^2) f_xx;
+// a path reaching v = 0 sticks if |b(0) + a x| <= Delta and passes through
+// otherwise; a stuck path leaves at the band's edges x* = (Delta - b(0))/a
+// (upwards) and x-* = (-Delta - b(0))/a (downwards). With pi the stationary
+// law and g(x, v) = v: M0 = E_pi[V], P(V = 0) = pi(stuck), and with chi the
+// solution of the cell problem L chi = -(g - M0), D = 2 E_pi[(V - M0) chi]
+// (= lim Var(U(t))/t, the project's D).
+//
+// The discretisation is itself a Markov chain (Kushner and Dupuis's
+// "Markov chain approximation"), so the discrete problem has a stationary law
+// that is a probability vector and a D that is exactly lim Var(U)/t of the
+// chain:
+//  * x: a uniform grid with the band's edges x-* and x* on nodes, covering
+//    +-x_range standard deviations of X (1/sqrt(tau)). The Ornstein-Uhlenbeck
+//    part is a birth-death chain with exponentially fitted (Scharfetter-
+//    Gummel) rates, positive at any cell Peclet number and in detailed balance
+//    with the Gaussian on the nodes; reflecting at the ends.
+//  * v: finite volumes on each half line, from 0 to a range set by the drift
+//    law (the terminal velocity of the end x node with drag; without drag
+//    twice the slip the end node's force sustains for tau, or 10 noise/friction
+//    near the white-noise limit), graded at 0 (faces end (k/m)^q, q = 3) where
+//    the velocity density is singular; transport of b(v) + a x - Delta sgn v
+//    by upwinding.
+//  * stuck states: one per x node strictly inside the band. The band's edge
+//    nodes are exits, as Brownian motion leaves the band when it hits an edge:
+//    with edge nodes stuck, P(V = 0) converged to first order in the x spacing;
+//    with them open, to second order (0.0023, 0.00045, 0.00008 on halving,
+//    tau' = 1). A sliding cell next to 0 whose flow points to 0 feeds the
+//    stuck state of its node, or passes to the other half line outside the band.
+// Everything is solved in SI units; the drift enters only through one small
+// function of v (detail::kolmogorov::DriftLaw), so that a general drift law
+// is a one-line change there.
+//
+// Solving. pi^T Q = 0 and Q chi = -(g - M0) share one sparse LU factorisation
+// of Q less one row and column (chi is pinned to 0 at a stuck state mid-band;
+// the dropped equation is implied because pi . (g - M0) = 0), the first by a
+// transposed solve. The LU is Eigen's SparseLU (header-only, MPL-2.0, Debian
+// libeigen3-dev) with its COLAMD column ordering: on the x-major ordering of
+// the states it keeps about 60 nonzeros per state (2.4e5 states: 1.5e7
+// nonzeros, 4 s on one core), while Eigen's AMD ordering of A^T + A took 38
+// times the nonzeros and 150 times the time (583 s) on the same matrix.
+//
+// Accuracy. Upwind transport is first order in the v cells (Godunov: a chain,
+// i.e. a monotone linear scheme, cannot do better) and its numerical
+// diffusion adds to D; in x the scheme is close to second order. So each round
+// of solve_kolmogorov solves a finest grid, the same x spacing with 1/2, 1/4
+// and 1/8 of the v cells, and the same v cells with 2 and 4 times the x
+// spacing, and extrapolates each direction separately: R0 + C1 h + C2 h^2
+// (+ C3 h^3 in v) fitted exactly, the error estimate being the size of the
+// last correction (the difference from the extrapolation of one order less).
+// The two corrections are added and so are their error estimates. Rounds
+// refine v (and x while its error exceeds a quarter of v's) until the
+// estimated relative error of D is below rel_precision or the next round would
+// exceed the time or memory budget (a note then says so). The carre du champ
+// of chi over the x moves alone, E[(2/tau^2) chi_x^2], is a second estimator
+// of D with the same limit and a different error (the v moves' numerical
+// diffusion is absent from it); it is extrapolated the same way as a check.
+// Measured (docs/kolmogorov_measurements.md): the Fig. 2 case to an estimated
+// 0.05% in about 10 s on 2 cores, within 0.3% of the Monte Carlo reference
+// (0.8 standard errors); pure dry friction at tau' = 1 to 0.26%, at tau' =
+// 0.1 to 0.55% in 13 s.
+//
+// The PDMP lattice mode (KolmogorovSettings::pdmp_grid) keeps the PDMP
+// engine's own chain in x, its lattice and jump rates, and refines only v:
+// the result is the PDMP's D, M0 and P(V = 0) at that grid, a sharp check
+// against its Monte Carlo (driven case at grid 0.2: within 0.7 standard
+// errors of 0.2%).
+//
+// Limits. White noise (tau = 0) is refused: the velocity alone is Markov and
+// the exact one-dimensional references apply (analytic.hpp,
+// white_noise_reference). The near-white limit is singular for an x grid (its
+// range grows like 1/sqrt(tau') while the band stays fixed): below tau' =
+// kolmogorov_min_tau_prime = 0.05 the solver is refused, because there its
+// affordable grids gave confident, wrong answers (tau' = 0.03: D = 2.07 with
+// an estimated 1.8%, where D must lie between its tau' = 0.1 value 1.06 and
+// the white-noise 1.25); use the inclusion engine (Monte Carlo) there.
+#pragma once
+
+/// \file
+/// A grid solver for the stationary Kolmogorov equations of (X, V): D, M0,
+/// P(V = 0) and the stationary velocity density, with an estimated
+/// discretisation error. The comment at the top of this header explains the
+/// design.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "stickslip/method.hpp"
+#include "stickslip/params.hpp"
+
+namespace stickslip {
+
+/// The geometry of one grid, in SI units. solve_kolmogorov chooses it from
+/// KolmogorovSettings; solve_kolmogorov_grid takes it as it is.
+struct KolmogorovGrid {
+    double lower_threshold = 0;   ///< x-* = (-friction - b(0))/a [s^-1/2], a node (an exit of the stuck states)
+    double upper_threshold = 0;   ///< x* = (friction - b(0))/a [s^-1/2], a node (an exit of the stuck states)
+    double x_spacing = 0;         ///< h = (x* - x-*)/band_intervals [s^-1/2]
+    std::size_t band_intervals = 0; ///< grid intervals across the static band (>= 2; its interior nodes carry stuck states)
+    std::size_t band_first = 0;   ///< index of the node x-*: nodes x-* + (j - band_first) h
+    std::size_t x_nodes = 0;      ///< number of x nodes
+    double v_lower = 0;           ///< lower end of the velocity range [m/s], < 0
+    double v_upper = 0;           ///< upper end of the velocity range [m/s], > 0
+    std::size_t v_cells_neg = 0;  ///< velocity cells on [v_lower, 0)
+    std::size_t v_cells_pos = 0;  ///< velocity cells on (0, v_upper]
+    double v_stretch = 0;         ///< s: faces at end u^{q-1} (e^{s u} - 1)/(e^s - 1), u = k/m (s = 0: end u^q)
+    double v_grading = 1;         ///< q >= 1: grading of the cells at v = 0
+    /// > 0: the x nodes are the PDMP engine's lattice of this step delta
+    /// [s^-1/2] with its jump rates and static band k- .. k+ (the thresholds
+    /// above are then its nodes k- delta and k+ delta, x_spacing = delta);
+    /// 0: the uniform Scharfetter-Gummel grid.
+    double lattice_step = 0;
+    double lattice_bound = 0;     ///< the PDMP lattice's half-width L [s^-1/2] (0: as the engine chooses)
+
+    /// The lowest x node [s^-1/2].
+    double x_lower() const { return lower_threshold - static_cast<double>(band_first) * x_spacing; }
+    /// The highest x node [s^-1/2].
+    double x_upper() const { return x_lower() + static_cast<double>(x_nodes - 1) * x_spacing; }
+};
+
+/// The exact solution of the chain on one grid.
+struct KolmogorovGridSolution {
+    KolmogorovGrid grid;            ///< the grid
+    std::size_t states = 0;         ///< states of the chain (unknowns)
+    std::size_t lu_nonzeros = 0;    ///< nonzeros of the sparse LU factors (kolmogorov_bytes_per_lu_nonzero each)
+    double diffusivity = 0;         ///< D of the chain [m^2/s]
+    double diffusivity_x = 0;       ///< the x moves' carre du champ of chi [m^2/s] (D less the upwind diffusion)
+    double mobility = 0;            ///< M0 of the chain [m/s]
+    double stuck_probability = 0;   ///< P(V = 0) of the chain
+    /// Stationary mass on the end x nodes and in the outermost v cell of each
+    /// half line: a check that the domain is wide enough.
+    double tail_mass = 0;
+    double seconds = 0;             ///< wall time of building and solving [s]
+    /// Faces of the velocity cells, increasing, 0 among them [m/s].
+    std::vector<double> velocity_faces;
+    /// The stationary velocity density of the sliding states, one value per
+    /// cell (its mass divided by its width) [s/m]; the stuck states' atom at
+    /// v = 0 is stuck_probability. Integrates to 1 - stuck_probability.
+    std::vector<double> velocity_density;
+};
+
+/// Resolution and budget of solve_kolmogorov. Zero means automatic where said.
+/// Invalid values throw InvalidParameter named after the field.
+struct KolmogorovSettings {
+    /// x intervals across the static band on the finest grid of the first
+    /// round (a multiple of 4; 0: automatic, the spacing a quarter of the
+    /// smaller of the band and X's standard deviation 1/sqrt(tau), at least 2
+    /// intervals on the coarsest grid).
+    std::size_t band_intervals = 0;
+    /// Velocity cells per half line on the finest grid of the first round (a
+    /// multiple of 8, >= 32; 0: automatic, 128).
+    std::size_t v_cells = 0;
+    double x_range = 7.0;           ///< x nodes cover +-x_range standard deviations of X (1/sqrt(tau))
+    double v_lower = 0;             ///< lower end of the velocity range [m/s] (< 0; 0: auto)
+    double v_upper = 0;             ///< upper end of the velocity range [m/s] (> 0; 0: auto)
+    double v_stretch = 0.0;         ///< stretching of the velocity cells (KolmogorovGrid::v_stretch)
+    double v_grading = 3.0;         ///< grading of the velocity cells at 0 (KolmogorovGrid::v_grading)
+    double rel_precision = 1e-3;    ///< target estimated relative error of D, in (0, 1)
+    /// Bytes the factorisations of a round may take at once [bytes]: no round is
+    /// started whose predicted peak exceeds it.
+    double memory_budget = 2e9;
+    /// Seconds the whole solve may take [s]: no round is started whose
+    /// predicted end is later (a prediction: the end may be ~10% later).
+    double time_budget = 10.0;
+    int threads = 2;                ///< threads (1 or 2: the finest grid of a round beside the others)
+    /// > 0: keep the PDMP engine's own chain in x, its lattice of step
+    /// pdmp_grid [s^-1/2] (`--grid`), and refine only v: the result is then the
+    /// PDMP's D, M0 and P(V = 0) at that grid, to compare with its Monte Carlo
+    /// within the standard error (a sharp check of the v discretisation and of
+    /// the extrapolation). 0: the continuum solver.
+    double pdmp_grid = 0;
+    double pdmp_lattice_bound = 0;  ///< the PDMP lattice's L [s^-1/2] (`--lattice-bound`; 0: the engine's choice)
+};
+
+/// A value with its estimated discretisation error (an absolute error, in the
+/// value's unit).
+struct KolmogorovEstimate {
+    double value = 0; ///< extrapolated value
+    double error = 0; ///< estimated absolute error of value
+};
+
+/// What solve_kolmogorov returns. details holds GridDetails (solver
+/// "kolmogorov", the finest grid's states, its velocity range and the relative
+/// error estimate of D).
+struct KolmogorovResult : MethodResult {
+    ModelParams params;                  ///< the model, SI units
+    KolmogorovEstimate diffusivity;      ///< D [m^2/s]
+    KolmogorovEstimate mobility;         ///< M0 [m/s]
+    KolmogorovEstimate stuck_probability; ///< P(V = 0)
+    /// D from the x moves' carre du champ of chi, E[(2/tau^2) chi_x^2], extrapolated
+    /// like D: the same continuum limit with a different discretisation error,
+    /// a check on the extrapolation [m^2/s].
+    KolmogorovEstimate diffusivity_x;
+    /// The grids solved, six per round in the order: x spacing 4 and 2 times
+    /// the finest, v cells 1/8, 1/4, 1/2 of the finest, the finest. The last
+    /// one is the finest grid; its velocity_density is the stationary density.
+    std::vector<KolmogorovGridSolution> levels;
+    bool converged = false;              ///< whether D's estimated error is below rel_precision
+    std::string note;                    ///< why not, or other remarks; empty when none
+    double seconds = 0;                  ///< wall time [s]
+};
+
+/// Bytes of memory per nonzero of the LU factors, for the memory budget
+/// (value, row index and the supernodal structure's overhead; measured).
+inline constexpr double kolmogorov_bytes_per_lu_nonzero = 16.0;
+
+/// The smallest nondimensional tau' = tau friction^2/noise the solver takes.
+inline constexpr double kolmogorov_min_tau_prime = 0.05;
+
+/// Solves the chain on one given grid, without extrapolation: D, M0 and
+/// P(V = 0) exact for the chain, the stationary velocity density. SI units;
+/// p must be valid with tau > 0 (validate_kolmogorov), the grid as
+/// kolmogorov_grid makes it (band_intervals >= 2, cells >= 1 on each side).
+/// std::runtime_error if the factorisation fails.
+KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const KolmogorovGrid& grid);
+
+/// The grid of refinement level `level` >= 0 that solve_kolmogorov uses, in
+/// both directions: level 0 has a quarter of settings.band_intervals and an
+/// eighth of settings.v_cells (or of their automatic values), and each level
+/// doubles both. The x domain and the velocity range are the same at every
+/// level. A round's finest grid takes its x spacing from one level and its v
+/// cells from another (solve_kolmogorov starts at levels 2 and 3).
+KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& settings, int level);
+
+/// Throws InvalidParameter for what solve_kolmogorov refuses: an invalid
+/// model (validate), white noise or tau' < kolmogorov_min_tau_prime ("tau"),
+/// no stationary state ("bias"), invalid settings (the field's name).
+void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings);
+
+/// D [m^2/s], M0 [m/s] and P(V = 0) of p (SI units) by rounds of grid
+/// refinement and Richardson extrapolation, each with its estimated
+/// discretisation error, until the error of D is below
+/// settings.rel_precision or a budget stops it (converged false, note says
+/// why). Throws InvalidParameter as validate_kolmogorov.
+KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings = {});
+
+} // namespace stickslip
