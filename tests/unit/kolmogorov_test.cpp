@@ -57,7 +57,7 @@ ss::KolmogorovGrid small_grid(const ss::ModelParams& p, std::size_t band, std::s
 }
 
 kc::Chain chain_of(const ss::ModelParams& p, const ss::KolmogorovGrid& g) {
-    return kc::build_chain(p, kc::make_grid(p, g), kc::DriftLaw{p});
+    return kc::build_chain(p, kc::make_grid(p, g), kc::DriftOfRun{p});
 }
 
 std::string z_message(const char* what, double got, double want, double tolerance, double se) {
@@ -89,7 +89,7 @@ TEST(KolmogorovChain, StationaryLawIsAProbabilityWithTheDiscreteGaussianInX) {
     const ss::ModelParams p = fig2();
     const ss::KolmogorovGrid g = small_grid(p, 8, 16);
     const kc::ChainGrid grid = kc::make_grid(p, g);
-    const kc::Chain chain = kc::build_chain(p, grid, kc::DriftLaw{p});
+    const kc::Chain chain = kc::build_chain(p, grid, kc::DriftOfRun{p});
     const kc::ChainSolution sol = kc::solve_chain(chain);
     double total = 0;
     for (double w : sol.stationary) {

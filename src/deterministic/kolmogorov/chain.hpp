@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stickslip/kolmogorov.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip::detail::kolmogorov {
@@ -20,9 +21,10 @@ namespace stickslip::detail::kolmogorov {
 /// solver evaluates the drift: a general drift law replaces this body (the
 /// scheme needs only b(v) at the cell faces and b(0), and that b is
 /// non-increasing for the automatic velocity range with drag).
-struct DriftLaw {
-    ModelParams params;
-    double operator()(double v) const { return params.drift(v); }
+struct DriftOfRun {
+    explicit DriftOfRun(const ModelParams& p) : law(make_drift_law(p)) {}
+    stickslip::DriftLaw law; ///< the run's law, built once (drift_input.hpp)
+    double operator()(double v) const { return law(v); }
 };
 
 /// One grid, resolved: the x nodes with the rates of the x moves between
@@ -70,7 +72,7 @@ struct Chain {
 
 /// The chain of `grid` for the model p (validated by the caller, tau > 0),
 /// the drift evaluated only through `drift`.
-Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& drift);
+Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftOfRun& drift);
 
 /// The exact solution of one chain.
 struct ChainSolution {

@@ -21,13 +21,13 @@ namespace stickslip {
 
 namespace {
 
-using detail::kolmogorov::DriftLaw;
+using detail::kolmogorov::DriftOfRun;
 
 /// Where the flow c(v) = b(v) + force (decreasing in v with drag) stops the
 /// velocity on the side `dir` (+1 or -1), looking no further than `limit`
 /// [m/s]: the terminal velocity, or `limit` when the flow still drives the
 /// velocity outwards there.
-double stopping_velocity(const DriftLaw& drift, double force, double dir, double limit) {
+double stopping_velocity(const DriftOfRun& drift, double force, double dir, double limit) {
     auto outward = [&](double v) { return dir * (drift(dir * v) + force) > 0; };
     if (outward(limit)) return limit;
     double lo = 0, hi = limit;
@@ -41,7 +41,7 @@ double stopping_velocity(const DriftLaw& drift, double force, double dir, double
 } // namespace
 
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s, int level) {
-    const DriftLaw drift{p};
+    const DriftOfRun drift{p};
     const double a = p.force_amplitude(), sd = 1.0 / std::sqrt(p.tau);
     KolmogorovGrid g;
     g.lower_threshold = (-p.friction - drift(0.0)) / a;
@@ -104,7 +104,7 @@ KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const Kolmogo
     namespace k = detail::kolmogorov;
     const auto start = std::chrono::steady_clock::now();
     const k::ChainGrid chain_grid = k::make_grid(p, grid);
-    const k::Chain chain = k::build_chain(p, chain_grid, k::DriftLaw{p});
+    const k::Chain chain = k::build_chain(p, chain_grid, k::DriftOfRun{p});
     const k::ChainSolution sol = k::solve_chain(chain);
 
     KolmogorovGridSolution out;
