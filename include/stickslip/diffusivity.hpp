@@ -49,11 +49,21 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     /// (sample indices from check_dt_first_index on), and report the
     /// difference of D and M0 (DiffusivityResult::discretisation).
     bool check_dt = false;
+    /// The drift law's interpolation made visible (--drift, --drift-table):
+    /// run as many excursions again with knots twice as far apart ((knots +
+    /// 1)/2 knots on the same range), on independent streams (sample indices
+    /// from check_knots_first_index on), and report the difference of D and
+    /// M0 (DiffusivityResult::knots_check).
+    bool check_knots = false;
 };
 
 /// First sample index of the --check-dt run, 2^55: disjoint from the main
 /// run's indices (which the precision mode keeps below max_excursions).
 inline constexpr std::uint64_t check_dt_first_index = std::uint64_t{1} << 55;
+/// First sample index of the --check-knots run, 2^55 + 2^54: disjoint from
+/// both while the run has fewer than 2^54 excursions (checked), and below the
+/// index limit of 2^56.
+inline constexpr std::uint64_t check_knots_first_index = (std::uint64_t{1} << 55) + (std::uint64_t{1} << 54);
 
 /// The request's settings: RunSettings', ExcursionSettings', then
 /// --estimator, --rel-precision and --max-excursions.
@@ -73,10 +83,18 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
     v(r.check_dt, SettingInfo{"check-dt", "",
                               "also run as many excursions at twice --dt on independent streams and report the "
                               "difference of D and M0 (inclusion engine): the step's bias, with its standard error"});
+    v(r.check_knots, SettingInfo{"check-knots", "",
+                                 "also run as many excursions with the drift law's knots twice as far apart, on "
+                                 "independent streams, and report the difference of D and M0 (--drift, "
+                                 "--drift-table): the interpolation's effect, with its standard error"});
 }
 
-/// The --check-dt comparison: the same estimates at twice the step.
+/// The --check-dt comparison: the same estimates at twice the step (and the
+/// --check-knots one: with knots twice as far apart; then dt == check_dt and
+/// knots, check_knots give the knot counts).
 struct DiscretisationCheck {
+    int knots = 0;         ///< --check-knots: the run's knots
+    int check_knots = 0;   ///< --check-knots: the coarse run's
     double dt = 0.0;       ///< the run's step [s]
     double check_dt = 0.0; ///< twice it [s]
     /// Excursions completed at check_dt.
@@ -121,12 +139,19 @@ struct DiffusivityResult : MethodResult {
     std::vector<std::string> warnings;
     /// The --check-dt comparison (request.check_dt), when it ran.
     std::optional<DiscretisationCheck> discretisation;
+    /// The --check-knots comparison (request.check_knots), when it ran.
+    std::optional<DiscretisationCheck> knots_check;
 };
 
 /// The request of the --check-dt run of `req`: `excursions` at 2 dt, from
 /// sample index check_dt_first_index + req.control.first_index, without
 /// precision mode or a check of its own.
 DiffusivityRequest check_dt_request(const DiffusivityRequest& req, std::uint64_t excursions);
+
+/// The request of the --check-knots run of `req`: `excursions` with (knots +
+/// 1)/2 knots at the main run's step, from sample index
+/// check_knots_first_index + req.control.first_index.
+DiffusivityRequest check_knots_request(const DiffusivityRequest& req, std::uint64_t excursions);
 
 /// Every check of a request, once (InvalidParameter on the first problem);
 /// returns the engine prepared for it.

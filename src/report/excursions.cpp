@@ -53,6 +53,18 @@ std::string to_json(const DiffusivityResult& r, int indent) {
                           {"stderr", json_number(c.mobility_stderr)}};
         j["discretisation"] = dc;
     }
+    if (r.knots_check) {
+        const DiscretisationCheck& c = *r.knots_check;
+        ordered_json kc;
+        kc["knots"] = c.knots;
+        kc["check_knots"] = c.check_knots;
+        kc["excursions"] = c.excursions;
+        kc["diffusivity"] = {{"difference", json_number(c.diffusivity_difference)},
+                             {"stderr", json_number(c.diffusivity_stderr)}};
+        kc["mobility"] = {{"difference", json_number(c.mobility_difference)},
+                          {"stderr", json_number(c.mobility_stderr)}};
+        j["knots_check"] = kc;
+    }
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
     add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
@@ -85,6 +97,13 @@ std::string to_table(const DiffusivityResult& r) {
            << " excursions): D(2 dt) - D(dt) = "
            << difference_text(c.diffusivity_difference, c.diffusivity_stderr, "m^2/s")
            << "\n                                   M0(2 dt) - M0(dt) = "
+           << difference_text(c.mobility_difference, c.mobility_stderr, "m/s") << "\n";
+    }
+    if (r.knots_check) {
+        const DiscretisationCheck& c = *r.knots_check;
+        os << "\ncheck with " << c.check_knots << " knots (" << c.excursions << " excursions): D - D("
+           << c.knots << " knots) = " << difference_text(c.diffusivity_difference, c.diffusivity_stderr, "m^2/s")
+           << "\n                                  M0 - M0(" << c.knots << " knots) = "
            << difference_text(c.mobility_difference, c.mobility_stderr, "m/s") << "\n";
     }
     os << "\n"
