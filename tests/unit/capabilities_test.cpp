@@ -158,23 +158,31 @@ bool engine_of(const std::string& name, EngineSettings& s) {
     return true;
 }
 
-/// tau [s] of a row's noise: white 0, coloured the default (the paper's Fig. 2 case, 0.5 s).
-bool tau_of(const std::string& noise, double& tau) {
-    if (noise == "white") tau = 0.0;
-    else if (noise == "coloured") tau = ModelParams{}.tau;
+/// The drift law of the rows "..., any b(v)": a non-affine law (quadratic drag).
+const char* const kAnyLaw = "0.3 - v*abs(v)";
+
+/// tau [s] of a row's noise: white 0, coloured the default (the paper's Fig. 2
+/// case, 0.5 s); `law`: the row is "white, any b(v)" or "coloured, any b(v)".
+bool tau_of(const std::string& noise, double& tau, bool& law) {
+    const std::string suffix = ", any b(v)";
+    law = noise.size() > suffix.size() && noise.compare(noise.size() - suffix.size(), suffix.size(), suffix) == 0;
+    const std::string kind = law ? noise.substr(0, noise.size() - suffix.size()) : noise;
+    if (kind == "white") tau = 0.0;
+    else if (kind == "coloured") tau = ModelParams{}.tau;
     else return false;
     return true;
 }
 
 /// Validates a command's request for an engine and a tau, with small, valid settings.
-using Validate = std::function<void(const EngineSettings&, double tau)>;
+using Validate = std::function<void(const EngineSettings&, double tau, bool law)>;
 
 template <class R, class Fill>
 std::pair<std::string, Validate> simulated(Fill fill) {
-    return {R::command, [fill](const EngineSettings& e, double tau) {
+    return {R::command, [fill](const EngineSettings& e, double tau, bool law) {
                 R r;
                 r.engine = e;
                 r.params.tau = tau;
+                if (law) r.params.drift = kAnyLaw;
                 r.control.threads = 1;
                 fill(r);
                 validate(r);
@@ -183,9 +191,10 @@ std::pair<std::string, Validate> simulated(Fill fill) {
 
 /// The request of `analytic`: it has no engine, and tau goes into its params.
 /// Stationary references only (times would add a Fokker-Planck solve, ~0.6 s).
-WhiteNoiseRequest white_noise_request(double tau) {
+WhiteNoiseRequest white_noise_request(double tau, bool law) {
     WhiteNoiseRequest r;
     r.params.tau = tau;
+    if (law) r.params.drift = kAnyLaw;
     return r;
 }
 
@@ -213,7 +222,8 @@ const std::map<std::string, Validate>& validations() {
         }),
         simulated<MomentsRequest>([](MomentsRequest& r) { r.trajectories = 64; }),
         simulated<TrajectoryRequest>([](TrajectoryRequest& r) { r.index = 0; }),
-        {WhiteNoiseRequest::command, [](const EngineSettings&, double tau) { validate(white_noise_request(tau)); }},
+        {WhiteNoiseRequest::command,
+         [](const EngineSettings&, double tau, bool law) { validate(white_noise_request(tau, law)); }},
     };
     return all;
 }
@@ -224,9 +234,9 @@ struct Outcome {
     std::string setting, text;
 };
 
-Outcome outcome_of(const Validate& v, const EngineSettings& e, double tau) {
+Outcome outcome_of(const Validate& v, const EngineSettings& e, double tau, bool law) {
     try {
-        v(e, tau);
+        v(e, tau, law);
         return {};
     } catch (const InvalidParameter& x) {
         return {true, x.parameter(), x.what()};
@@ -249,10 +259,14 @@ TEST(Capabilities, TableCoversEveryEngineNoiseAndCommand) {
         {"inclusion + resolvent", "white"}, {"inclusion + resolvent", "coloured"},
         {"inclusion + event", "white"},     {"inclusion + event", "coloured"},
         {"pdmp", "white"},                  {"pdmp", "coloured"},
+        {"inclusion + resolvent", "white, any b(v)"}, {"inclusion + resolvent", "coloured, any b(v)"},
+        {"inclusion + event", "white, any b(v)"},     {"inclusion + event", "coloured, any b(v)"},
+        {"pdmp", "white, any b(v)"},                  {"pdmp", "coloured, any b(v)"},
     };
     std::set<std::pair<std::string, std::string>> rows;
     for (const Cell& c : t.cells) rows.insert({c.engine, c.noise});
-    EXPECT_EQ(rows, rows_expected) << "the table's rows must be every engine or scheme with white and coloured noise";
+    EXPECT_EQ(rows, rows_expected) << "the table's rows must be every engine or scheme with white and coloured noise, with the affine "
+                                     "drift law and with any b(v)";
 
     for (const Cell& c : t.cells) {
         EXPECT_TRUE(c.value == "yes" || c.value == "refused" || c.value == "white-limit")
@@ -275,12 +289,13 @@ TEST(Capabilities, EveryCellIsWhatValidateDoes) {
     for (const Cell& c : t.cells) {
         EngineSettings engine;
         double tau = 0;
+        bool law = false;
         const auto v = validations().find(c.command);
-        if (!engine_of(c.engine, engine) || !tau_of(c.noise, tau) || v == validations().end()) {
+        if (!engine_of(c.engine, engine) || !tau_of(c.noise, tau, law) || v == validations().end()) {
             ADD_FAILURE() << "cell " << c.name() << ": unknown engine, noise or command";
             continue;
         }
-        const Outcome o = outcome_of(v->second, engine, tau);
+        const Outcome o = outcome_of(v->second, engine, tau, law);
         ++checked;
         if (c.value == "refused") {
             if (!o.refused) {
@@ -300,13 +315,13 @@ TEST(Capabilities, EveryCellIsWhatValidateDoes) {
             // `analytic` is accepted whatever tau; the table says whether it
             // ignores tau (white-limit: the references of tau = 0), which its
             // result shows (quadratures only, a few milliseconds).
-            const WhiteNoiseResult given = compute_white_noise(white_noise_request(tau));
+            const WhiteNoiseResult given = compute_white_noise(white_noise_request(tau, law));
             const bool ignores_tau = tau > 0 && given.request.params.tau == 0.0;
             EXPECT_EQ(c.value == "white-limit", ignores_tau)
                 << "cell " << c.name() << " says " << c.value << ", but compute_white_noise "
                 << (ignores_tau ? "ignores" : "uses") << " tau " << tau;
             if (ignores_tau) {
-                const WhiteNoiseResult white = compute_white_noise(white_noise_request(0.0));
+                const WhiteNoiseResult white = compute_white_noise(white_noise_request(0.0, law));
                 EXPECT_EQ(given.reference.diffusivity, white.reference.diffusivity) << "cell " << c.name();
                 EXPECT_EQ(given.reference.mobility, white.reference.mobility) << "cell " << c.name();
                 EXPECT_EQ(given.reference.variance, white.reference.variance) << "cell " << c.name();
