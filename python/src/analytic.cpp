@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "stickslip/analytic.hpp"
+#include "stickslip/drift_law_quadrature.hpp"
 #include "stickslip/fokker_planck.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
@@ -52,6 +53,11 @@ py::array_t<double> rows_to_array(const std::vector<std::vector<double>>& rows, 
 void bind_analytic(py::module_& m) {
     // ---- Hayakawa's stationary density ---------------------------------------------------
     m.def("_hayakawa_density", [](const ModelParams& p, const Flat& v) {
+        if (p.has_drift_law()) { // the stationary density of any law, by its quadrature
+            const DriftLawWhiteNoise law(p);
+            const double* x = v.data();
+            return fill(v.size(), [&](py::ssize_t k) { return law.density(x[k]); });
+        }
         const HayakawaDensity h(p);
         const double* x = v.data();
         return fill(v.size(), [&](py::ssize_t k) { return h(x[k]); });
@@ -63,6 +69,13 @@ void bind_analytic(py::module_& m) {
     });
     m.def("_hayakawa_probability", [](const ModelParams& p, const Flat& a, const Flat& b) {
         same_length(a, b);
+        if (p.has_drift_law()) {
+            const DriftLawWhiteNoise law(p);
+            const double *x = a.data(), *y = b.data();
+            return fill(a.size(), [&](py::ssize_t k) {
+                return x[k] <= y[k] ? law.probability(x[k], y[k]) : -law.probability(y[k], x[k]);
+            });
+        }
         const HayakawaDensity h(p);
         const double *x = a.data(), *y = b.data();
         return fill(a.size(), [&](py::ssize_t k) { return h.probability(x[k], y[k]); });

@@ -139,7 +139,16 @@ ModelParams params_with(ModelParams base, const py::kwargs& kw, const char* func
 
 std::string params_repr(const ModelParams& p) {
     std::string out = "Params(";
-    for (const auto& f : param_fields(p)) out += (out.size() > 7 ? ", " : "") + f.name + "=" + float_repr(f.value);
+    for (const auto& f : param_fields(p)) {
+        // With a drift law, relaxation and bias are not the model's: show the law instead.
+        if (p.has_drift_law() && (f.name == "relaxation" || f.name == "bias")) continue;
+        out += (out.size() > 7 ? ", " : "") + f.name + "=" + float_repr(f.value);
+    }
+    if (!p.drift.empty()) out += ", drift=" + py::repr(py::str(p.drift)).cast<std::string>();
+    if (!p.drift_params.empty()) out += ", drift_params=" + py::repr(py::str(p.drift_params)).cast<std::string>();
+    if (!p.drift_table.empty()) out += ", drift_table=" + py::repr(py::str(p.drift_table)).cast<std::string>();
+    if (!p.drift_table_v.empty()) out += ", drift=(<" + std::to_string(p.drift_table_v.size()) + " knots>)";
+    if (p.has_drift_law()) out += ", knots=" + std::to_string(p.knots);
     return out + ")";
 }
 
@@ -298,6 +307,16 @@ void bind_core(py::module_& m) {
              "The same system in units friction = noise = 1: Params(friction=1, noise=1, tau=tau/T, "
              "relaxation=relaxation/T, bias=bias/friction) with T = noise/friction^2 (see scales()).")
         .def("scales", &scales_of, "Units of the nondimensional system, in SI (a Scales).")
+        .def_property_readonly(
+            "drift", [](const ModelParams& p) -> py::object {
+                if (!p.drift.empty()) return py::str(p.drift);
+                if (!p.drift_table_v.empty()) return py::make_tuple(p.drift_table_v, p.drift_table_b);
+                return py::none();
+            },
+            "the drift law b(v) when one replaces relaxation and bias: the expression (str), or the (v, b) "
+            "knots a callable or arrays were sampled on; None for the affine law")
+        .def_property_readonly("knots", [](const ModelParams& p) { return p.knots; },
+                               "knots of the drift law's interpolant")
         .def_static(
             "from_nondimensional",
             [](const ModelParams& nd, const py::object& friction, const py::object& noise) {

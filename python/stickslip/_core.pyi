@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Type stubs of the compiled part of stickslip. Units are SI (m, s); see the
 # docstrings (help(stickslip.Params), ...) for the model and conventions.
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -37,7 +37,9 @@ class Scales:
 
 class Params:
     def __init__(self, *, friction: float = 3.84, noise: float = 5.0, tau: float = 0.5,
-                 relaxation: float = 0.067, bias: float = 0.342) -> None: ...
+                 relaxation: float = 0.067, bias: float = 0.342,
+                 drift: str | Callable[[float], float] | tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
+                 drift_params: str = "", drift_table: str = "", knots: int = 1025) -> None: ...
     @property
     def friction(self) -> float: ...      # Delta [m s^-2], > 0
     @property
@@ -48,6 +50,10 @@ class Params:
     def relaxation(self) -> float: ...    # [s], > 0 or inf (no drag)
     @property
     def bias(self) -> float: ...          # [m s^-2]
+    @property
+    def drift(self) -> str | tuple[list[float], list[float]] | None: ...  # b(v), when not affine
+    @property
+    def knots(self) -> int: ...           # knots of a drift law's interpolant
     @property
     def force_amplitude(self) -> float: ...  # sqrt(noise/2)
     @property

@@ -383,6 +383,10 @@ const char* variance_why(const ModelParams& p) {
 // ---- Hayakawa density ----------------------------------------------------------
 
 HayakawaDensity::HayakawaDensity(const ModelParams& p) {
+    if (p.has_drift_law())
+        throw InvalidParameter("drift", "Hayakawa's closed-form density is the affine law's; for a drift law use "
+                                        "DriftLawWhiteNoise (drift_law_quadrature.hpp), `analytic --velocities`, or "
+                                        "stickslip.analytic.hayakawa_density / white_noise_reference");
     check(p);
     const Shape sh(p);
     a2_ = sh.a2;

@@ -106,7 +106,12 @@ DriftLawWhiteNoise::DriftLawWhiteNoise(const ModelParams& given) {
     auto weight = [&](double v) { return std::exp(phi(v)); };
     const double z = integrate(lo_, hi_, weight);
     inv_z_ = 1.0 / z;
-    const double m0 = integrate(lo_, hi_, [&](double v) { return v * weight(v); }) * inv_z_;
+    double m0 = integrate(lo_, hi_, [&](double v) { return v * weight(v); }) * inv_z_;
+    // The quadrature is good to about 1e-12 of the velocity's spread: a mean
+    // below that (an odd law's, 0 by symmetry) is reported as 0, not as
+    // rounding noise such as 3e-17.
+    const double spread = std::sqrt(integrate(lo_, hi_, [&](double v) { return v * v * weight(v); }) * inv_z_);
+    if (std::fabs(m0) < 1e-12 * spread) m0 = 0.0;
     const double var = integrate(lo_, hi_, [&](double v) { return (v - m0) * (v - m0) * weight(v); }) * inv_z_;
     // F from the nearer tail: left partial sums below M0, right ones above.
     const std::size_t panels = cuts_.size() - 1;

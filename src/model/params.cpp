@@ -93,6 +93,8 @@ void validate(const ModelParams& p) {
                                    " outside double precision's range; rescale the units (SI multiples) so that "
                                    "both are nearer 1");
     }
+    // A drift law is checked when it is given (parses, finite, confines).
+    if (p.has_drift_law()) make_drift_law(p);
 }
 
 bool has_stationary_state(const ModelParams& p) {

@@ -1,0 +1,47 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""A drift law b(v) from Python: drift= takes an expression, a callable or two
+arrays; the law reaches every engine that runs it and the exact white-noise
+references; a law that does not confine is refused when Params is made."""
+import unittest
+
+import numpy as np
+
+import stickslip
+import stickslip.analytic as analytic
+
+
+class DriftLawTest(unittest.TestCase):
+    def test_expression_callable_and_arrays_give_the_same_law(self):
+        expr = stickslip.Params(friction=1, noise=1, tau=0, drift="0.5 - v/2")
+        func = stickslip.Params(friction=1, noise=1, tau=0, drift=lambda v: 0.5 - v / 2)
+        table = stickslip.Params(friction=1, noise=1, tau=0,
+                                 drift=(np.array([-1.0, 1.0]), np.array([1.0, 0.0])))
+        affine = stickslip.Params(friction=1, noise=1, tau=0, relaxation=2, bias=0.5)
+        want = analytic.white_noise_reference(affine)
+        for p in (expr, func, table):
+            got = analytic.white_noise_reference(p)
+            self.assertAlmostEqual(got["diffusivity"] / want["diffusivity"], 1.0, delta=1e-9)
+            self.assertAlmostEqual(got["mobility"] / want["mobility"], 1.0, delta=1e-9)
+        self.assertEqual(expr.drift, "0.5 - v/2")
+        self.assertIn("drift='0.5 - v/2'", repr(expr))
+        self.assertNotIn("relaxation", repr(expr))
+
+    def test_a_law_runs_on_the_pdmp_and_the_density_is_the_quadratures(self):
+        p = stickslip.Params(friction=1, noise=1, tau=1, drift="0.3 - v*abs(v)")
+        r = stickslip.diffusivity(p, excursions=2000, engine="pdmp", grid=0.2, threads=2)
+        self.assertGreater(r.diffusivity.value, 0)
+        white = stickslip.Params(friction=1, noise=1, tau=0, drift="0.3 - v*abs(v)")
+        dens = analytic.hayakawa_density(white, np.linspace(-3, 3, 601))
+        self.assertAlmostEqual(float(np.sum(dens[1:] + dens[:-1]) * 0.005), 1.0, delta=1e-4)
+
+    def test_bad_laws_are_refused(self):
+        with self.assertRaisesRegex(ValueError, "--drift: .*does not confine"):
+            stickslip.Params(drift="v")
+        with self.assertRaisesRegex(ValueError, "--drift: .*names 'x'"):
+            stickslip.Params(drift="x*v")
+        with self.assertRaisesRegex(ValueError, "--drift"):
+            stickslip.Params(drift=(np.array([1.0, -1.0]), np.array([0.0, 1.0])))
+
+
+if __name__ == "__main__":
+    unittest.main()
