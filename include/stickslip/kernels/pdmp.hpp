@@ -21,6 +21,7 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "stickslip/config.hpp"
 #include "stickslip/drift_law.hpp"
@@ -49,7 +50,6 @@ struct PdmpConstants {
     /// pieces (bias then holds b(0), relaxation is unused), and reaching a
     /// piece's end is one more event beside the next jump and V = 0.
     bool knots_law;
-    int zero_piece;   ///< knots law: the piece just above v = 0 (0 is a knot)
     DriftLaw drift;   ///< knots law: b(v) [m s^-2]
 };
 
@@ -119,10 +119,26 @@ struct PdmpState {
     int y;
     /// Velocity V [m/s]; 0 in the static mode.
     double v;
-    /// Knots law: the piece of the drift law the velocity is in (kept, not
-    /// recomputed from v, so that a state on a knot knows its side); 0 otherwise.
-    int piece = 0;
 };
+
+/// Knots law: the piece of the drift law the flow from (x_i, y, v) runs in:
+/// the one that holds v, or, with v exactly on a knot (where a knot event
+/// puts it), the one on the side the flow moves to (b is continuous, so its
+/// value at the knot gives the direction). Derived, not stored, so that the
+/// state stays 16 bytes (measured: the PDMP's affine loop 7-10% slower with a
+/// fourth field).
+STICKSLIP_HD inline int pdmp_piece(const PdmpConstants& c, int i, int y, double v) {
+    const DriftLaw& b = c.drift;
+    int j = b.piece(v);
+    int k = -1; // the knot v is on, if any
+    if (j + 1 < b.knots && v == b.knot(j + 1)) k = j + 1;
+    else if (v == b.knot(j)) k = j;
+    if (k < 0) return j;
+    const double rate = b.values[k] + c.amp * c.delta * i - y * c.friction;
+    j = rate >= 0.0 ? k : k - 1;
+    const int last = b.pieces() - 1;
+    return j < 0 ? 0 : j > last ? last : j;
+}
 
 /// expm1(x)/x, 1 at x = 0.
 STICKSLIP_HD inline double pdmp_phi1(double x) { return x == 0.0 ? 1.0 : std::expm1(x) / x; }
@@ -132,10 +148,10 @@ STICKSLIP_HD inline double pdmp_phi2(double x) {
     return (std::expm1(x) - x) / (x * x);
 }
 
-/// Knots law: net acceleration on the piece of s, dV/dt = slope V + k: writes slope [s^-1] and k [m s^-2].
-STICKSLIP_HD inline void pdmp_piece_line(const PdmpConstants& c, const PdmpState& s, double& slope, double& k) {
-    slope = c.drift.piece_slope(s.piece);
-    k = c.drift.piece_intercept(s.piece) + c.amp * c.delta * s.i - s.y * c.friction;
+/// Knots law: net acceleration on piece j for the state s, dV/dt = slope V + k: writes slope [s^-1] and k [m s^-2].
+STICKSLIP_HD inline void pdmp_piece_line(const PdmpConstants& c, const PdmpState& s, int j, double& slope, double& k) {
+    slope = c.drift.piece_slope(j);
+    k = c.drift.piece_intercept(j) + c.amp * c.delta * s.i - s.y * c.friction;
 }
 
 /// Knots law: time [s] for the flow dV/dt = slope V + k from v to reach `level`; +inf if never.
@@ -152,13 +168,13 @@ STICKSLIP_HD inline double pdmp_time_to_level(double slope, double k, double v, 
     return t >= 0.0 ? t : inf;
 }
 
-/// Knots law: the end of s's piece its flow moves towards [m/s] (+-inf: none; NaN: it stays).
-STICKSLIP_HD inline double pdmp_piece_target(const PdmpConstants& c, const PdmpState& s) {
+/// Knots law: the end of piece j the flow from s moves towards [m/s] (+-inf: none; NaN: it stays).
+STICKSLIP_HD inline double pdmp_piece_target(const PdmpConstants& c, const PdmpState& s, int j) {
     double slope, k;
-    pdmp_piece_line(c, s, slope, k);
+    pdmp_piece_line(c, s, j, slope, k);
     const double rate = slope * s.v + k;
-    if (rate > 0.0) return c.drift.piece_upper(s.piece);
-    if (rate < 0.0) return c.drift.piece_lower(s.piece);
+    if (rate > 0.0) return c.drift.piece_upper(j);
+    if (rate < 0.0) return c.drift.piece_lower(j);
     return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -171,16 +187,13 @@ STICKSLIP_HD inline void pdmp_flow_state(const PdmpConstants& c, const PdmpState
         return;
     }
     double slope, k;
-    pdmp_piece_line(c, s, slope, k);
+    pdmp_piece_line(c, s, pdmp_piece(c, s.i, s.y, s.v), slope, k);
     const double st = slope * t;
     v_out = s.v + (slope * s.v + k) * t * pdmp_phi1(st);
     du += s.v * t * pdmp_phi1(st) + k * t * t * pdmp_phi2(st);
 }
 
-/// Knots law: the piece a motion from v = 0 in direction y starts in.
-STICKSLIP_HD inline int pdmp_piece_from_rest(const PdmpConstants& c, int y) {
-    return y > 0 ? c.zero_piece : c.zero_piece - 1;
-}
+
 
 /// Advances the state by one event: either the next jump of X or V reaching 0,
 /// whichever is first. Adds elapsed time [s] and displacement [m]. If `horizon`
@@ -191,9 +204,8 @@ STICKSLIP_HD inline bool pdmp_event_knots(const PdmpConstants& c, PdmpState& s, 
                                           double& disp, double horizon);
 
 template <class Rng>
-STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time,
-                                    double& disp, double horizon) {
-    if (c.knots_law) return pdmp_event_knots(c, s, rng, time, disp, horizon);
+STICKSLIP_HD inline bool pdmp_event_affine(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time,
+                                           double& disp, double horizon) {
     double e, u1; // the wait in units of the mean wait, and the jump direction's uniform
     rng.exponential_uniform(e, u1);
     const double wait = e / c.rate;
@@ -240,9 +252,10 @@ STICKSLIP_HD inline bool pdmp_event_knots(const PdmpConstants& c, PdmpState& s, 
     const double wait = e / c.rate;
     double level = std::numeric_limits<double>::infinity(), t_end = level;
     if (s.y != 0) {
+        const int j = pdmp_piece(c, s.i, s.y, s.v);
         double slope, k;
-        pdmp_piece_line(c, s, slope, k);
-        level = pdmp_piece_target(c, s);
+        pdmp_piece_line(c, s, j, slope, k);
+        level = pdmp_piece_target(c, s, j);
         t_end = pdmp_time_to_level(slope, k, s.v, level);
     }
     const bool ends = t_end <= wait;
@@ -259,12 +272,10 @@ STICKSLIP_HD inline bool pdmp_event_knots(const PdmpConstants& c, PdmpState& s, 
     if ((ends && level == 0.0) || (s.y != 0 && s.v != 0.0 && s.y * v_out <= 0.0)) { // landing
         s.v = 0.0;
         s.y = pdmp_mode_at_rest(c, s.i, s.y);
-        if (s.y != 0) s.piece = pdmp_piece_from_rest(c, s.y);
         return true;
     }
-    if (ends) { // a knot: the next piece, on the knot exactly
+    if (ends) { // a knot, exactly: the flow goes on in the next piece (pdmp_piece)
         s.v = level;
-        s.piece += level == c.drift.piece_upper(s.piece) ? 1 : -1;
         return true;
     }
     s.v = v_out;
@@ -272,10 +283,26 @@ STICKSLIP_HD inline bool pdmp_event_knots(const PdmpConstants& c, PdmpState& s, 
     if (s.y == 0) {
         if (up && s.i >= c.k_plus) s.y = 1;
         if (!up && s.i <= c.k_minus) s.y = -1;
-        if (s.y != 0) s.piece = pdmp_piece_from_rest(c, s.y);
     }
     s.i += up ? 1 : -1;
     return true;
+}
+
+/// One event for the law fixed at compile time (Knots: c is a knots law), so
+/// that the loops below test the law once per half, not once per event.
+template <bool Knots, class Rng>
+STICKSLIP_HD inline bool pdmp_event_as(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time, double& disp,
+                                       double horizon) {
+    if constexpr (Knots) return pdmp_event_knots(c, s, rng, time, disp, horizon);
+    else return pdmp_event_affine(c, s, rng, time, disp, horizon);
+}
+
+/// Advances the state by one event (see pdmp_event_affine), for either law.
+template <class Rng>
+STICKSLIP_HD inline bool pdmp_event(const PdmpConstants& c, PdmpState& s, Rng& rng, double& time, double& disp,
+                                    double horizon) {
+    return c.knots_law ? pdmp_event_knots(c, s, rng, time, disp, horizon)
+                       : pdmp_event_affine(c, s, rng, time, disp, horizon);
 }
 
 /// What observes a PDMP path: observe(start state, start time [s], start
@@ -304,17 +331,19 @@ STICKSLIP_HD inline bool pdmp_half(const PdmpConstants& c, int dir, Rng& rng, do
                                    double& disp, std::uint64_t& events, Observer&& observe = Observer{}) {
     const double inf = std::numeric_limits<double>::infinity();
     PdmpState s{dir > 0 ? c.k_plus + 1 : c.k_minus - 1, dir, 0.0};
-    if (c.knots_law) s.piece = pdmp_piece_from_rest(c, dir);
     const int target_i = dir > 0 ? c.k_minus - 1 : c.k_plus + 1;
-    for (;;) {
-        if (events >= c.max_events) return false;
-        const PdmpState start = s;
-        const double t_start = time, u_start = disp;
-        pdmp_event(c, s, rng, time, disp, inf);
-        observe(start, t_start, u_start, time - t_start);
-        ++events;
-        if (s.v == 0.0 && s.y == -dir && s.i == target_i) return true;
-    }
+    auto run = [&](auto knots) {
+        for (;;) {
+            if (events >= c.max_events) return false;
+            const PdmpState start = s;
+            const double t_start = time, u_start = disp;
+            pdmp_event_as<decltype(knots)::value>(c, s, rng, time, disp, inf);
+            observe(start, t_start, u_start, time - t_start);
+            ++events;
+            if (s.v == 0.0 && s.y == -dir && s.i == target_i) return true;
+        }
+    };
+    return c.knots_law ? run(std::true_type{}) : run(std::false_type{});
 }
 
 /// One long excursion (+HLE then -HLE) of the PDMP engine.
@@ -346,8 +375,6 @@ STICKSLIP_HD inline PdmpState pdmp_initial_state(const PdmpConstants& c, double 
     else if (v0 < 0) s.y = -1;
     else if (s.i > c.k_plus) s.y = 1;
     else if (s.i < c.k_minus) s.y = -1;
-    if (c.knots_law)
-        s.piece = v0 != 0.0 ? c.drift.piece(v0) : s.y != 0 ? pdmp_piece_from_rest(c, s.y) : c.zero_piece;
     return s;
 }
 
@@ -359,14 +386,18 @@ STICKSLIP_HD inline ExcursionOutcome pdmp_path(const PdmpConstants& c, PdmpState
                                                Observer&& observe = Observer{}) {
     double time = 0.0, disp = 0.0;
     std::uint64_t events = 0;
-    for (;;) {
-        const PdmpState start = s;
-        const double t_start = time, u_start = disp;
-        const bool more = pdmp_event(c, s, rng, time, disp, horizon);
-        observe(start, t_start, u_start, time - t_start);
-        if (!more) break;
-        ++events;
-    }
+    auto run = [&](auto knots) {
+        for (;;) {
+            const PdmpState start = s;
+            const double t_start = time, u_start = disp;
+            const bool more = pdmp_event_as<decltype(knots)::value>(c, s, rng, time, disp, horizon);
+            observe(start, t_start, u_start, time - t_start);
+            if (!more) break;
+            ++events;
+        }
+    };
+    if (c.knots_law) run(std::true_type{});
+    else run(std::false_type{});
     ExcursionOutcome o;
     o.displacement = disp;
     o.duration = horizon;

@@ -107,13 +107,21 @@ STICKSLIP_HD inline bool bridge_crossed(const ResolventConstants& c, double x0, 
 /// folded into two precomputed weights and added last as one sum. The sums are
 /// grouped so that the chains carried from step to step (X and V) are one
 /// multiply and one add each; the random terms are computed off the chain.
+STICKSLIP_HD inline void resolvent_colored_step_affine(const ResolventConstants& c, double x, double v,
+                                                       double z1, double z2, double& x_next, double& f) {
+    x_next = c.ou.end_coef * x + (c.ou.l21 * z1 + c.ou.l22 * z2);
+    f = c.keep * v + ((c.h_bias + c.f_x * x) + c.f_z * z1);
+}
+
+/// resolvent_colored_step for either law: the affine one as above, a knots
+/// law with f = V + h b(V) + forcing (the branch is fixed for the run, so it
+/// is predicted; the SIMD lanes, which run the affine law only, call the
+/// affine step directly so that their loop has no branch).
 STICKSLIP_HD inline void resolvent_colored_step(const ResolventConstants& c, double x, double v,
                                                 double z1, double z2, double& x_next, double& f) {
+    if (!c.knots_law) return resolvent_colored_step_affine(c, x, v, z1, z2, x_next, f);
     x_next = c.ou.end_coef * x + (c.ou.l21 * z1 + c.ou.l22 * z2);
-    if (c.knots_law) // a well-predicted branch: the law is fixed for the run
-        f = (v + c.h * c.drift(v)) + (c.f_x * x + c.f_z * z1);
-    else
-        f = c.keep * v + ((c.h_bias + c.f_x * x) + c.f_z * z1);
+    f = (v + c.h * c.drift(v)) + (c.f_x * x + c.f_z * z1);
 }
 
 /// One white-noise step from v with the standard normal z: the velocity at the

@@ -30,8 +30,8 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
         c.drift = make_drift_law(p);
         c.bias = c.drift(0.0); // b(0): the static band and the acceleration at rest
         c.viscous = false;
-        c.zero_piece = static_cast<int>(std::lround(-c.drift.first * c.drift.inv_spacing));
-        if (c.drift.knot(c.zero_piece) != 0.0)
+        const int zero = static_cast<int>(std::lround(-c.drift.first * c.drift.inv_spacing));
+        if (c.drift.knot(zero) != 0.0)
             throw InvalidParameter("knots", "the drift law's knots must include v = 0"); // make_drift_law's invariant
     }
     c.max_events = s.max_work_per_excursion;

@@ -84,7 +84,6 @@ public:
         sampler.offset = o.duration;
         sampler.stop_at = sampler.next + extra;
         PdmpState s{c_.k_plus + 1, +1, 0.0};
-        if (c_.knots_law) s.piece = pdmp_piece_from_rest(c_, +1);
         const double horizon = sampler.phase + static_cast<double>(sampler.stop_at + 1) * dt - o.duration;
         o.work += pdmp_path(c_, s, horizon, rng, observe).work;
         return o;

@@ -130,7 +130,7 @@ private:
             const double z1 = g_.z[0][p][l], z2 = g_.z[1][p][l];
             const double x0 = g_.x[l], v0 = g_.v[l];
             double xn, f;
-            resolvent_colored_step(c, x0, v0, z1, z2, xn, f);
+            resolvent_colored_step_affine(c, x0, v0, z1, z2, xn, f); // lanes run the affine law only
             const double vn = soft_threshold(f, band);
             const std::int64_t stuck = v0 == 0.0 ? 1 : 0;
             std::int64_t flag = g_.steps[l] >= cap ? 1 : 0;
