@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "stickslip/errors.hpp"
+#include "stickslip/kolmogorov.hpp"
 #include "stickslip/method.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
@@ -121,6 +122,12 @@ struct DiffusivityResult : MethodResult {
     std::vector<std::string> warnings;
     /// The --check-dt comparison (request.check_dt), when it ran.
     std::optional<DiscretisationCheck> discretisation;
+    /// With --engine kolmogorov, the solver's result (details then hold its
+    /// GridDetails): D, M0 and P(V = 0) each with its estimated discretisation
+    /// error, and the grids solved. `estimates` and `precision` are then
+    /// unset (a solved result has no samples, intervals or standard errors).
+    /// Empty for a sampled result.
+    std::optional<KolmogorovResult> solution;
 };
 
 /// The request of the --check-dt run of `req`: `excursions` at 2 dt, from
@@ -129,13 +136,18 @@ struct DiffusivityResult : MethodResult {
 DiffusivityRequest check_dt_request(const DiffusivityRequest& req, std::uint64_t excursions);
 
 /// Every check of a request, once (InvalidParameter on the first problem);
-/// returns the engine prepared for it.
+/// returns the engine prepared for it. A sampling engine only (the Kolmogorov
+/// engine is refused: it has no engine to prepare).
 PreparedEngine prepare(const DiffusivityRequest& req);
 /// prepare(req), for its checks alone.
 void validate(const DiffusivityRequest& req);
 
 /// Validates the request (once), runs, estimates. Throws CappedExcursions
-/// when excursions hit the guard and !allow_capped.
+/// when excursions hit the guard and !allow_capped. With --engine kolmogorov
+/// (engine.engine == Engine::Kolmogorov) nothing is sampled: the Kolmogorov
+/// equations are solved (solve_kolmogorov) to the relative precision
+/// rel_precision of D (0: the solver's default), and the result's `solution`
+/// holds D, M0 and P(V = 0) with their estimated discretisation errors.
 DiffusivityResult compute_diffusivity(const DiffusivityRequest& req);
 
 /// The same without the validation, on an engine prepared from the request's
