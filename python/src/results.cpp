@@ -158,6 +158,34 @@ void bind_results(py::module_& m) {
         add_totals<DiffusivityResult>(c);
         add_request_params<DiffusivityResult>(c);
         add_renderings<DiffusivityResult>(c);
+        // A solved result (engine='kolmogorov') has D, M0 and P(V = 0) as
+        // GridEstimates (value, error) and no samples.
+        c.def_property_readonly(
+             "diffusivity",
+             [](const DiffusivityResult& r) -> py::object {
+                 if (r.solution) return py::cast(r.solution->diffusivity);
+                 return py::cast(r.estimates.diffusivity);
+             },
+             "D [m^2/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+            .def_property_readonly(
+                "mobility",
+                [](const DiffusivityResult& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->mobility);
+                    return py::cast(r.estimates.mobility);
+                },
+                "M0, the mean velocity [m/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+            .def_property_readonly(
+                "stuck_probability",
+                [](const DiffusivityResult& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->stuck_probability);
+                    return py::none();
+                },
+                "P(V = 0) (GridEstimate) with engine='kolmogorov'; None for a sampled result")
+            .def_property_readonly(
+                "method", [](const DiffusivityResult& r) -> std::string {
+                    return r.sampled() ? std::string("monte carlo") : r.grid().solver;
+                },
+                "'monte carlo', or the grid solver ('kolmogorov') with engine='kolmogorov'");
         c.def_property_readonly("engine", [](const DiffusivityResult& r) { return to_string(r.request.engine.engine); })
             .def_property_readonly("estimator",
                                    [](const DiffusivityResult& r) { return to_string(r.request.estimator); })
@@ -191,6 +219,12 @@ void bind_results(py::module_& m) {
                 "'stderr'}, 'mobility': {...}}, the values at 2 dt minus those at dt [m^2/s, m/s]; None "
                 "otherwise")
             .def("__repr__", [](const DiffusivityResult& r) {
+                if (r.solution)
+                    return "DiffusivityResult(diffusivity=" + g4(r.solution->diffusivity.value) + " +- " +
+                           g4(r.solution->diffusivity.error) + " m^2/s, mobility=" + g4(r.solution->mobility.value) +
+                           " +- " + g4(r.solution->mobility.error) + " m/s, stuck_probability=" +
+                           g4(r.solution->stuck_probability.value) + " +- " + g4(r.solution->stuck_probability.error) +
+                           ", engine='kolmogorov' (discretisation errors))";
                 return "DiffusivityResult(diffusivity=" + estimate_short(r.estimates.diffusivity) +
                        " m^2/s, mobility=" + estimate_short(r.estimates.mobility) +
                        " m/s, mean_duration=" + estimate_short(r.estimates.mean_duration) +
