@@ -154,6 +154,7 @@ bool engine_of(const std::string& name, EngineSettings& s) {
     if (name == "inclusion + resolvent") s.scheme = Scheme::Resolvent;
     else if (name == "inclusion + event") s.scheme = Scheme::Event;
     else if (name == "pdmp") s.engine = Engine::Pdmp;
+    else if (name == "kolmogorov") s.engine = Engine::Kolmogorov;
     else return false;
     return true;
 }
@@ -249,6 +250,7 @@ TEST(Capabilities, TableCoversEveryEngineNoiseAndCommand) {
         {"inclusion + resolvent", "white"}, {"inclusion + resolvent", "coloured"},
         {"inclusion + event", "white"},     {"inclusion + event", "coloured"},
         {"pdmp", "white"},                  {"pdmp", "coloured"},
+        {"kolmogorov", "white"},            {"kolmogorov", "coloured"},
     };
     std::set<std::pair<std::string, std::string>> rows;
     for (const Cell& c : t.cells) rows.insert({c.engine, c.noise});
