@@ -43,6 +43,9 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     /// deterministic and thread-invariant. Caveat (sequential stopping): N
     /// depends on the data, so the interval's coverage is slightly below its
     /// nominal level; with few, large batches the effect is small.
+    /// With the Kolmogorov engine: the target estimated relative
+    /// discretisation error of D (KolmogorovSettings::rel_precision; 0 takes
+    /// that setting's default).
     double rel_precision = 0.0;
     std::uint64_t max_excursions = 100'000'000; ///< cap of the precision-on-demand mode
     /// The step's bias made visible (inclusion engine): after the run, run
@@ -69,7 +72,8 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
                                    "precision on demand: run in batches (the first of --excursions) until the upper "
                                    "half-width of D's interval (hi - D) is at most this fraction of D, e.g. 0.01; 0 = "
                                    "off. The stopping "
-                                   "time depends on the data, so the interval's coverage is slightly below --level"});
+                                   "time depends on the data, so the interval's coverage is slightly below --level. "
+                                   "With --engine kolmogorov: the target estimated relative error of D (0: the solver's default)"});
     v(r.max_excursions, SettingInfo{"max-excursions", "", "cap of --rel-precision: most excursions in all"});
     v(r.check_dt, SettingInfo{"check-dt", "",
                               "also run as many excursions at twice --dt on independent streams and report the "

@@ -4,6 +4,9 @@
 // samples paths, white noise and near-white noise refused in one line.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
+
 #include "cli_support.hpp"
 
 namespace {
@@ -51,6 +54,7 @@ TEST(CliKolmogorov, BudgetBeforePrecisionIsANote) {
 }
 
 TEST(CliKolmogorov, RefusedWhereItCannotServeInOneLine) {
+    const std::string checkpoint = temp_file("ckpt");
     const std::vector<std::pair<Args, std::string>> cases{
         {{"correlation", "--engine", "kolmogorov"}, "--engine inclusion or pdmp"},
         {{"moments", "--engine", "kolmogorov", "--times", "0.5"}, "--engine inclusion or pdmp"},
@@ -61,6 +65,7 @@ TEST(CliKolmogorov, RefusedWhereItCannotServeInOneLine) {
         {{"diffusivity", "--engine", "kolmogorov", "--tau", "0.01"}, "inclusion engine"},
         {{"density", "--engine", "kolmogorov", "--tau", "0"}, "stickslip analytic"},
         {{"diffusivity", "--engine", "kolmogorov", "--check-dt"}, "inclusion engine"},
+        {{"diffusivity", "--engine", "kolmogorov", "--checkpoint", checkpoint}, "nothing to checkpoint"},
     };
     for (const auto& [args, advice] : cases) {
         const Result r = run(args);
@@ -69,6 +74,8 @@ TEST(CliKolmogorov, RefusedWhereItCannotServeInOneLine) {
         EXPECT_NE(r.err.find(advice), std::string::npos) << describe(args) << "\n" << r.err;
         EXPECT_TRUE(r.out.empty()) << r.out;
     }
+    EXPECT_EQ(std::ifstream(checkpoint, std::ios::ate).tellg(), 0) << "a refused run writes no checkpoint";
+    std::remove(checkpoint.c_str());
 }
 
 } // namespace
