@@ -225,9 +225,13 @@ class DensityResult(_LongExcursions):
     @property
     def centers(self) -> FloatArray: ...
     @property
-    def density(self) -> EstimateSeries: ...
+    def density(self) -> Union[EstimateSeries, FloatArray]: ...  # FloatArray with engine="kolmogorov"
     @property
-    def stuck(self) -> Estimate: ...
+    def stuck(self) -> Union[Estimate, GridEstimate]: ...  # GridEstimate with engine="kolmogorov"
+    @property
+    def diffusivity(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]
+    @property
+    def mobility(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]
     @property
     def below(self) -> Estimate: ...
     @property

@@ -32,6 +32,14 @@ class KolmogorovEngineTest(unittest.TestCase):
         self.assertTrue(d["precision"]["reached"])
         self.assertNotIn("completed", d)
 
+    def test_density_of_the_finest_grid(self):
+        d = stickslip.density(engine="kolmogorov", threads=1)
+        self.assertIsInstance(d.stuck, stickslip.GridEstimate)
+        self.assertEqual(d.density.shape[0] + 1, d.edges.shape[0])
+        mass = float((d.density * (d.edges[1:] - d.edges[:-1])).sum())
+        self.assertAlmostEqual(mass + d.stuck.value, 1.0, delta=10 * d.stuck.error)
+        self.assertIn("engine='kolmogorov'", repr(d))
+
     def test_refused_where_it_cannot_serve(self):
         with self.assertRaisesRegex(ValueError, "--engine inclusion or pdmp"):
             stickslip.correlation(engine="kolmogorov")
