@@ -47,6 +47,8 @@
 #include <utility>
 #include <vector>
 
+#include "stickslip/engine.hpp"
+#include "stickslip/errors.hpp"
 #include "stickslip/setting.hpp"
 
 namespace stickslip {
@@ -166,10 +168,19 @@ void validate(const CheckpointOptions& options);
 /// `resumable`, after its process split is set: only the first process
 /// writes), or nullptr when the options ask for neither a checkpoint nor a
 /// resume. Point request.control.journal at it, run, then write() it.
+/// InvalidParameter ("checkpoint" or "resume") for the Kolmogorov engine,
+/// which has no samples to keep.
 template <class Request>
 std::unique_ptr<RunJournal> make_journal(Request& request, const CheckpointOptions& options) {
     validate(options);
     if (options.path.empty() && options.resume.empty()) return nullptr;
+    if constexpr (requires { request.engine.engine; }) {
+        // A grid solver's run has no samples to keep, and takes seconds.
+        if (!samples(request.engine))
+            throw InvalidParameter(options.path.empty() ? "resume" : "checkpoint",
+                                   "the kolmogorov engine samples nothing, so there is nothing to checkpoint or "
+                                   "resume: run without --checkpoint and --resume");
+    }
     return std::make_unique<RunJournal>(Request::command, checkpoint_identity(request), options,
                                         request.control.rank);
 }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "stickslip/errors.hpp"
+#include "stickslip/kolmogorov.hpp"
 #include "stickslip/method.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
@@ -42,6 +43,9 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     /// deterministic and thread-invariant. Caveat (sequential stopping): N
     /// depends on the data, so the interval's coverage is slightly below its
     /// nominal level; with few, large batches the effect is small.
+    /// With the Kolmogorov engine: the target estimated relative
+    /// discretisation error of D (KolmogorovSettings::rel_precision; 0 takes
+    /// that setting's default).
     double rel_precision = 0.0;
     std::uint64_t max_excursions = 100'000'000; ///< cap of the precision-on-demand mode
     /// The step's bias made visible (inclusion engine): after the run, run
@@ -78,7 +82,8 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
                                    "precision on demand: run in batches (the first of --excursions) until the upper "
                                    "half-width of D's interval (hi - D) is at most this fraction of D, e.g. 0.01; 0 = "
                                    "off. The stopping "
-                                   "time depends on the data, so the interval's coverage is slightly below --level"});
+                                   "time depends on the data, so the interval's coverage is slightly below --level. "
+                                   "With --engine kolmogorov: the target estimated relative error of D (0: the solver's default)"});
     v(r.max_excursions, SettingInfo{"max-excursions", "", "cap of --rel-precision: most excursions in all"});
     v(r.check_dt, SettingInfo{"check-dt", "",
                               "also run as many excursions at twice --dt on independent streams and report the "
@@ -141,6 +146,12 @@ struct DiffusivityResult : MethodResult {
     std::optional<DiscretisationCheck> discretisation;
     /// The --check-knots comparison (request.check_knots), when it ran.
     std::optional<DiscretisationCheck> knots_check;
+    /// With --engine kolmogorov, the solver's result (details then hold its
+    /// GridDetails): D, M0 and P(V = 0) each with its estimated discretisation
+    /// error, and the grids solved. `estimates` and `precision` are then
+    /// unset (a solved result has no samples, intervals or standard errors).
+    /// Empty for a sampled result.
+    std::optional<KolmogorovResult> solution;
 };
 
 /// The request of the --check-dt run of `req`: `excursions` at 2 dt, from
@@ -154,13 +165,18 @@ DiffusivityRequest check_dt_request(const DiffusivityRequest& req, std::uint64_t
 DiffusivityRequest check_knots_request(const DiffusivityRequest& req, std::uint64_t excursions);
 
 /// Every check of a request, once (InvalidParameter on the first problem);
-/// returns the engine prepared for it.
+/// returns the engine prepared for it. A sampling engine only (the Kolmogorov
+/// engine is refused: it has no engine to prepare).
 PreparedEngine prepare(const DiffusivityRequest& req);
 /// prepare(req), for its checks alone.
 void validate(const DiffusivityRequest& req);
 
 /// Validates the request (once), runs, estimates. Throws CappedExcursions
-/// when excursions hit the guard and !allow_capped.
+/// when excursions hit the guard and !allow_capped. With --engine kolmogorov
+/// (engine.engine == Engine::Kolmogorov) nothing is sampled: the Kolmogorov
+/// equations are solved (solve_kolmogorov) to the relative precision
+/// rel_precision of D (0: the solver's default), and the result's `solution`
+/// holds D, M0 and P(V = 0) with their estimated discretisation errors.
 DiffusivityResult compute_diffusivity(const DiffusivityRequest& req);
 
 /// The same without the validation, on an engine prepared from the request's

@@ -48,6 +48,10 @@ struct DriftLawReport {
 /// was made.
 DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report = nullptr);
 
+/// The note a run gives on its law: "drift law (SOURCE) TEXT: interpolated on N
+/// knots over [lower, upper] m/s, off by at most E m s^-2".
+std::string drift_law_note(const DriftLawReport& law);
+
 /// The drift law's own time scale [s]: relaxation for the affine law, 1/L for
 /// another (L its largest slope; +inf for a law without slope). What the
 /// automatic steps and the step checks compare a step with.

@@ -28,7 +28,13 @@ namespace stickslip {
 ///    process whose noise is a jump process on a lattice of step
 ///    EngineSettings::grid; coloured noise only (tau > 0). Its only
 ///    approximation is the lattice, which converges to the OU noise as grid -> 0.
-enum class Engine { Inclusion, Pdmp };
+///  * Kolmogorov: no sampling: the Kolmogorov equations of (X, V) solved on a
+///    grid (kolmogorov.hpp) for D, M0, P(V = 0) and the stationary density,
+///    each with an estimated discretisation error; coloured noise with tau' >=
+///    kolmogorov_min_tau_prime only. Not an engine that runs excursions: the
+///    quantities that can be solved choose it at their top (diffusivity,
+///    density), every other one refuses it (prepare_engine).
+enum class Engine { Inclusion, Pdmp, Kolmogorov };
 
 /// How a time-stepping HLE detects its end (theory.md, section 6).
 ///  * Bridge ("rule Q"): stuck at the start of the step and the noise path
@@ -58,13 +64,13 @@ enum class Scheme { Resolvent, Event, Auto };
 /// dt/tau at or below which StopRule::Auto selects the bridge rule.
 inline constexpr double auto_bridge_ratio = 0.1;
 
-/// The setting's name of an engine: "inclusion" | "pdmp".
+/// The setting's name of an engine: "inclusion" | "pdmp" | "kolmogorov".
 std::string to_string(Engine e);
 /// The setting's name of a stop rule: "auto" | "bridge" | "stuck".
 std::string to_string(StopRule r);
 /// The setting's name of a scheme: "resolvent" | "event" | "auto".
 std::string to_string(Scheme s);
-Engine parse_engine(const std::string& s);     ///< "inclusion" | "pdmp"
+Engine parse_engine(const std::string& s);     ///< "inclusion" | "pdmp" | "kolmogorov"
 Scheme parse_scheme(const std::string& s);     ///< "resolvent" | "event" | "auto"
 StopRule parse_stop_rule(const std::string& s); ///< "auto" | "bridge" | "stuck"
 
@@ -99,8 +105,9 @@ struct EngineSettings {
 template <class Visitor>
 void visit_settings(EngineSettings& s, Visitor&& v) {
     v(s.engine, SettingInfo{"engine", "",
-                            "inclusion (time stepping with the exact Ornstein-Uhlenbeck noise step) or pdmp (exact "
-                            "event-driven, the noise a jump process on a lattice)"});
+                            "inclusion (time stepping with the exact Ornstein-Uhlenbeck noise step), pdmp (exact "
+                            "event-driven, the noise a jump process on a lattice) or kolmogorov (no sampling: the "
+                            "Kolmogorov equations solved on a grid, diffusivity and density only, coloured noise)"});
     v(s.scheme, SettingInfo{"scheme", "",
                             "inclusion time stepping: event (exact within phases, events at their times), resolvent "
                             "(the paper's, first order) or auto: event, except resolvent for white-noise density and "
@@ -135,6 +142,12 @@ EngineSettings fixed_step_settings(Scheme scheme, double dt);
 
 /// What the work of a run counts: "steps" (inclusion engine) or "events" (PDMP).
 const char* work_unit(const EngineSettings& s);
+/// Whether the engine samples (inclusion, PDMP); false for the Kolmogorov
+/// grid solver, which no Monte Carlo path may reach.
+bool samples(const EngineSettings& s);
+/// What the Kolmogorov engine computes, for the refusals of the commands it
+/// cannot serve: "the kolmogorov engine solves D, M0 and P(V = 0) (...)".
+extern const char* const kolmogorov_engine_scope;
 /// Whether the engine advances by a time step dt (the inclusion engine, both
 /// schemes); otherwise its resolution is the lattice step `grid` (PDMP).
 bool has_time_step(const EngineSettings& s);

@@ -42,8 +42,9 @@
 //    tau' = 1). A sliding cell next to 0 whose flow points to 0 feeds the
 //    stuck state of its node, or passes to the other half line outside the band.
 // Everything is solved in SI units; the drift enters only through one small
-// function of v (detail::kolmogorov::DriftLaw), so that a general drift law
-// is a one-line change there.
+// function of v (detail::kolmogorov::DriftLaw), the run's drift law
+// (make_drift_law: the affine law, or --drift, --drift-table, a callable),
+// made once per solve.
 //
 // Solving. pi^T Q = 0 and Q chi = -(g - M0) share one sparse LU factorisation
 // of Q less one row and column (chi is pinned to 0 at a stuck state mid-band;

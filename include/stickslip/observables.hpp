@@ -36,10 +36,12 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/kolmogorov.hpp"
 #include "stickslip/method.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/excursion.hpp"
@@ -130,6 +132,14 @@ struct DensityResult : MethodResult {
     /// Notes for the user, one sentence each: those of DiffusivityResult, and
     /// on the sampling of the path, P(V = 0) and mass outside the range.
     std::vector<std::string> warnings;
+    /// With --engine kolmogorov, the solver's result (details then hold its
+    /// GridDetails): the density is its finest grid's,
+    /// solution->levels.back().velocity_density on velocity_faces, one value
+    /// per velocity cell with no standard error (the grid's cells, not
+    /// `bins`), and P(V = 0), D and M0 with their estimated discretisation
+    /// errors. The sampled members above are then unset. Empty for a sampled
+    /// result.
+    std::optional<KolmogorovResult> solution;
 };
 
 /// Every check of the request (InvalidParameter on the first problem): the
@@ -139,7 +149,9 @@ struct DensityResult : MethodResult {
 void validate(const DensityRequest& req);
 /// Validates the request (once) and runs it: a pilot of 256 excursions when
 /// the range is automatic, then the excursions of the histogram. Throws
-/// CappedExcursions as compute_diffusivity does.
+/// CappedExcursions as compute_diffusivity does. With --engine kolmogorov
+/// nothing is sampled: the Kolmogorov equations are solved (solve_kolmogorov,
+/// its default precision) and the result's `solution` holds the density.
 DensityResult compute_density(const DensityRequest& req);
 
 // ---- stationary autocorrelation ---------------------------------------------

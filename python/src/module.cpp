@@ -12,6 +12,8 @@
 #include <sstream>
 
 #include "bindings.hpp"
+#include "stickslip/kolmogorov.hpp"
+#include "stickslip/number_text.hpp"
 #include "stickslip/drift_input.hpp"
 #include "stickslip/config.hpp"
 #include "stickslip/diffusivity.hpp"
@@ -385,6 +387,24 @@ void bind_core(py::module_& m) {
                 e.level = t[4].cast<double>();
                 return e;
             }));
+
+    py::class_<KolmogorovEstimate>(m, "GridEstimate",
+                                   "A value computed by a grid solver (engine='kolmogorov') with its estimated "
+                                   "discretisation error (absolute, in the value's unit): no standard error or "
+                                   "interval, which a solver does not have. float(e) is e.value.")
+        .def_readonly("value", &KolmogorovEstimate::value)
+        .def_readonly("error", &KolmogorovEstimate::error, "estimated discretisation error (absolute)")
+        .def("to_dict", [](const KolmogorovEstimate& e) {
+            py::dict d;
+            d["value"] = e.value;
+            d["error"] = e.error;
+            return d;
+        }, "{'value', 'error'}: as in the CLI's JSON")
+        .def("__float__", [](const KolmogorovEstimate& e) { return e.value; })
+        .def("__repr__", [](const KolmogorovEstimate& e) {
+            return "GridEstimate(value=" + number_text::general(e.value, 6) + ", error=" +
+                   number_text::general(e.error, 3) + ")";
+        });
 
     py::class_<EstimateSeries>(m, "EstimateSeries",
                                "Estimates along an axis (bins, lags, times, sweep points), as NumPy arrays: "

@@ -83,11 +83,15 @@ const char* python_type(const Field&) {
 /// `params` argument, not from keywords.
 template <class Request, class Field>
 bool in_params(const Request& r, const Field& field) {
-    if constexpr (std::is_same_v<Field, double>) {
-        const auto* p = reinterpret_cast<const char*>(&field);
-        const auto* lo = reinterpret_cast<const char*>(&r.params);
+    const auto* lo = reinterpret_cast<const char*>(&r.params);
+    auto inside = [&](const void* member) {
+        const auto* p = static_cast<const char*>(member);
         return p >= lo && p < lo + sizeof(ModelParams);
-    }
+    };
+    // The model's numbers, and its drift-law settings (a TextValue refers to
+    // the member; knots is an int member): all come from `params`.
+    if constexpr (std::is_same_v<Field, double> || std::is_same_v<Field, int>) return inside(&field);
+    else if constexpr (std::is_same_v<Field, TextValue>) return inside(&field.value);
     return false;
 }
 

@@ -158,6 +158,34 @@ void bind_results(py::module_& m) {
         add_totals<DiffusivityResult>(c);
         add_request_params<DiffusivityResult>(c);
         add_renderings<DiffusivityResult>(c);
+        // A solved result (engine='kolmogorov') has D, M0 and P(V = 0) as
+        // GridEstimates (value, error) and no samples.
+        c.def_property_readonly(
+             "diffusivity",
+             [](const DiffusivityResult& r) -> py::object {
+                 if (r.solution) return py::cast(r.solution->diffusivity);
+                 return py::cast(r.estimates.diffusivity);
+             },
+             "D [m^2/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+            .def_property_readonly(
+                "mobility",
+                [](const DiffusivityResult& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->mobility);
+                    return py::cast(r.estimates.mobility);
+                },
+                "M0, the mean velocity [m/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+            .def_property_readonly(
+                "stuck_probability",
+                [](const DiffusivityResult& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->stuck_probability);
+                    return py::none();
+                },
+                "P(V = 0) (GridEstimate) with engine='kolmogorov'; None for a sampled result")
+            .def_property_readonly(
+                "method", [](const DiffusivityResult& r) -> std::string {
+                    return r.sampled() ? std::string("monte carlo") : r.grid().solver;
+                },
+                "'monte carlo', or the grid solver ('kolmogorov') with engine='kolmogorov'");
         c.def_property_readonly("engine", [](const DiffusivityResult& r) { return to_string(r.request.engine.engine); })
             .def_property_readonly("estimator",
                                    [](const DiffusivityResult& r) { return to_string(r.request.estimator); })
@@ -191,6 +219,12 @@ void bind_results(py::module_& m) {
                 "'stderr'}, 'mobility': {...}}, the values at 2 dt minus those at dt [m^2/s, m/s]; None "
                 "otherwise")
             .def("__repr__", [](const DiffusivityResult& r) {
+                if (r.solution)
+                    return "DiffusivityResult(diffusivity=" + g4(r.solution->diffusivity.value) + " +- " +
+                           g4(r.solution->diffusivity.error) + " m^2/s, mobility=" + g4(r.solution->mobility.value) +
+                           " +- " + g4(r.solution->mobility.error) + " m/s, stuck_probability=" +
+                           g4(r.solution->stuck_probability.value) + " +- " + g4(r.solution->stuck_probability.error) +
+                           ", engine='kolmogorov' (discretisation errors))";
                 return "DiffusivityResult(diffusivity=" + estimate_short(r.estimates.diffusivity) +
                        " m^2/s, mobility=" + estimate_short(r.estimates.mobility) +
                        " m/s, mean_duration=" + estimate_short(r.estimates.mean_duration) +
@@ -241,17 +275,49 @@ void bind_results(py::module_& m) {
         add_totals<R>(c);
         add_request_params<R>(c);
         add_renderings<R>(c);
+        // A solved result (engine='kolmogorov'): the finest grid's cells as
+        // the bins, its density values without error bars, P(V = 0), D and M0
+        // as GridEstimates (value, error).
+        auto edges_of = [](const R& r) -> const std::vector<double>& {
+            return r.solution ? r.solution->levels.back().velocity_faces : r.histogram.edges;
+        };
         c.def_property_readonly(
-             "histogram", [](const R& r) { return r.histogram; }, "the Histogram (edges, density, stuck, ...)")
+             "histogram", [](const R& r) { return r.histogram; },
+             "the Histogram (edges, density, stuck, ...); empty with engine='kolmogorov'")
             .def_property_readonly(
-                "edges", [](const R& r) { return to_array(r.histogram.edges); }, "bin edges [m/s], shape (bins + 1,)")
+                "edges", [edges_of](const R& r) { return to_array(edges_of(r)); },
+                "bin edges [m/s], shape (bins + 1,) (engine='kolmogorov': the grid's velocity cells)")
             .def_property_readonly(
-                "centers", [](const R& r) { return centers(r.histogram.edges); }, "bin centres [m/s], shape (bins,)")
+                "centers", [edges_of](const R& r) { return centers(edges_of(r)); }, "bin centres [m/s], shape (bins,)")
             .def_property_readonly(
-                "density", [](const R& r) { return series(r.histogram.density, r.request.level); },
-                "density [s/m] per bin (EstimateSeries, shape (bins,)), V = 0 excluded")
+                "density",
+                [](const R& r) -> py::object {
+                    if (r.solution) return py::object(to_array(r.solution->levels.back().velocity_density));
+                    return py::cast(series(r.histogram.density, r.request.level));
+                },
+                "density [s/m] per bin (EstimateSeries, shape (bins,)), V = 0 excluded; engine='kolmogorov': "
+                "the grid's values (a NumPy array, no error bars)")
             .def_property_readonly(
-                "stuck", [](const R& r) { return r.histogram.stuck; }, "P(V = 0) (Estimate)")
+                "stuck",
+                [](const R& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->stuck_probability);
+                    return py::cast(r.histogram.stuck);
+                },
+                "P(V = 0) (Estimate; a GridEstimate with engine='kolmogorov')")
+            .def_property_readonly(
+                "diffusivity",
+                [](const R& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->diffusivity);
+                    return py::cast(r.estimates.diffusivity);
+                },
+                "D [m^2/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+            .def_property_readonly(
+                "mobility",
+                [](const R& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->mobility);
+                    return py::cast(r.estimates.mobility);
+                },
+                "M0 [m/s] (Estimate; a GridEstimate with engine='kolmogorov')")
             .def_property_readonly(
                 "below", [](const R& r) { return r.histogram.below; }, "P(V < edges[0], V != 0) (Estimate)")
             .def_property_readonly(
@@ -259,6 +325,13 @@ void bind_results(py::module_& m) {
             .def_readonly("mean", &R::mean, "stationary E[V] = M0 [m/s] (Estimate)")
             .def_readonly("variance", &R::variance, "stationary Var(V) [m^2/s^2] (Estimate)")
             .def("__repr__", [](const R& r) {
+                if (r.solution) {
+                    const KolmogorovGridSolution& fine = r.solution->levels.back();
+                    return "DensityResult(cells=" + std::to_string(fine.velocity_density.size()) + ", range=(" +
+                           g4(fine.velocity_faces.front()) + ", " + g4(fine.velocity_faces.back()) + ") m/s, stuck=" +
+                           g4(r.solution->stuck_probability.value) + " +- " + g4(r.solution->stuck_probability.error) +
+                           ", engine='kolmogorov' (discretisation errors))";
+                }
                 return "DensityResult(bins=" + std::to_string(r.histogram.density.size()) + ", range=(" +
                        g4(r.histogram.edges.front()) + ", " + g4(r.histogram.edges.back()) +
                        ") m/s, stuck=" + estimate_short(r.histogram.stuck) + ", mean=" + estimate_short(r.mean) +

@@ -77,6 +77,7 @@ from ._core import (  # noqa: F401  (re-exported)
     DiffusivityResult,
     Estimate,
     EstimateSeries,
+    GridEstimate,
     Histogram,
     InvalidParameterError,
     MomentsRequest,
@@ -98,14 +99,15 @@ _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityR
              SweepRequest, TrajectoryRequest)
 # Show (and pickle) the compiled classes under the names users import.
 for _cls in (BruteForceResult, CorrelationResult, DensityResult, DiffusivityResult, Estimate, EstimateSeries,
-             Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult, TrajectoryResult,
+             GridEstimate, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
+             TrajectoryResult,
              InvalidParameterError, UntrustworthyResultError, CappedExcursionsError) + _REQUESTS:
     _cls.__module__ = __name__
 run.__module__ = __name__
 del _cls
 
 __all__ = [
-    "Params", "Scales", "Estimate", "EstimateSeries", "Histogram", "Path",
+    "Params", "Scales", "Estimate", "EstimateSeries", "GridEstimate", "Histogram", "Path",
     "DiffusivityResult", "BruteForceResult", "DensityResult", "CorrelationResult", "MomentsResult",
     "TrajectoryResult", "SweepResult", "SweepExponent",
     "DiffusivityRequest", "BruteForceRequest", "DensityRequest", "CorrelationRequest", "MomentsRequest",
@@ -136,11 +138,16 @@ D, mobility M0 and mean long-excursion duration E[t1] from N long excursions.
     ``stickslip diffusivity``; below 5000 excursions the standard errors are
     themselves noisy and a warning says so. With rel_precision > 0 the run goes
     on in batches until D's interval is that narrow (`.precision` says how it
-    ended).""", """\
+    ended). With engine="kolmogorov" nothing is sampled: the Kolmogorov
+    equations are solved on grids to the relative precision rel_precision of D
+    (default 1e-3), for coloured noise with tau' >= 0.05.""", """\
     DiffusivityResult
         .diffusivity [m^2/s], .mobility [m/s], .mean_duration [s] (Estimate:
         .value, .stderr, .ci), .completed, .capped, .warnings, .params;
-        .to_dict() is the CLI's JSON (nondimensional values included).""", """
+        .to_dict() is the CLI's JSON (nondimensional values included). With
+        engine="kolmogorov": .diffusivity, .mobility and .stuck_probability
+        are GridEstimate (.value, .error: the estimated discretisation
+        error), and .method is "kolmogorov".""", """
 
     Example
     -------

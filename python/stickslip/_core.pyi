@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Type stubs of the compiled part of stickslip. Units are SI (m, s); see the
 # docstrings (help(stickslip.Params), ...) for the model and conventions.
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -86,6 +86,14 @@ class Estimate:
     def level(self) -> float: ...
     @property
     def ci(self) -> Tuple[float, float]: ...
+    def to_dict(self) -> dict[str, Any]: ...
+    def __float__(self) -> float: ...
+
+class GridEstimate:
+    @property
+    def value(self) -> float: ...
+    @property
+    def error(self) -> float: ...  # estimated discretisation error (absolute)
     def to_dict(self) -> dict[str, Any]: ...
     def __float__(self) -> float: ...
 
@@ -175,6 +183,14 @@ class _LongExcursions(_Totals):
 
 class DiffusivityResult(_LongExcursions):
     @property
+    def diffusivity(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]  # D [m^2/s]
+    @property
+    def mobility(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]  # M0 [m/s]
+    @property
+    def stuck_probability(self) -> Optional[GridEstimate]: ...  # P(V = 0), engine="kolmogorov"
+    @property
+    def method(self) -> str: ...  # "monte carlo" or "kolmogorov"
+    @property
     def precision(self) -> Optional[Dict[str, Any]]: ...
     @property
     def discretisation(self) -> Optional[Dict[str, Any]]: ...
@@ -215,9 +231,13 @@ class DensityResult(_LongExcursions):
     @property
     def centers(self) -> FloatArray: ...
     @property
-    def density(self) -> EstimateSeries: ...
+    def density(self) -> Union[EstimateSeries, FloatArray]: ...  # FloatArray with engine="kolmogorov"
     @property
-    def stuck(self) -> Estimate: ...
+    def stuck(self) -> Union[Estimate, GridEstimate]: ...  # GridEstimate with engine="kolmogorov"
+    @property
+    def diffusivity(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]
+    @property
+    def mobility(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]
     @property
     def below(self) -> Estimate: ...
     @property

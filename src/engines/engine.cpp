@@ -10,7 +10,14 @@
 
 namespace stickslip {
 
-std::string to_string(Engine e) { return e == Engine::Pdmp ? "pdmp" : "inclusion"; }
+std::string to_string(Engine e) {
+    switch (e) {
+    case Engine::Pdmp: return "pdmp";
+    case Engine::Kolmogorov: return "kolmogorov";
+    case Engine::Inclusion: break;
+    }
+    return "inclusion";
+}
 
 std::string to_string(StopRule r) {
     switch (r) {
@@ -38,7 +45,8 @@ Scheme parse_scheme(const std::string& s) {
 Engine parse_engine(const std::string& s) {
     if (s == "inclusion") return Engine::Inclusion;
     if (s == "pdmp") return Engine::Pdmp;
-    throw InvalidParameter("engine", "engine must be 'inclusion' or 'pdmp', got '" + s + "'");
+    if (s == "kolmogorov") return Engine::Kolmogorov;
+    throw InvalidParameter("engine", "engine must be 'inclusion', 'pdmp' or 'kolmogorov', got '" + s + "'");
 }
 
 StopRule parse_stop_rule(const std::string& s) {
@@ -80,13 +88,19 @@ void parse_setting(const SettingInfo&, const std::string& text, Engine& out) { o
 void parse_setting(const SettingInfo&, const std::string& text, StopRule& out) { out = parse_stop_rule(text); }
 std::string format_setting(Scheme s) { return to_string(s); }
 void parse_setting(const SettingInfo&, const std::string& text, Scheme& out) { out = parse_scheme(text); }
-const char* setting_form(const Engine&) { return "inclusion|pdmp"; }
+const char* setting_form(const Engine&) { return "inclusion|pdmp|kolmogorov"; }
 const char* setting_form(const Scheme&) { return "auto|event|resolvent"; }
 const char* setting_form(const StopRule&) { return "auto|bridge|stuck"; }
 
 const char* work_unit(const EngineSettings& s) { return s.engine == Engine::Pdmp ? "events" : "steps"; }
 
 bool has_time_step(const EngineSettings& s) { return s.engine == Engine::Inclusion; }
+
+bool samples(const EngineSettings& s) { return s.engine != Engine::Kolmogorov; }
+
+const char* const kolmogorov_engine_scope =
+    "the kolmogorov engine solves D, M0 and P(V = 0) (`stickslip diffusivity`) and the stationary density "
+    "(`stickslip density`) on a grid, without sampling";
 
 bool samples_at_steps(const EngineSettings& s) {
     return s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent;

@@ -37,6 +37,11 @@ EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, P
 }
 
 PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given) {
+    // Every Monte Carlo path prepares its engine here: the grid solver is
+    // chosen above, by the quantities that it can compute.
+    if (!samples(given))
+        throw InvalidParameter("engine", std::string(kolmogorov_engine_scope) +
+                                             ": this command samples paths, use --engine inclusion or pdmp");
     const EngineSettings s = resolve_engine_settings(p, given);
     PreparedEngine e;
     e.params = p;
@@ -70,10 +75,7 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
     if (p.has_drift_law()) {
         DriftLawReport law;
         make_drift_law(p, &law);
-        e.notes.push_back("drift law (" + law.source + ") " + law.text + ": interpolated on " +
-                          std::to_string(law.knots) + " knots over [" + detail::format_number(law.lower, 4) + ", " +
-                          detail::format_number(law.upper, 4) + "] m/s, off by at most " +
-                          detail::format_number(law.interpolation_error, 2) + " m s^-2" +
+        e.notes.push_back(drift_law_note(law) +
                           (given.scheme == Scheme::Auto && s.engine == Engine::Inclusion
                                ? "; the inclusion engine runs the resolvent scheme (the event scheme takes the "
                                  "affine law only)"

@@ -300,4 +300,10 @@ DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report) {
     return law;
 }
 
+std::string drift_law_note(const DriftLawReport& law) {
+    return "drift law (" + law.source + ") " + law.text + ": interpolated on " + std::to_string(law.knots) +
+           " knots over [" + detail::format_number(law.lower, 4) + ", " + detail::format_number(law.upper, 4) +
+           "] m/s, off by at most " + detail::format_number(law.interpolation_error, 2) + " m s^-2";
+}
+
 } // namespace stickslip

@@ -14,6 +14,7 @@
 #include "driver/step_check.hpp"
 #include "engines/visit_engine.hpp"
 #include "quantities/path_sampling.hpp"
+#include "quantities/solved.hpp"
 #include "stickslip/prepared_engine.hpp"
 #include "stickslip/random/rng.hpp"
 
@@ -44,7 +45,10 @@ PreparedEngine prepare_request(const DensityRequest& req_in) {
 
 } // namespace
 
-void validate(const DensityRequest& req) { prepare_request(req); }
+void validate(const DensityRequest& req) {
+    if (!samples(req.engine)) detail::validate_solved(req, 0.0);
+    else prepare_request(req);
+}
 
 namespace {
 
@@ -186,7 +190,29 @@ DensityResult density_of(const Engine& engine, const DensityRequest& req, const 
 
 } // namespace
 
+namespace {
+
+/// The stationary density from the Kolmogorov solver's finest grid: the
+/// method chosen at the top of compute_density.
+DensityResult solve_density(const DensityRequest& req) {
+    DensityResult out;
+    out.request = req;
+    out.solution = detail::solve(req, 0.0, out.warnings);
+    out.details = out.solution->details;
+    const KolmogorovGridSolution& fine = out.solution->levels.back();
+    out.warnings.push_back("the density is the solver's finest grid's, one value per velocity cell (" +
+                           std::to_string(fine.velocity_density.size()) +
+                           " cells, graded towards v = 0; --bins and --range do not apply): a grid value has no "
+                           "standard error, and its discretisation error is estimated only for D, M0 and P(V = 0). "
+                           "It integrates to 1 less that grid's own P(V = 0), " +
+                           detail::format_number(fine.stuck_probability) + "; the P(V = 0) reported is extrapolated");
+    return out;
+}
+
+} // namespace
+
 DensityResult compute_density(const DensityRequest& req_in) {
+    if (!samples(req_in.engine)) return solve_density(req_in); // the method, chosen once
     const DensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     const PreparedEngine prepared = prepare_request(req);
     const std::vector<std::string> notes =

@@ -10,16 +10,45 @@
 #include "core/format.hpp"
 #include "driver/result_checks.hpp"
 #include "driver/step_check.hpp"
+#include "quantities/solved.hpp"
 
 namespace stickslip {
+
+namespace {
+
+void check_rel_precision(const DiffusivityRequest& req) {
+    if (!std::isfinite(req.rel_precision) || req.rel_precision < 0 || req.rel_precision >= 1)
+        throw InvalidParameter("rel-precision", "rel-precision must be in [0, 1) (0 = off), got " +
+                                                    detail::format_number(req.rel_precision));
+}
+
+/// The checks of a request with the Kolmogorov engine.
+void validate_solved(const DiffusivityRequest& req) {
+    check_rel_precision(req);
+    if (req.check_dt)
+        throw InvalidParameter("check-dt", "check-dt needs the inclusion engine (the kolmogorov engine estimates "
+                                           "its discretisation error itself)");
+    detail::validate_solved(req, req.rel_precision);
+}
+
+/// D, M0 and P(V = 0) from the Kolmogorov solver: the method chosen at the top
+/// of compute_diffusivity.
+DiffusivityResult solve_diffusivity(const DiffusivityRequest& req) {
+    validate_solved(req);
+    DiffusivityResult out;
+    out.request = req;
+    out.solution = detail::solve(req, req.rel_precision, out.warnings);
+    out.details = out.solution->details;
+    return out;
+}
+
+} // namespace
 
 PreparedEngine prepare(const DiffusivityRequest& req_in) {
     const DiffusivityRequest req = with_resolved_engine(req_in);
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
-    if (!std::isfinite(req.rel_precision) || req.rel_precision < 0 || req.rel_precision >= 1)
-        throw InvalidParameter("rel-precision", "rel-precision must be in [0, 1) (0 = off), got " +
-                                                    detail::format_number(req.rel_precision));
+    check_rel_precision(req);
     if (req.rel_precision > 0 && req.max_excursions < req.excursions)
         throw InvalidParameter("max-excursions", "max-excursions must be >= excursions (got " +
                                                      std::to_string(req.max_excursions) + ")");
@@ -210,9 +239,15 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
 
 } // namespace
 
-void validate(const DiffusivityRequest& req) { prepare(req); }
+void validate(const DiffusivityRequest& req) {
+    if (!samples(req.engine)) validate_solved(req);
+    else prepare(req);
+}
 
-DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) { return compute_diffusivity(req, prepare(req)); }
+DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
+    if (!samples(req.engine)) return solve_diffusivity(req); // the method, chosen once
+    return compute_diffusivity(req, prepare(req));
+}
 
 DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const PreparedEngine& engine) {
     const DiffusivityRequest req = with_resolved_engine(req_in);

@@ -46,6 +46,10 @@ struct PreparedSweep {
 /// Every check of a sweep, once: the grid, then every point as a diffusivity
 /// run (the first bad point is named).
 PreparedSweep prepare_sweep(const SweepRequest& req) {
+    if (!samples(req.engine))
+        throw InvalidParameter("engine", "sweep does not take the kolmogorov engine (its fits weigh the points by "
+                                         "standard errors, which a grid solver does not have): run `stickslip "
+                                         "diffusivity --engine kolmogorov` at each point");
     if (req.noises.empty()) throw InvalidParameter("noise", "the sweep needs at least one noise value");
     if (req.taus.empty()) throw InvalidParameter("tau", "the sweep needs at least one tau value");
     if (req.noises.size() * req.taus.size() > kMaxPoints)

@@ -75,6 +75,7 @@ ordered_json params_json(const RunSettings& r) {
         j["relaxation"] = json_number(p.relaxation);
         j["bias"] = p.bias;
     }
+    if (!samples(r.engine)) return j; // a grid solver: no step, no seed
     if (!has_time_step(r.engine)) j["grid"] = r.engine.grid;
     else {
         j["dt"] = r.engine.dt;
@@ -93,7 +94,9 @@ ordered_json nondimensional_json(const RunSettings& r) {
         j["relaxation"] = json_number(nd.relaxation);
         j["bias"] = nd.bias;
     }
-    if (!has_time_step(r.engine)) j["grid"] = r.engine.grid / sc.noise_level;
+    if (!samples(r.engine)) {
+        // a grid solver: no step
+    } else if (!has_time_step(r.engine)) j["grid"] = r.engine.grid / sc.noise_level;
     else j["dt"] = r.engine.dt / sc.time;
     j["time_unit"] = sc.time;
     j["length_unit"] = sc.length;
@@ -160,7 +163,12 @@ std::string relaxation_text(double relaxation) {
 
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra) {
     std::ostringstream os = report_stream();
-    os << "stickslip " << what << ": " << to_string(s.engine) << " engine, "
+    os << "stickslip " << what << ": " << to_string(s.engine) << " engine";
+    if (!samples(s)) { // a grid solver: its grid is reported with its results
+        os << extra << "\n";
+        return os.str();
+    }
+    os << ", "
        << (!has_time_step(s) ? "grid " + format_number(s.grid) + " s^-1/2" : (s.dt_auto && std::isnan(s.dt) ? std::string("dt auto, per point") : "dt " + format_number(s.dt) + " s" + (s.dt_auto ? " (auto)" : "")))
        << (!has_time_step(s) ? std::string()
            : s.scheme == Scheme::Auto   ? std::string(", scheme auto, per point") // a sweep's
@@ -188,7 +196,9 @@ std::string param_line(const ModelParams& p, const EngineSettings& s) {
     if (!p.has_drift_law())
         os << ", relaxation' " << (std::isinf(nd.relaxation) ? std::string("inf") : format_number(nd.relaxation))
            << ", bias' " << format_number(nd.bias);
-    if (!has_time_step(s)) os << ", grid' " << format_number(s.grid / sc.noise_level);
+    if (!samples(s)) {
+        // a grid solver: no step
+    } else if (!has_time_step(s)) os << ", grid' " << format_number(s.grid / sc.noise_level);
     else os << ", dt' " << format_number(s.dt / sc.time);
     os << "  (time unit " << format_number(sc.time) << " s, length unit " << format_number(sc.length) << " m)\n";
     return os.str();

@@ -5,6 +5,8 @@
 #include "stickslip/report.hpp"
 
 #include "core/format.hpp"
+#include "quantities/solved.hpp"
+#include "report/solved.hpp"
 
 namespace stickslip {
 
@@ -12,7 +14,56 @@ using namespace detail;
 
 // ---- diffusivity ----------------------------------------------------------------
 
+namespace {
+
+// The reports of a diffusivity solved by the Kolmogorov engine.
+
+std::string solved_json(const DiffusivityResult& r, int indent) {
+    const auto& q = r.request;
+    const KolmogorovResult& s = *r.solution;
+    const KolmogorovSettings settings = kolmogorov_settings(q, q.rel_precision);
+    ordered_json j = solved_head(nullptr, q, s);
+    auto nd = nondimensional_json(q);
+    const Scales sc = scales_of(q.params);
+    nd["diffusivity"] = s.diffusivity.value / sc.diffusivity;
+    nd["mobility"] = s.mobility.value / sc.velocity;
+    j["nondimensional"] = nd;
+    add_solved_estimates(j, s, settings);
+    const ordered_json work = solved_work_json(s, settings);
+    add_report_tail(j, &work, r.warnings);
+    return dump(j, indent);
+}
+
+std::string solved_table(const DiffusivityResult& r) {
+    const auto& q = r.request;
+    const KolmogorovResult& s = *r.solution;
+    std::ostringstream os = report_stream();
+    os << engine_line("diffusivity", q.engine, ", no sampling: the Kolmogorov equations of (X, V) on grids, extrapolated");
+    os << param_line(q.params, q.engine);
+    os << "\n" << solved_table_head();
+    solved_table_rows(os, s, scales_of(q.params));
+    os << "\n" << solved_work_line(s, kolmogorov_settings(q, q.rel_precision)) << notes(r.warnings);
+    return os.str();
+}
+
+std::string solved_csv(const DiffusivityResult& r) {
+    const auto& p = r.request.params;
+    const KolmogorovResult& s = *r.solution;
+    std::ostringstream os = report_stream();
+    os << "engine,friction,noise,tau,relaxation,bias,diffusivity,diffusivity_error,mobility,mobility_error,"
+          "stuck_probability,stuck_probability_error\n";
+    os << to_string(r.request.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
+       << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
+       << csv_number(s.diffusivity.value) << "," << csv_number(s.diffusivity.error) << ","
+       << csv_number(s.mobility.value) << "," << csv_number(s.mobility.error) << ","
+       << csv_number(s.stuck_probability.value) << "," << csv_number(s.stuck_probability.error) << "\n";
+    return os.str();
+}
+
+} // namespace
+
 std::string to_json(const DiffusivityResult& r, int indent) {
+    if (r.solution) return solved_json(r, indent);
     const auto& q = r.request;
     const std::string estimator = to_string(q.estimator);
     ordered_json j = report_head(nullptr, q.engine, estimator.c_str(), &r.monte_carlo().engine.stop_rule);
@@ -80,6 +131,7 @@ std::string difference_text(double difference, double stderr_, const char* unit)
 } // namespace
 
 std::string to_table(const DiffusivityResult& r) {
+    if (r.solution) return solved_table(r);
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
     const Estimate& d = r.estimates.diffusivity;
@@ -114,6 +166,7 @@ std::string to_table(const DiffusivityResult& r) {
 }
 
 std::string to_csv(const DiffusivityResult& r) {
+    if (r.solution) return solved_csv(r);
     const auto& q = r.request;
     const auto& p = q.params;
     std::ostringstream os = report_stream();

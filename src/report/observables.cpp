@@ -5,7 +5,9 @@
 #include <cmath>
 
 #include "core/format.hpp"
+#include "quantities/solved.hpp"
 #include "report/common.hpp"
+#include "report/solved.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 
@@ -37,7 +39,67 @@ ordered_json histogram_json(const VelocityHistogram& h) {
 
 // ---- stationary density ----------------------------------------------------------
 
+namespace {
+
+// The reports of a density solved by the Kolmogorov engine: the finest grid's
+// cells and values, no standard errors.
+
+std::string solved_json(const DensityResult& r, int indent) {
+    const auto& q = r.request;
+    const KolmogorovResult& s = *r.solution;
+    const KolmogorovSettings settings = kolmogorov_settings(q, 0.0);
+    const KolmogorovGridSolution& fine = s.levels.back();
+    ordered_json j = solved_head("stationary_density", q, s);
+    j["nondimensional"] = nondimensional_json(q);
+    ordered_json d;
+    d["edges"] = fine.velocity_faces;
+    ordered_json values = ordered_json::array();
+    for (double x : fine.velocity_density) values.push_back(json_number(x));
+    d["value"] = values;
+    j["density"] = d;
+    add_solved_estimates(j, s, settings);
+    const ordered_json work = solved_work_json(s, settings);
+    add_report_tail(j, &work, r.warnings);
+    return dump(j, indent);
+}
+
+std::string solved_table(const DensityResult& r) {
+    const auto& q = r.request;
+    const KolmogorovResult& s = *r.solution;
+    const KolmogorovGridSolution& fine = s.levels.back();
+    std::ostringstream os = report_stream();
+    os << engine_line("density", q.engine, ", no sampling: the finest grid of the Kolmogorov equations of (X, V)");
+    os << param_line(q.params, q.engine) << "\n";
+    using number_text::pad;
+    os << pad("v_lo [m/s]", 13) << " " << pad("v_hi [m/s]", 13) << "  " << pad("density [s/m] (grid)", 20) << "\n";
+    for (std::size_t k = 0; k < fine.velocity_density.size(); ++k)
+        os << pad(format_number(fine.velocity_faces[k]), 13) << " " << pad(format_number(fine.velocity_faces[k + 1]), 13)
+           << "  " << pad(format_number(fine.velocity_density[k]), 20) << "\n";
+    os << "\n" << solved_table_head();
+    solved_table_rows(os, s, scales_of(q.params));
+    os << "\n" << solved_work_line(s, kolmogorov_settings(q, 0.0)) << notes(r.warnings);
+    return os.str();
+}
+
+std::string solved_csv(const DensityResult& r) {
+    const KolmogorovResult& s = *r.solution;
+    const KolmogorovGridSolution& fine = s.levels.back();
+    std::ostringstream os = report_stream();
+    // The error column is the estimated discretisation error where there is
+    // one (P(V = 0)); a density value has none: an empty cell, not a fake 0.
+    os << "kind,v_lo,v_hi,value,error\n";
+    for (std::size_t k = 0; k < fine.velocity_density.size(); ++k)
+        os << "density," << csv_number(fine.velocity_faces[k]) << "," << csv_number(fine.velocity_faces[k + 1]) << ","
+           << csv_number(fine.velocity_density[k]) << ",\n";
+    os << "stuck,0,0," << csv_number(s.stuck_probability.value) << "," << csv_number(s.stuck_probability.error)
+       << "\n";
+    return os.str();
+}
+
+} // namespace
+
 std::string to_json(const DensityResult& r, int indent) {
+    if (r.solution) return solved_json(r, indent);
     const auto& q = r.request;
     ordered_json j = report_head("stationary_density", q.engine, nullptr, &r.monte_carlo().engine.stop_rule);
     auto params = params_json(q);
@@ -60,6 +122,7 @@ std::string to_json(const DensityResult& r, int indent) {
 }
 
 std::string to_table(const DensityResult& r) {
+    if (r.solution) return solved_table(r);
     const auto& q = r.request;
     std::ostringstream os = report_stream();
     os << engine_line("density", q.engine, ", stationary velocity density by long excursions (renewal-reward)");
@@ -79,6 +142,7 @@ std::string to_table(const DensityResult& r) {
 }
 
 std::string to_csv(const DensityResult& r) {
+    if (r.solution) return solved_csv(r);
     std::ostringstream os = report_stream();
     os << "kind,v_lo,v_hi,value,stderr,lo,hi\n";
     for (std::size_t k = 0; k < r.histogram.density.size(); ++k)

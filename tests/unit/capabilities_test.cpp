@@ -154,6 +154,7 @@ bool engine_of(const std::string& name, EngineSettings& s) {
     if (name == "inclusion + resolvent") s.scheme = Scheme::Resolvent;
     else if (name == "inclusion + event") s.scheme = Scheme::Event;
     else if (name == "pdmp") s.engine = Engine::Pdmp;
+    else if (name == "kolmogorov") s.engine = Engine::Kolmogorov;
     else return false;
     return true;
 }
@@ -259,9 +260,11 @@ TEST(Capabilities, TableCoversEveryEngineNoiseAndCommand) {
         {"inclusion + resolvent", "white"}, {"inclusion + resolvent", "coloured"},
         {"inclusion + event", "white"},     {"inclusion + event", "coloured"},
         {"pdmp", "white"},                  {"pdmp", "coloured"},
+        {"kolmogorov", "white"},            {"kolmogorov", "coloured"},
         {"inclusion + resolvent", "white, any b(v)"}, {"inclusion + resolvent", "coloured, any b(v)"},
         {"inclusion + event", "white, any b(v)"},     {"inclusion + event", "coloured, any b(v)"},
         {"pdmp", "white, any b(v)"},                  {"pdmp", "coloured, any b(v)"},
+        {"kolmogorov", "white, any b(v)"},            {"kolmogorov", "coloured, any b(v)"},
     };
     std::set<std::pair<std::string, std::string>> rows;
     for (const Cell& c : t.cells) rows.insert({c.engine, c.noise});

@@ -13,6 +13,8 @@
 //  * the near-white limit moves towards the white-noise quadrature;
 //  * the stored Monte Carlo references (z-scores in the messages), with the
 //    tolerance a few standard errors plus the solver's own error estimate;
+//  * the run's drift law is the one solved (an affine expression gives the
+//    affine result to rounding);
 //  * what is refused (white noise, tau' too small, bad settings).
 // Grids are small: the whole file runs in a few seconds.
 #include <gtest/gtest.h>
@@ -57,7 +59,7 @@ ss::KolmogorovGrid small_grid(const ss::ModelParams& p, std::size_t band, std::s
 }
 
 kc::Chain chain_of(const ss::ModelParams& p, const ss::KolmogorovGrid& g) {
-    return kc::build_chain(p, kc::make_grid(p, g), kc::DriftOfRun{p});
+    return kc::build_chain(p, kc::make_grid(p, g), kc::DriftLaw{p});
 }
 
 std::string z_message(const char* what, double got, double want, double tolerance, double se) {
@@ -89,7 +91,7 @@ TEST(KolmogorovChain, StationaryLawIsAProbabilityWithTheDiscreteGaussianInX) {
     const ss::ModelParams p = fig2();
     const ss::KolmogorovGrid g = small_grid(p, 8, 16);
     const kc::ChainGrid grid = kc::make_grid(p, g);
-    const kc::Chain chain = kc::build_chain(p, grid, kc::DriftOfRun{p});
+    const kc::Chain chain = kc::build_chain(p, grid, kc::DriftLaw{p});
     const kc::ChainSolution sol = kc::solve_chain(chain);
     double total = 0;
     for (double w : sol.stationary) {
@@ -205,6 +207,26 @@ TEST(KolmogorovConvergence, DiffusivityIsFirstOrderInTheVelocityCells) {
         EXPECT_LT(ratio, 2.6) << "D = " << d[0] << ", " << d[1] << ", " << d[2];
         EXPECT_GT(d[0], d[1]); // the upwind scheme's numerical diffusion adds to D
     }
+}
+
+// The solver evaluates the run's drift law (make_drift_law): the affine law
+// given as an expression (interpolated on knots, exact for a line to rounding)
+// gives the affine result to rounding, and a cubic drag, which pulls harder,
+// a smaller D on the same grid.
+TEST(KolmogorovDrift, SolvesTheRunsDriftLaw) {
+    const ss::ModelParams affine = fig2();
+    ss::ModelParams expression = affine;
+    expression.drift = "-v/0.067 + 0.342";
+    ss::ModelParams cubic = affine;
+    cubic.drift = "-v/0.067 + 0.342 - 20*v^3";
+    const ss::KolmogorovGrid g = small_grid(affine, 8, 64, 5.0);
+    const ss::KolmogorovGridSolution a = ss::solve_kolmogorov_grid(affine, g);
+    const ss::KolmogorovGridSolution e = ss::solve_kolmogorov_grid(expression, g);
+    EXPECT_NEAR(e.diffusivity, a.diffusivity, 1e-9 * a.diffusivity);
+    EXPECT_NEAR(e.mobility, a.mobility, 1e-9 * std::abs(a.mobility));
+    EXPECT_NEAR(e.stuck_probability, a.stuck_probability, 1e-9);
+    const ss::KolmogorovGridSolution c = ss::solve_kolmogorov_grid(cubic, g);
+    EXPECT_LT(c.diffusivity, a.diffusivity);
 }
 
 // As tau' -> 0 the force tends to a white noise and M0 to Hayakawa's. At a

@@ -105,7 +105,7 @@ ChainGrid make_grid(const ModelParams& p, const KolmogorovGrid& g) {
     return grid;
 }
 
-Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftOfRun& drift) {
+Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& drift) {
     const std::size_t nx = grid.x.size(), mp = grid.cells_pos(), mn = grid.cells_neg();
     const double a = p.force_amplitude(), friction = p.friction;
 

@@ -11,21 +11,32 @@
 #include <cstddef>
 #include <vector>
 
-#include "stickslip/kolmogorov.hpp"
 #include "stickslip/drift_input.hpp"
+#include "stickslip/kolmogorov.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip::detail::kolmogorov {
 
-/// The drift law b(v) [m s^-2] at a velocity v [m/s]. The one place the
-/// solver evaluates the drift: a general drift law replaces this body (the
-/// scheme needs only b(v) at the cell faces and b(0), and that b is
-/// non-increasing for the automatic velocity range with drag).
-struct DriftOfRun {
-    explicit DriftOfRun(const ModelParams& p) : law(make_drift_law(p)) {}
-    stickslip::DriftLaw law; ///< the run's law, built once (drift_input.hpp)
+/// The drift law b(v) [m s^-2] at a velocity v [m/s]: the run's law
+/// (make_drift_law, drift_input.hpp: the affine law of relaxation and bias, or
+/// the knots of --drift, --drift-table or a callable), made once when this is
+/// constructed, so that a solve builds it once and not per evaluation. The one
+/// place the solver evaluates the drift (the scheme needs b(v) only at the cell
+/// faces and b(0); the automatic velocity range assumes b non-increasing with
+/// drag).
+struct DriftLaw {
+    stickslip::DriftLaw law;
+    explicit DriftLaw(const ModelParams& p) : law(make_drift_law(p)) {}
     double operator()(double v) const { return law(v); }
 };
+
+/// kolmogorov_grid with the drift law made already (solve_kolmogorov makes it
+/// once per solve).
+KolmogorovGrid make_kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s, int level,
+                                    const DriftLaw& drift);
+
+/// solve_kolmogorov_grid with the drift law made already.
+KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& grid, const DriftLaw& drift);
 
 /// One grid, resolved: the x nodes with the rates of the x moves between
 /// them, which nodes carry a stuck state, and the faces of the velocity cells
@@ -72,7 +83,7 @@ struct Chain {
 
 /// The chain of `grid` for the model p (validated by the caller, tau > 0),
 /// the drift evaluated only through `drift`.
-Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftOfRun& drift);
+Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& drift);
 
 /// The exact solution of one chain.
 struct ChainSolution {

@@ -21,13 +21,13 @@ namespace stickslip {
 
 namespace {
 
-using detail::kolmogorov::DriftOfRun;
+using KolmogorovDrift = detail::kolmogorov::DriftLaw;
 
 /// Where the flow c(v) = b(v) + force (decreasing in v with drag) stops the
 /// velocity on the side `dir` (+1 or -1), looking no further than `limit`
 /// [m/s]: the terminal velocity, or `limit` when the flow still drives the
 /// velocity outwards there.
-double stopping_velocity(const DriftOfRun& drift, double force, double dir, double limit) {
+double stopping_velocity(const KolmogorovDrift& drift, double force, double dir, double limit) {
     auto outward = [&](double v) { return dir * (drift(dir * v) + force) > 0; };
     if (outward(limit)) return limit;
     double lo = 0, hi = limit;
@@ -41,7 +41,17 @@ double stopping_velocity(const DriftOfRun& drift, double force, double dir, doub
 } // namespace
 
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s, int level) {
-    const DriftOfRun drift{p};
+    return detail::kolmogorov::make_kolmogorov_grid(p, s, level, KolmogorovDrift{p});
+}
+
+KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const KolmogorovGrid& grid) {
+    return detail::kolmogorov::solve_grid(p, grid, KolmogorovDrift{p});
+}
+
+namespace detail::kolmogorov {
+
+KolmogorovGrid make_kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s, int level,
+                                    const DriftLaw& drift) {
     const double a = p.force_amplitude(), sd = 1.0 / std::sqrt(p.tau);
     KolmogorovGrid g;
     g.lower_threshold = (-p.friction - drift(0.0)) / a;
@@ -100,12 +110,11 @@ KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s
     return g;
 }
 
-KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const KolmogorovGrid& grid) {
-    namespace k = detail::kolmogorov;
+KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& grid, const DriftLaw& drift) {
     const auto start = std::chrono::steady_clock::now();
-    const k::ChainGrid chain_grid = k::make_grid(p, grid);
-    const k::Chain chain = k::build_chain(p, chain_grid, k::DriftOfRun{p});
-    const k::ChainSolution sol = k::solve_chain(chain);
+    const ChainGrid chain_grid = make_grid(p, grid);
+    const Chain chain = build_chain(p, chain_grid, drift);
+    const ChainSolution sol = solve_chain(chain);
 
     KolmogorovGridSolution out;
     out.grid = grid;
@@ -138,6 +147,8 @@ KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const Kolmogo
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
+
+} // namespace detail::kolmogorov
 
 namespace {
 
@@ -210,6 +221,8 @@ void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
 
 KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings) {
     validate_kolmogorov(p, settings);
+    namespace k = detail::kolmogorov;
+    const KolmogorovDrift drift{p}; // the run's law, made once for every grid of the solve
     const auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
@@ -221,8 +234,8 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
     // v cells.
     int level_x = 2, level_v = 3;
     for (int round = 0;; ++round) {
-        const KolmogorovGrid finest_x = kolmogorov_grid(p, settings, level_x);
-        const KolmogorovGrid finest_v = kolmogorov_grid(p, settings, level_v);
+        const KolmogorovGrid finest_x = k::make_kolmogorov_grid(p, settings, level_x, drift);
+        const KolmogorovGrid finest_v = k::make_kolmogorov_grid(p, settings, level_v, drift);
         auto grid = [&](int x_coarsening, int v_coarsening) {
             KolmogorovGrid g = finest_x;
             const std::size_t fx = std::size_t{1} << x_coarsening, fv = std::size_t{1} << v_coarsening;
@@ -240,13 +253,13 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         // runs on a second thread while they run on this one.
         std::future<KolmogorovGridSolution> finest_solution;
         if (settings.threads > 1)
-            finest_solution = std::async(std::launch::async, [&] { return solve_kolmogorov_grid(p, grid(0, 0)); });
+            finest_solution = std::async(std::launch::async, [&] { return k::solve_grid(p, grid(0, 0), drift); });
         // On the PDMP lattice x is not refined: no x levels.
         const bool lattice = settings.pdmp_grid > 0;
         std::vector<KolmogorovGridSolution> solved;
         for (auto [cx, cv] : {std::pair{2, 0}, {1, 0}, {0, 3}, {0, 2}, {0, 1}})
-            if (!lattice || cx == 0) solved.push_back(solve_kolmogorov_grid(p, grid(cx, cv)));
-        solved.push_back(settings.threads > 1 ? finest_solution.get() : solve_kolmogorov_grid(p, grid(0, 0)));
+            if (!lattice || cx == 0) solved.push_back(k::solve_grid(p, grid(cx, cv), drift));
+        solved.push_back(settings.threads > 1 ? finest_solution.get() : k::solve_grid(p, grid(0, 0), drift));
         const double round_seconds = elapsed() - round_start;
         // Peak memory: the finest grid's factors beside the largest other's.
         std::size_t other = 0;

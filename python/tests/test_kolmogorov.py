@@ -1,0 +1,51 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""diffusivity(engine="kolmogorov"): the grid solver's D, M0 and P(V = 0), each
+with its estimated discretisation error and no standard error; the engines it
+does not serve refuse it."""
+import unittest
+
+import stickslip
+
+
+class KolmogorovEngineTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        # A loose precision: one round of grids, well under a second.
+        cls.r = stickslip.diffusivity(engine="kolmogorov", rel_precision=0.01)
+
+    def test_values_with_discretisation_errors(self):
+        r = self.r
+        for e in (r.diffusivity, r.mobility, r.stuck_probability):
+            self.assertIsInstance(e, stickslip.GridEstimate)
+            self.assertGreater(e.error, 0)
+            self.assertLess(e.error, abs(e.value))
+        self.assertLess(r.diffusivity.error, 0.01 * r.diffusivity.value)
+        self.assertEqual(r.method, "kolmogorov")
+        self.assertEqual(float(r.diffusivity), r.diffusivity.value)
+
+    def test_json_has_value_and_error_and_no_stderr(self):
+        d = self.r.to_dict()
+        self.assertEqual(d["engine"], "kolmogorov")
+        for key in ("diffusivity", "mobility", "stuck_probability"):
+            self.assertEqual(set(d[key]), {"value", "error"})
+            self.assertEqual(d[key], getattr(self.r, key).to_dict())
+        self.assertTrue(d["precision"]["reached"])
+        self.assertNotIn("completed", d)
+
+    def test_density_of_the_finest_grid(self):
+        d = stickslip.density(engine="kolmogorov", threads=1)
+        self.assertIsInstance(d.stuck, stickslip.GridEstimate)
+        self.assertEqual(d.density.shape[0] + 1, d.edges.shape[0])
+        mass = float((d.density * (d.edges[1:] - d.edges[:-1])).sum())
+        self.assertAlmostEqual(mass + d.stuck.value, 1.0, delta=10 * d.stuck.error)
+        self.assertIn("engine='kolmogorov'", repr(d))
+
+    def test_refused_where_it_cannot_serve(self):
+        with self.assertRaisesRegex(ValueError, "--engine inclusion or pdmp"):
+            stickslip.correlation(engine="kolmogorov")
+        with self.assertRaisesRegex(ValueError, "stickslip analytic"):
+            stickslip.diffusivity(stickslip.Params(tau=0), engine="kolmogorov")
+
+
+if __name__ == "__main__":
+    unittest.main()

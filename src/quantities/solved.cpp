@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The Kolmogorov engine's shared path for diffusivity and density (solved.hpp).
+#include "quantities/solved.hpp"
+
+#include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
+
+namespace stickslip::detail {
+
+KolmogorovSettings kolmogorov_settings(const RunSettings& r, double rel_precision) {
+    KolmogorovSettings s;
+    if (rel_precision > 0) s.rel_precision = rel_precision;
+    s.threads = r.control.threads == 1 ? 1 : 2;
+    return s;
+}
+
+void validate_solved(const RunSettings& r, double rel_precision) {
+    validate(r.engine);
+    validate_kolmogorov(r.params, kolmogorov_settings(r, rel_precision));
+}
+
+KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes) {
+    validate(r.engine);
+    KolmogorovResult result = solve_kolmogorov(r.params, kolmogorov_settings(r, rel_precision));
+    if (r.params.has_drift_law()) {
+        DriftLawReport law;
+        make_drift_law(r.params, &law);
+        notes.push_back(drift_law_note(law));
+        notes.insert(notes.end(), law.notes.begin(), law.notes.end());
+    }
+    if (!result.note.empty()) notes.push_back(result.note);
+    return result;
+}
+
+} // namespace stickslip::detail

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Reports of results solved by the Kolmogorov engine (diffusivity, density):
+// each value with its estimated discretisation error, the grid, and no
+// samples, intervals or standard errors, which a solver does not have
+// (method.hpp). The sampled reports (excursions.cpp, observables.cpp) hand a
+// solved result over to these at their top.
+#include "report/solved.hpp"
+
+#include <cmath>
+
+#include "core/format.hpp"
+#include "stickslip/number_text.hpp"
+
+namespace stickslip::detail {
+
+namespace {
+
+/// {value, error}: a value and its estimated discretisation error.
+ordered_json solved_json(const KolmogorovEstimate& e) {
+    ordered_json j;
+    j["value"] = json_number(e.value);
+    j["error"] = json_number(e.error);
+    return j;
+}
+
+/// "value +- error" in the columns of the solved table.
+void solved_row(std::ostringstream& os, const std::string& name, const KolmogorovEstimate& e, double unit,
+                const std::string& units) {
+    using number_text::pad;
+    os << pad(name, -14) << " " << pad(format_number(e.value), 13) << "  +- " << pad(format_number(e.error, 3), -22)
+       << "  " << pad(units, -7) << " " << pad(format_number(e.value / unit), 11) << "\n";
+}
+
+double relative_error(const KolmogorovResult& s) { return s.diffusivity.error / std::abs(s.diffusivity.value); }
+
+} // namespace
+
+ordered_json solved_head(const char* quantity, const RunSettings& r, const KolmogorovResult& s) {
+    ordered_json j = report_head(quantity, r.engine, nullptr, nullptr);
+    j["method"] = s.grid().solver;
+    j["params"] = params_json(r);
+    return j;
+}
+
+void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const KolmogorovSettings& settings) {
+    j["diffusivity"] = solved_json(s.diffusivity);
+    j["mobility"] = solved_json(s.mobility);
+    j["stuck_probability"] = solved_json(s.stuck_probability);
+    ordered_json pr;
+    pr["target"] = settings.rel_precision;
+    pr["relative_error"] = json_number(relative_error(s));
+    pr["reached"] = s.converged;
+    j["precision"] = pr;
+    const KolmogorovGridSolution& fine = s.levels.back();
+    ordered_json g;
+    g["states"] = fine.states;
+    g["x_nodes"] = fine.grid.x_nodes;
+    g["x_lower"] = fine.grid.x_lower();
+    g["x_upper"] = fine.grid.x_upper();
+    g["v_cells"] = fine.grid.v_cells_neg + fine.grid.v_cells_pos;
+    g["v_lower"] = fine.grid.v_lower;
+    g["v_upper"] = fine.grid.v_upper;
+    g["grids_solved"] = s.levels.size();
+    g["tail_mass"] = json_number(fine.tail_mass);
+    g["diffusivity_x"] = solved_json(s.diffusivity_x);
+    j["grid"] = g;
+}
+
+ordered_json solved_work_json(const KolmogorovResult& s, const KolmogorovSettings& settings) {
+    ordered_json work;
+    work["seconds"] = s.seconds;
+    work["threads"] = settings.threads;
+    return work;
+}
+
+std::string solved_table_head() {
+    using number_text::pad;
+    return pad("quantity", -14) + " " + pad("value", 13) + "  " + pad("+- error (discretisation)", -25) + "  " +
+           pad("unit", -7) + " " + pad("nondim", 11) + "\n";
+}
+
+void solved_table_rows(std::ostringstream& os, const KolmogorovResult& s, const Scales& sc) {
+    solved_row(os, "diffusivity D", s.diffusivity, sc.diffusivity, "m^2/s");
+    solved_row(os, "mobility M0", s.mobility, sc.velocity, "m/s");
+    solved_row(os, "P(V = 0)", s.stuck_probability, 1.0, "");
+}
+
+std::string solved_work_line(const KolmogorovResult& s, const KolmogorovSettings& settings) {
+    const KolmogorovGridSolution& fine = s.levels.back();
+    std::ostringstream os = report_stream();
+    os << "finest grid " << fine.states << " states (" << fine.grid.x_nodes << " x nodes, "
+       << fine.grid.v_cells_neg + fine.grid.v_cells_pos << " velocity cells on [" << format_number(fine.grid.v_lower)
+       << ", " << format_number(fine.grid.v_upper) << "] m/s), " << s.levels.size() << " grids solved, "
+       << format_number(s.seconds, 3) << " s on " << settings.threads << " thread" << (settings.threads > 1 ? "s" : "")
+       << "; estimated relative error of D: " << format_number(100 * relative_error(s), 3) << "% (target "
+       << format_number(100 * settings.rel_precision, 3) << "%)\n";
+    return os.str();
+}
+
+} // namespace stickslip::detail
