@@ -62,6 +62,17 @@ std::string solved_csv(const DiffusivityResult& r) {
 
 } // namespace
 
+namespace {
+/// The D and M0 differences of a --check-dt or --check-knots run, with their
+/// standard errors, into j.
+void add_differences(ordered_json& j, const DiscretisationCheck& c) {
+    j["diffusivity"] = {{"difference", json_number(c.diffusivity_difference)},
+                        {"stderr", json_number(c.diffusivity_stderr)}};
+    j["mobility"] = {{"difference", json_number(c.mobility_difference)},
+                     {"stderr", json_number(c.mobility_stderr)}};
+}
+} // namespace
+
 std::string to_json(const DiffusivityResult& r, int indent) {
     if (r.solution) return solved_json(r, indent);
     const auto& q = r.request;
@@ -98,10 +109,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
         dc["check_dt"] = c.check_dt;
         dc["excursions"] = c.excursions;
         dc["steps"] = c.steps;
-        dc["diffusivity"] = {{"difference", json_number(c.diffusivity_difference)},
-                             {"stderr", json_number(c.diffusivity_stderr)}};
-        dc["mobility"] = {{"difference", json_number(c.mobility_difference)},
-                          {"stderr", json_number(c.mobility_stderr)}};
+        add_differences(dc, c);
         j["discretisation"] = dc;
     }
     if (r.knots_check) {
@@ -110,10 +118,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
         kc["knots"] = c.knots;
         kc["check_knots"] = c.check_knots;
         kc["excursions"] = c.excursions;
-        kc["diffusivity"] = {{"difference", json_number(c.diffusivity_difference)},
-                             {"stderr", json_number(c.diffusivity_stderr)}};
-        kc["mobility"] = {{"difference", json_number(c.mobility_difference)},
-                          {"stderr", json_number(c.mobility_stderr)}};
+        add_differences(kc, c);
         j["knots_check"] = kc;
     }
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
