@@ -33,7 +33,8 @@ struct DriftLawReport {
     std::string source;          ///< "affine", "expression", "table" or "function"
     std::string text;            ///< the law as given: the expression, the table's path, "b = -v/relaxation + bias"
     double interpolation_error = 0.0; ///< max |b - interpolant| at the pieces' midpoints [m s^-2]
-    double lower = 0.0, upper = 0.0;  ///< range of the knots [m/s]
+    double lower = 0.0;               ///< first knot [m/s]
+    double upper = 0.0;               ///< last knot [m/s]
     int knots = 0;                    ///< knots used (0: affine)
     std::vector<std::string> notes;   ///< e.g. the knot count a finer interpolation needs
 };

@@ -277,7 +277,7 @@ TEST_P(CliStop, WritesTheResultSoFarAndExits128PlusTheSignal) {
                             dir / "err.txt");
     ASSERT_GT(pid, 0);
     ASSERT_TRUE(wait_for_file(ckpt, pid)) << slurp(dir / "err.txt");
-    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    std::this_thread::sleep_for(std::chrono::milliseconds(2000));
     const auto sent = clock_type::now();
     ASSERT_EQ(::kill(pid, GetParam().number), 0);
     const auto status = wait_for_exit(pid, 30);
@@ -398,11 +398,11 @@ TEST(CliStop, OneSignalDeliveredTwiceByTimeoutNeverLosesTheResult) {
         const pid_t pid = start(with(kLong, {"--output", out, "--checkpoint", out + ".ckpt"}), "/dev/null", "/dev/null");
         ASSERT_GT(pid, 0);
         ASSERT_TRUE(wait_for_file(out + ".ckpt", pid)) << "the run did not start";
-        // And 700 ms more, as WritesTheResultSoFarAndExits128PlusTheSignal
-        // does: the first checkpoint is written before the first block has
-        // finished, and a stop before any block is done rightly writes no
-        // result (seen under CI load).
-        std::this_thread::sleep_for(std::chrono::milliseconds(700));
+        // And 2 s more: the first checkpoint is written during set-up, before
+        // the computation that polls the stop flag has started, and a signal
+        // there rightly ends the process at once; 700 ms was not always
+        // enough in a CI run with a build beside it (died by SIGINT).
+        std::this_thread::sleep_for(std::chrono::milliseconds(2000));
         ASSERT_EQ(::kill(pid, SIGINT), 0);
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
         ASSERT_EQ(::kill(pid, SIGINT), 0);
