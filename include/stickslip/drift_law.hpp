@@ -113,10 +113,10 @@ bool confines(const DriftLaw& b, double friction);
 /// The law in the nondimensional system: v' = v/velocity_unit, b' = b/acceleration_unit.
 DriftLaw scaled_drift_law(const DriftLaw& b, double velocity_unit, double acceleration_unit);
 
-/// The knots' law with every second knot dropped (spacing doubled; the last
-/// knot kept when the count is even, so the range is the same or a little
-/// wider by extrapolation): what --check-knots compares with. An affine law is
-/// returned unchanged.
+/// The knots' law with every second knot dropped, keeping the knot at v = 0
+/// (spacing doubled), for a caller that holds only the knots. (--check-knots
+/// instead samples the law itself again on (knots + 1)/2 knots over the same
+/// range: make_drift_law.) An affine law is returned unchanged.
 DriftLaw coarsened_drift_law(const DriftLaw& b);
 
 } // namespace stickslip

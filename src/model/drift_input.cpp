@@ -45,9 +45,6 @@ public:
             fail("drift", "\"" + text + "\" names '" + unknown_.front() +
                               "'; the law is a function of v (m/s) alone; give other names a value with "
                               "--drift-params \"" + unknown_.front() + "=...\"");
-        if (parser_.GetUsedVar().count("v") == 0 && text.find('v') == std::string::npos) {
-            // A constant law is allowed (it cannot confine: refused later by name).
-        }
     }
     double operator()(double v) {
         v_ = v;

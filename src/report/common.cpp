@@ -58,6 +58,15 @@ ordered_json report_head(const char* quantity, const EngineSettings& s, const ch
     return j;
 }
 
+void add_drift_law_json(ordered_json& j, const ModelParams& p) {
+    // The law as given, so that the JSON reproduces the run exactly.
+    if (!p.drift.empty()) j["drift"] = p.drift;
+    if (!p.drift_params.empty()) j["drift_params"] = p.drift_params;
+    if (!p.drift_table.empty()) j["drift_table"] = p.drift_table;
+    if (!p.drift_table_v.empty()) j["drift_table"] = {{"v", p.drift_table_v}, {"b", p.drift_table_b}};
+    j["knots"] = p.knots;
+}
+
 ordered_json params_json(const RunSettings& r) {
     const ModelParams& p = r.params;
     ordered_json j;
@@ -65,12 +74,7 @@ ordered_json params_json(const RunSettings& r) {
     j["noise"] = p.noise;
     j["tau"] = p.tau;
     if (p.has_drift_law()) {
-        // The law as given, so that the JSON reproduces the run exactly.
-        if (!p.drift.empty()) j["drift"] = p.drift;
-        if (!p.drift_params.empty()) j["drift_params"] = p.drift_params;
-        if (!p.drift_table.empty()) j["drift_table"] = p.drift_table;
-        if (!p.drift_table_v.empty()) j["drift_table"] = {{"v", p.drift_table_v}, {"b", p.drift_table_b}};
-        j["knots"] = p.knots;
+        add_drift_law_json(j, p);
     } else {
         j["relaxation"] = json_number(p.relaxation);
         j["bias"] = p.bias;

@@ -61,6 +61,10 @@ std::ostringstream report_stream();
 
 /// "stickslip WHAT: ENGINE engine, dt X s" + extra + "\n".
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra);
+/// The drift law's settings as the JSON's params give them (drift,
+/// drift_params, drift_table as a path or as {"v", "b"} rows, knots), so that
+/// the JSON reproduces the run; for p with a drift law.
+void add_drift_law_json(ordered_json& j, const ModelParams& p);
 /// The drift law as the reports name it: "drift b(v) = EXPR m/s^2", or its table.
 std::string drift_law_text(const ModelParams& p);
 /// The physical and nondimensional parameter lines.

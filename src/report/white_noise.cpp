@@ -44,10 +44,7 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
     params["noise"] = q.params.noise;
     const bool law = q.params.has_drift_law();
     if (law) {
-        if (!q.params.drift.empty()) params["drift"] = q.params.drift;
-        if (!q.params.drift_params.empty()) params["drift_params"] = q.params.drift_params;
-        if (!q.params.drift_table.empty()) params["drift_table"] = q.params.drift_table;
-        params["knots"] = q.params.knots;
+        add_drift_law_json(params, q.params);
         j["method"] = r.grid().solver;
     } else {
         params["relaxation"] = json_number(q.params.relaxation);
