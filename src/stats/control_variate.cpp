@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "stickslip/stats/control_variate.hpp"
+
+#include <boost/multiprecision/cpp_bin_float.hpp>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "stickslip/errors.hpp"
+
+namespace stickslip {
+
+namespace {
+
+using Big = boost::multiprecision::cpp_bin_float_50;
+using detail::dd::DD;
+constexpr int n_mono = ControlVariateBlock::monomials;
+constexpr int max_degree = 4; // weighted: C counts 2
+
+/// The monomials U^a t^b M^e C^d, a + b + e + 2 d <= 4, in order of weighted
+/// degree, each (but the constant) with a parent of degree one or two less
+/// and the variable (0 U, 1 t, 2 M, 3 C) that multiplies it: a block then
+/// computes each monomial with one double-double by double product.
+struct MonomialTable {
+    std::array<std::array<int, 4>, n_mono> exponents{};
+    std::array<int, n_mono> parent{}, variable{};
+    int index[5][5][5][3];
+
+    MonomialTable() {
+        for (auto& a : index)
+            for (auto& b : a)
+                for (auto& e : b)
+                    for (int& d : e) d = -1;
+        int k = 0;
+        for (int degree = 0; degree <= max_degree; ++degree)
+            for (int d = degree / 2; d >= 0; --d)
+                for (int a = degree - 2 * d; a >= 0; --a)
+                    for (int b = degree - 2 * d - a; b >= 0; --b) {
+                        const int e = degree - 2 * d - a - b;
+                        exponents[k] = {a, b, e, d};
+                        index[a][b][e][d] = k;
+                        // Parent: remove one power of the first variable present.
+                        std::array<int, 4> p = exponents[k];
+                        int v = -1;
+                        for (int j = 0; j < 4 && v < 0; ++j)
+                            if (p[j] > 0) v = j;
+                        if (v >= 0) {
+                            --p[v];
+                            parent[k] = index[p[0]][p[1]][p[2]][p[3]];
+                        }
+                        variable[k] = v;
+                        ++k;
+                    }
+        if (k != n_mono) throw std::logic_error("ControlVariate: monomial count");
+    }
+    static int weighted_degree(const std::array<int, 4>& x) { return x[0] + x[1] + x[2] + 2 * x[3]; }
+};
+
+const MonomialTable& table() {
+    static const MonomialTable t;
+    return t;
+}
+
+Big big(const ExactSum& s) {
+    double hi, lo;
+    s.value2(hi, lo);
+    return Big(hi) + Big(lo);
+}
+
+/// A polynomial in (U, t, M, C) of weighted degree <= 4, by its coefficients
+/// on the monomials: products beyond degree 4 are a programming error.
+struct Poly {
+    std::array<Big, n_mono> c{};
+
+    static Poly constant(const Big& v) {
+        Poly p;
+        p.c[0] = v;
+        return p;
+    }
+    static Poly var(int j) {
+        std::array<int, 4> x{0, 0, 0, 0};
+        x[j] = 1;
+        Poly p;
+        p.c[table().index[x[0]][x[1]][x[2]][x[3]]] = 1;
+        return p;
+    }
+    friend Poly operator+(Poly a, const Poly& b) {
+        for (int k = 0; k < n_mono; ++k) a.c[k] += b.c[k];
+        return a;
+    }
+    friend Poly operator-(Poly a, const Poly& b) {
+        for (int k = 0; k < n_mono; ++k) a.c[k] -= b.c[k];
+        return a;
+    }
+    friend Poly operator*(const Big& s, Poly a) {
+        for (auto& x : a.c) x *= s;
+        return a;
+    }
+    friend Poly operator*(const Poly& a, const Poly& b) {
+        const MonomialTable& t = table();
+        Poly r;
+        for (int i = 0; i < n_mono; ++i) {
+            if (a.c[i] == 0) continue;
+            for (int j = 0; j < n_mono; ++j) {
+                if (b.c[j] == 0) continue;
+                std::array<int, 4> x;
+                for (int v = 0; v < 4; ++v) x[v] = t.exponents[i][v] + t.exponents[j][v];
+                if (MonomialTable::weighted_degree(x) > max_degree)
+                    throw std::logic_error("ControlVariate: a product beyond weighted degree 4");
+                r.c[t.index[x[0]][x[1]][x[2]][x[3]]] += a.c[i] * b.c[j];
+            }
+        }
+        return r;
+    }
+};
+
+/// Sample means of polynomials, from the exact monomial sums.
+class Means {
+public:
+    explicit Means(const ControlVariateSums& s) {
+        for (int k = 0; k < n_mono; ++k) mean_[k] = big(s.sum(k));
+        const Big n = mean_[0];
+        for (auto& m : mean_) m /= n;
+    }
+    /// E[P].
+    Big operator()(const Poly& p) const {
+        Big v = 0;
+        for (int k = 0; k < n_mono; ++k) v += p.c[k] * mean_[k];
+        return v;
+    }
+    /// E[P^2], 0 when it is below the rounding of the raw sums it cancels
+    /// (about 1e-32 of each term; 1e-28 leaves a margin), never negative.
+    Big square(const Poly& p) const {
+        const Poly q = p * p;
+        Big v = 0, scale = 0;
+        for (int k = 0; k < n_mono; ++k) {
+            const Big term = q.c[k] * mean_[k];
+            v += term;
+            scale += abs(term);
+        }
+        return v <= Big(1e-28) * scale ? Big(0) : v;
+    }
+    /// E[monomial k], raw.
+    const Big& raw(int k) const { return mean_[k]; }
+
+private:
+    std::array<Big, n_mono> mean_{};
+};
+
+int monomial(int a, int b, int e, int d) { return table().index[a][b][e][d]; }
+
+/// Plain variance over the control variate's, both >= 0: 1 when both are 0.
+double ratio(const Big& plain, const Big& cv) {
+    if (cv > 0) return static_cast<double>(plain / cv);
+    return plain > 0 ? std::numeric_limits<double>::infinity() : 1.0;
+}
+
+} // namespace
+
+void ControlVariateBlock::add(double u, double t, double m, double c) {
+    const MonomialTable& tab = table();
+    const double x[4] = {u, t, m, c};
+    std::array<DD, n_mono> value;
+    value[0] = DD{1.0, 0.0};
+    for (int k = 1; k < n_mono; ++k) {
+        value[k] = detail::dd::mul(value[tab.parent[k]], x[tab.variable[k]]);
+        sums_[k] = detail::dd::add(sums_[k], value[k]);
+    }
+    sums_[0].hi += 1.0; // the count, exact below 2^53
+    ++n_;
+}
+
+void ControlVariateSums::add_block(const ControlVariateBlock& b) {
+    if (b.count() == 0) return;
+    sums_[0].add(static_cast<double>(b.count())); // exact: counts stay below 2^53
+    for (int k = 1; k < n_mono; ++k) {
+        const DD s = b.sum(k);
+        sums_[k].add(s.hi);
+        sums_[k].add(s.lo);
+    }
+}
+
+void ControlVariateSums::merge(const ControlVariateSums& o) {
+    for (int k = 0; k < n_mono; ++k) sums_[k].merge(o.sums_[k]);
+}
+
+void ControlVariateSums::to_words(std::uint64_t* out) const {
+    for (int k = 0; k < n_mono; ++k) sums_[k].to_words(out + k * ExactSum::words);
+}
+
+void ControlVariateSums::assign_words(const std::uint64_t* in) {
+    for (int k = 0; k < n_mono; ++k) sums_[k] = ExactSum::from_words(in + k * ExactSum::words);
+}
+
+std::uint64_t ControlVariateSums::count() const { return static_cast<std::uint64_t>(sums_[0].value()); }
+
+ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, double level) {
+    if (s.count() < 2) throw InvalidParameter("excursions", "at least 2 completed excursions are needed");
+    normal_quantile_two_sided(level); // validates the level
+    const Means E(s);
+    const Big n = big(s.sum(0));
+    const Big tbar = E.raw(monomial(0, 1, 0, 0));
+    const Big m0 = E.raw(monomial(1, 0, 0, 0)) / tbar;
+    const Poly U = Poly::var(0), T = Poly::var(1), M = Poly::var(2), C = Poly::var(3);
+    const Poly w = U - m0 * T; // E[w] = 0 exactly
+    const Poly w2 = w * w;
+    const Big ew2 = E(w2);
+    const auto se = [&](const Big& var) { return static_cast<double>(sqrt(var / (n - 1)) / tbar); };
+
+    ControlVariateEstimates r;
+    r.samples = s.count();
+
+    // D: the plain influence phi (times tbar), its regression on C.
+    const Big d = ew2 / tbar, c = E(w * T) / tbar;
+    const Poly phi = w2 - d * T - Big(2) * c * w;
+    const Big ec2 = E.raw(monomial(0, 0, 0, 2));
+    const Big beta = ec2 > 0 ? E(phi * C) / ec2 : Big(0);
+    const Big d_cv = (ew2 - beta * E.raw(monomial(0, 0, 0, 1))) / tbar;
+    const Poly psi = w2 - beta * C - d_cv * T - Big(2) * c * w;
+    const Big var_phi = E.square(phi), var_psi = E.square(psi);
+    r.beta = static_cast<double>(beta);
+    r.diffusivity = make_relative_interval(static_cast<double>(d_cv), se(var_psi), level);
+    r.variance_reduction = ratio(var_phi, var_psi);
+
+    // M0: the plain influence w (times tbar), its regression on M.
+    const Big em2 = E.raw(monomial(0, 0, 2, 0));
+    const Big beta_m = em2 > 0 ? E(w * M) / em2 : Big(0);
+    const Big m0_cv = (E.raw(monomial(1, 0, 0, 0)) - beta_m * E.raw(monomial(0, 0, 1, 0))) / tbar;
+    const Poly chi = U - beta_m * M - m0_cv * T;
+    const Big var_w = E.square(w), var_chi = E.square(chi);
+    r.beta_mobility = static_cast<double>(beta_m);
+    r.mobility = make_interval(static_cast<double>(m0_cv), se(var_chi), level);
+    r.variance_reduction_mobility = ratio(var_w, var_chi);
+    return r;
+}
+
+} // namespace stickslip
