@@ -13,12 +13,16 @@
 #include <random>
 #include <vector>
 
+#include "driver/block_driver.hpp"
 #include "stickslip/errors.hpp"
 #include "stickslip/stats/control_variate.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/stats/moment_sums.hpp"
 
 namespace {
+
+// What the block driver needs of a run's total (merge, words, to_words, assign_words).
+static_assert(stickslip::detail::BlockTotal<stickslip::ControlVariateSums>);
 
 using stickslip::ControlVariateBlock;
 using stickslip::ControlVariateEstimates;
