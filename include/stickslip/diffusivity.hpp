@@ -27,6 +27,21 @@ namespace stickslip {
 /// engine, then D, M0 and E[t1] with their intervals (estimators.hpp). The
 /// fields are the shared settings (RunSettings, ExcursionSettings) plus the
 /// estimator and the precision-on-demand mode below.
+/// Whether a diffusivity run uses the martingale control variate (theory.md,
+/// section 12): Auto uses it wherever a corrector exists (the PDMP, the
+/// inclusion engine's resolvent scheme, and its event scheme with coloured
+/// noise; tau' >= 0.05 or white noise); Off gives the plain estimator alone.
+enum class ControlVariateMode { Auto, Off };
+
+/// @name Text form of the control-variate mode as a setting
+/// @{
+
+/// As for the other setting types (setting.hpp): "auto" or "off".
+std::string format_setting(ControlVariateMode m);
+void parse_setting(const SettingInfo& info, const std::string& text, ControlVariateMode& out);
+const char* setting_form(const ControlVariateMode&);
+/// @}
+
 struct DiffusivityRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "diffusivity"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
@@ -59,6 +74,11 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     /// from check_knots_first_index on), and report the difference of D and
     /// M0 (DiffusivityResult::knots_check).
     bool check_knots = false;
+    /// The martingale control variate (theory.md, section 12): with Auto, D
+    /// and M0 are the control-variate estimates wherever a corrector exists,
+    /// the plain ones beside them (DiffusivityResult::control_variate); the
+    /// random draws, and so the plain estimates, are the same either way.
+    ControlVariateMode control_variate = ControlVariateMode::Auto;
 };
 
 /// First sample index of the --check-dt run, 2^55: disjoint from the main
@@ -92,6 +112,11 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
                                  "also run as many excursions with the drift law's knots twice as far apart, on "
                                  "independent streams, and report the difference of D and M0 (--drift, "
                                  "--drift-table): the interpolation's effect, with its standard error"});
+    v(r.control_variate, SettingInfo{"control-variate", "",
+                                     "auto (default): estimate D and M0 with a martingale control variate wherever a "
+                                     "corrector exists (coloured noise with tau' >= 0.05, or white noise with the "
+                                     "resolvent scheme), typically 20-60 times less variance; off: the "
+                                     "plain estimator alone. The plain estimates are reported either way"});
 }
 
 /// The --check-dt comparison: the same estimates at twice the step (and the
@@ -115,6 +140,23 @@ struct DiscretisationCheck {
     double mobility_difference = 0.0;
     /// Its standard error [m/s].
     double mobility_stderr = 0.0;
+};
+
+/// How the control variate of a diffusivity run went (theory.md, section 12).
+struct ControlVariateReport {
+    /// Where the corrector came from: "kolmogorov" (a coarse grid solve) or
+    /// "closed-form" (white noise).
+    std::string source;
+    std::string grid;            ///< the corrector's grid, in words
+    double corrector_seconds = 0; ///< time to make the corrector [s]
+    double beta = 0;             ///< coefficient of C = M^2 - Q in D's estimate
+    double beta_mobility = 0;    ///< coefficient of M in M0's estimate
+    /// Variance of the plain estimator of D over the control variate's, from
+    /// the same excursions: the factor of excursions saved at equal error.
+    double variance_reduction = 0;
+    double variance_reduction_mobility = 0; ///< the same for M0
+    Estimate plain_diffusivity; ///< D without the control variate [m^2/s]
+    Estimate plain_mobility;    ///< M0 without it [m/s]
 };
 
 /// How a precision-on-demand run ended.
@@ -152,6 +194,10 @@ struct DiffusivityResult : MethodResult {
     /// unset (a solved result has no samples, intervals or standard errors).
     /// Empty for a sampled result.
     std::optional<KolmogorovResult> solution;
+    /// When the control variate ran (request.control_variate, and a
+    /// corrector): `estimates` then holds D and M0 with it (E[t1] is
+    /// unchanged), and this says how, with the plain estimates.
+    std::optional<ControlVariateReport> control_variate;
 };
 
 /// The request of the --check-dt run of `req`: `excursions` at 2 dt, from

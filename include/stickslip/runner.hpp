@@ -26,6 +26,8 @@
 #include "stickslip/errors.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/excursion.hpp"
+#include "stickslip/kernels/corrector.hpp"
+#include "stickslip/stats/control_variate.hpp"
 #include "stickslip/stats/moment_sums.hpp"
 #include "stickslip/params.hpp"
 
@@ -124,6 +126,10 @@ struct RunTotals {
     std::string threads_from;
     bool interrupted = false; ///< stopped early (RunControl::stop): the sums are of a prefix of whole blocks
     std::uint64_t resumed = 0; ///< samples restored from a checkpoint rather than computed
+    /// Long excursions run with a corrector (run_long_excursions' g): the
+    /// exact sums of (U, t, M, M^2 - Q) over the completed excursions (empty
+    /// otherwise).
+    ControlVariateSums control_variate;
 };
 
 struct PreparedEngine; // prepared_engine.hpp
@@ -133,6 +139,16 @@ void check_run_control(const RunControl& ctl);
 
 /// N long excursions of a prepared engine (run.hpp), which is trusted.
 RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl);
+/// The same with the martingale of the corrector g accumulated in every
+/// excursion (kernels/corrector.hpp) into RunTotals::control_variate; U and t,
+/// and so `sums`, are bitwise those of the plain run. The engine must have a
+/// martingale kernel (engine_has_martingale), else std::logic_error.
+RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
+                              const CorrectorTable& g);
+/// Whether the prepared engine's kernels accumulate a martingale: the PDMP,
+/// the inclusion engine's resolvent scheme, and its event scheme with
+/// coloured noise; otherwise *why (if given) says why not, for a note.
+bool engine_has_martingale(const PreparedEngine& e, std::string* why = nullptr);
 /// The same, preparing (and so validating) the engine first.
 RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,
                               const RunControl& ctl);

@@ -218,6 +218,16 @@ void bind_results(py::module_& m) {
                 "check_dt=True: {'dt', 'check_dt', 'excursions', 'steps', 'diffusivity': {'difference', "
                 "'stderr'}, 'mobility': {...}}, the values at 2 dt minus those at dt [m^2/s, m/s]; None "
                 "otherwise")
+            .def_property_readonly(
+                "control_variate",
+                [](const DiffusivityResult& r) -> py::object {
+                    if (!r.control_variate) return py::none();
+                    return json_loads(to_json(r, -1))["control_variate"]; // the JSON's layout, defined once
+                },
+                "when the martingale control variate ran (control_variate='auto' and a corrector): {'source', "
+                "'grid', 'beta', 'beta_mobility', 'variance_reduction', 'variance_reduction_mobility', 'plain': "
+                "{'diffusivity': {...}, 'mobility': {...}}}; diffusivity and mobility are then its estimates and "
+                "'plain' the estimates without it; None otherwise")
             .def("__repr__", [](const DiffusivityResult& r) {
                 if (r.solution)
                     return "DiffusivityResult(diffusivity=" + g4(r.solution->diffusivity.value) + " +- " +
@@ -229,7 +239,9 @@ void bind_results(py::module_& m) {
                        " m^2/s, mobility=" + estimate_short(r.estimates.mobility) +
                        " m/s, mean_duration=" + estimate_short(r.estimates.mean_duration) +
                        " s, completed=" + std::to_string(r.estimates.excursions) + ", engine='" +
-                       to_string(r.request.engine.engine) + "')";
+                       to_string(r.request.engine.engine) + "'" +
+                       (r.control_variate ? ", variance_reduction=" + g4(r.control_variate->variance_reduction) : "") +
+                       ")";
             });
 
     }

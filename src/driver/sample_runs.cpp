@@ -2,6 +2,8 @@
 #include "stickslip/runner.hpp"
 
 #include <cmath>
+#include <concepts>
+#include <type_traits>
 
 #include "driver/block_driver.hpp"
 #include "driver/result_checks.hpp"
@@ -35,6 +37,55 @@ RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions,
                 return engine.long_excursions(seed, first, count, out, cancel);
             },
             none);
+    });
+}
+
+namespace {
+/// Whether an engine adapter has the martingale kernel.
+template <class Engine>
+concept HasMartingale = requires(const Engine& e, ExcursionOutcome* out, const CorrectorTable& g) {
+    { e.long_excursions_with(0, 0, 0, out, nullptr, g) } -> std::same_as<bool>;
+};
+} // namespace
+
+bool engine_has_martingale(const PreparedEngine& e, std::string* why) {
+    if (const auto* c = e.constants_of<EventConstants>(); c && c->white) {
+        if (why) *why = "the event scheme has no martingale for white noise (use --scheme resolvent)";
+        return false;
+    }
+    return detail::visit_engine(e, [&](const auto& engine) {
+        if constexpr (HasMartingale<std::decay_t<decltype(engine)>>) {
+            return true;
+        } else {
+            if (why) *why = "this engine has no martingale kernel";
+            return false;
+        }
+    });
+}
+
+RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
+                              const CorrectorTable& g) {
+    if (!engine_has_martingale(e)) throw std::logic_error("run_long_excursions: this engine has no martingale");
+    const std::uint64_t seed = ctl.seed;
+    return detail::visit_engine(e, [&](const auto& engine) {
+        ControlVariateSums total;
+        RunTotals t;
+        if constexpr (HasMartingale<std::decay_t<decltype(engine)>>) {
+            t = detail::run_blocks<ControlVariateBlock>(
+                excursions, ctl, [] { return ControlVariateBlock{}; },
+                [&engine, &g, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                                                          ControlVariateBlock& block) {
+                    if (!engine.long_excursions_with(seed, first, count, out, cancel, g)) return false;
+                    for (std::uint64_t i = 0; i < count; ++i) // in index order, as the driver adds (U, t)
+                        if (!out[i].capped)
+                            block.add(out[i].displacement, out[i].duration, out[i].martingale,
+                                      out[i].martingale * out[i].martingale - out[i].martingale_qv);
+                    return true;
+                },
+                total);
+        }
+        t.control_variate = std::move(total);
+        return t;
     });
 }
 

@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/format.hpp"
+#include "stickslip/corrector.hpp"
 #include "driver/result_checks.hpp"
 #include "driver/step_check.hpp"
 #include "quantities/solved.hpp"
@@ -43,6 +44,16 @@ DiffusivityResult solve_diffusivity(const DiffusivityRequest& req) {
 }
 
 } // namespace
+
+std::string format_setting(ControlVariateMode m) { return m == ControlVariateMode::Off ? "off" : "auto"; }
+void parse_setting(const SettingInfo& info, const std::string& text, ControlVariateMode& out) {
+    if (text == "auto") out = ControlVariateMode::Auto;
+    else if (text == "off") out = ControlVariateMode::Off;
+    else
+        throw InvalidParameter(info.name, std::string(info.name) + " must be 'auto' (the martingale control variate "
+                                          "wherever a corrector exists) or 'off', got '" + text + "'");
+}
+const char* setting_form(const ControlVariateMode&) { return "auto|off"; }
 
 PreparedEngine prepare(const DiffusivityRequest& req_in) {
     const DiffusivityRequest req = with_resolved_engine(req_in);
@@ -182,7 +193,8 @@ std::uint64_t round_up_to_blocks(std::uint64_t n) { return (n + block_size - 1) 
 
 /// Precision on demand (DiffusivityRequest::rel_precision): batches of long
 /// excursions at consecutive, block-aligned sample indices until the target.
-RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& engine, PrecisionOutcome& outcome) {
+RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& engine, const CorrectorTable* g,
+                           PrecisionOutcome& outcome) {
     RunTotals total;
     outcome.target = req.rel_precision;
     outcome.reached = false;
@@ -200,8 +212,9 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
                 return req.control.progress(q);
             };
         }
-        const RunTotals t = run_long_excursions(engine, batch, ctl);
+        const RunTotals t = g ? run_long_excursions(engine, batch, ctl, *g) : run_long_excursions(engine, batch, ctl);
         total.sums.merge(t.sums); // exact: the batches' order and sizes leave no trace
+        total.control_variate.merge(t.control_variate);
         total.moments = total.sums.moments();
         total.requested += t.requested;
         total.capped += t.capped;
@@ -215,9 +228,11 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
         if (total.capped > 0 && !req.allow_capped) break; // reported by the caller
         std::uint64_t needed = batch;
         if (total.moments.count() >= 2) {
-            const auto est = estimate_long_excursion(total.moments, req.level, req.estimator);
-            const double d = est.diffusivity.value;
-            outcome.relative_half_width = d > 0 ? (est.diffusivity.hi - d) / d : std::numeric_limits<double>::infinity();
+            // The interval the result reports: the control variate's when it runs.
+            const Estimate est = g ? estimate_control_variate(total.control_variate, req.level).diffusivity
+                                   : estimate_long_excursion(total.moments, req.level, req.estimator).diffusivity;
+            const double d = est.value;
+            outcome.relative_half_width = d > 0 ? (est.hi - d) / d : std::numeric_limits<double>::infinity();
             if (outcome.relative_half_width <= req.rel_precision) {
                 outcome.reached = true;
                 break;
@@ -256,11 +271,43 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
     DiffusivityResult out;
     out.request = req;
     out.monte_carlo().engine = engine.resolved;
-    if (req.rel_precision > 0) out.monte_carlo().totals = run_to_precision(req, engine, out.precision);
+    // The control variate: its corrector, made once per run, where there is one.
+    std::shared_ptr<const Corrector> corrector;
+    std::vector<std::string> cv_notes;
+    if (req.control_variate == ControlVariateMode::Auto) {
+        std::string why;
+        if (req.estimator == Estimator::Paper)
+            cv_notes.push_back("control variate off: it corrects the renewal estimator, not the paper's");
+        else if (!engine_has_martingale(engine, &why) || !has_corrector(req.params, &why))
+            cv_notes.push_back("control variate off: " + why);
+        else
+            corrector = make_corrector(req.params);
+    }
+    const CorrectorTable* g = corrector ? &corrector->table : nullptr;
+    if (req.rel_precision > 0) out.monte_carlo().totals = run_to_precision(req, engine, g, out.precision);
+    else if (g) out.monte_carlo().totals = run_long_excursions(engine, req.excursions, req.control, *g);
     else out.monte_carlo().totals = run_long_excursions(engine, req.excursions, req.control);
     detail::finish_long_excursion_run(engine, out.monte_carlo().totals, req.allow_capped, out.warnings);
     out.estimates = estimate_long_excursion(out.monte_carlo().totals.moments, req.level, req.estimator);
     detail::check_finite(out.estimates);
+    if (corrector) {
+        const ControlVariateEstimates cv = estimate_control_variate(out.monte_carlo().totals.control_variate, req.level);
+        ControlVariateReport r;
+        r.source = corrector->source;
+        r.grid = corrector->grid;
+        r.corrector_seconds = corrector->seconds;
+        r.beta = cv.beta;
+        r.beta_mobility = cv.beta_mobility;
+        r.variance_reduction = cv.variance_reduction;
+        r.variance_reduction_mobility = cv.variance_reduction_mobility;
+        r.plain_diffusivity = out.estimates.diffusivity;
+        r.plain_mobility = out.estimates.mobility;
+        out.estimates.diffusivity = cv.diffusivity;
+        out.estimates.mobility = cv.mobility;
+        detail::check_finite(out.estimates);
+        out.control_variate = r;
+    }
+    out.warnings.insert(out.warnings.end(), cv_notes.begin(), cv_notes.end());
     if (req.rel_precision > 0 && !out.precision.reached)
         out.warnings.push_back("precision target not reached: relative half-width " +
                                format_number(out.precision.relative_half_width, 3) + " > " +

@@ -51,6 +51,13 @@ namespace stickslip {
 bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                            ExcursionOutcome* out, const std::atomic<bool>* cancel = nullptr);
 
+/// event_long_excursions (coloured noise) with the martingale of the
+/// corrector g in each outcome (event_long_excursion_with), one excursion at
+/// a time: U and t bitwise those of event_long_excursions.
+bool event_long_excursions_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
+                                const CorrectorTable& g);
+
 namespace detail {
 /// event_long_excursions with the lanes forced on any machine (white noise
 /// still runs one excursion at a time): the same results. For tests.

@@ -69,6 +69,7 @@
 #include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/kernels/phase_law.hpp"
+#include "stickslip/kernels/corrector.hpp"
 #include "stickslip/random/portable_math.hpp"
 #include "stickslip/random/rng.hpp"
 
@@ -862,6 +863,55 @@ STICKSLIP_HD inline ExcursionOutcome event_long_excursion(const EventConstants& 
         }
     }
     return event_walk_outcome(c, w, st == EventStatus::Capped);
+}
+
+/// One step of event_step (coloured noise) with the martingale of `mart`
+/// (kernels/corrector.hpp): g at the step's start state, times the noise's
+/// exact martingale increment over the step, e^{T/tau} X_T - X_0, T the
+/// step's length, cut short by an event or not (T is a stopping time and g
+/// is fixed before the step, so the sum is a martingale of the exact
+/// process; the scheme's own approximations, event times to a leaf, are far
+/// below any standard error).
+template <class Rng, class RefRng, class Martingale>
+STICKSLIP_HD inline EventStatus event_step_with(const EventConstants& c, EventWalk& w, Rng& rng, RefRng& ref,
+                                                Martingale& mart) {
+    const double x0 = w.x, v0 = w.v;
+    const std::uint64_t t0 = w.t;
+    NoPieceObserver none;
+    const EventStatus st = event_colored_step(c, w, 0, rng, ref, none);
+    if (st == EventStatus::Capped) return st;
+    const EventLevel& L0 = c.lv[0];
+    const std::uint64_t leaves = w.t - t0;
+    // A whole step's growth factor and variance are the level's; a step cut
+    // short takes its own (one exponential, at an event).
+    const double grow = leaves == L0.leaves ? L0.x_grow : std::exp(c.leaf * static_cast<double>(leaves) / L0.x_tau);
+    const double var = leaves == L0.leaves ? L0.x_var_rate * L0.x_u_len : (grow * grow - 1.0) / L0.x_tau;
+    mart.add(x0, v0, grow * w.x - x0, var);
+    return st;
+}
+
+/// One long excursion of the event scheme (coloured noise) with the
+/// martingale of the corrector g in the outcome (martingale, martingale_qv).
+/// The draws, and so U and t, are event_long_excursion's, bit for bit.
+template <class Rng, class RefRng>
+STICKSLIP_HD inline ExcursionOutcome event_long_excursion_with(const EventConstants& c, Rng& rng, RefRng& ref,
+                                                               const CorrectorTable& g) {
+    MartingaleSums mart{g};
+    EventWalk w;
+    event_start_half(c, w, +1);
+    EventStatus st;
+    while ((st = event_step_with(c, w, rng, ref, mart)) == EventStatus::Running) {
+    }
+    if (st == EventStatus::HalfDone) {
+        w.first = w.t;
+        event_start_half(c, w, -1);
+        while ((st = event_step_with(c, w, rng, ref, mart)) == EventStatus::Running) {
+        }
+    }
+    ExcursionOutcome o = event_walk_outcome(c, w, st == EventStatus::Capped);
+    o.martingale = mart.m;
+    o.martingale_qv = mart.q;
+    return o;
 }
 
 /// One step of length h / 2^d0 of the event scheme.

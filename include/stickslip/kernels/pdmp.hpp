@@ -26,6 +26,7 @@
 #include "stickslip/config.hpp"
 #include "stickslip/drift_law.hpp"
 #include "stickslip/excursion.hpp"
+#include "stickslip/kernels/corrector.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {
@@ -360,6 +361,54 @@ STICKSLIP_HD inline ExcursionOutcome pdmp_long_excursion(const PdmpConstants& c,
     o.duration = time;
     o.work = events;
     o.capped = !ok;
+    return o;
+}
+
+/// The PDMP's martingale for the control variate (kernels/corrector.hpp): X
+/// is a birth-death chain, so with g frozen over each segment between events
+/// at the segment's start state (predictable), M = sum over jumps of g dX
+/// minus sum over segments of g mu(x) dt, mu = delta (lambda_up -
+/// lambda_down) the chain's drift, is an exact martingale, with predictable
+/// quadratic variation Q = sum over segments of g^2 delta^2 Lambda dt (X is
+/// constant on a segment, so both sums are exact). A SegmentObserver: a jump
+/// shows as the next segment starting at another lattice index; finish()
+/// adds the excursion's last one.
+struct PdmpMartingale {
+    const PdmpConstants* c; ///< the engine's constants
+    MartingaleSums sums;    ///< M and Q so far, and the corrector
+    int last_i = 0;         ///< lattice index of the current segment
+    double last_g = 0.0;    ///< g at its start [m s^1/2]
+    bool started = false;   ///< a segment has been seen
+    /// Observes the segment from `start` at time t0 [s] lasting dt [s].
+    STICKSLIP_HD void operator()(const PdmpState& start, double /*t0*/, double /*u0*/, double dt) {
+        if (started && start.i != last_i) sums.m += last_g * (c->delta * (start.i - last_i));
+        const double x = c->delta * start.i;
+        const double g = sums.g(x, start.v);
+        const double up = pdmp_up_probability(*c, start.i);
+        const double mu = c->delta * c->rate * (2.0 * up - 1.0); // [s^-1/2 / s]
+        sums.m -= g * mu * dt;
+        sums.q += (g * g) * (c->delta * c->delta * c->rate) * dt;
+        last_i = start.i;
+        last_g = g;
+        started = true;
+    }
+    /// Adds the jump into the excursion's end state, lattice index i_end.
+    STICKSLIP_HD void finish(int i_end) {
+        if (started && i_end != last_i) sums.m += last_g * (c->delta * (i_end - last_i));
+    }
+};
+
+/// One long excursion of the PDMP with the martingale of the corrector g in
+/// the outcome (martingale, martingale_qv); U and t are pdmp_long_excursion's
+/// bit for bit (the same draws).
+template <class Rng>
+STICKSLIP_HD inline ExcursionOutcome pdmp_long_excursion_with(const PdmpConstants& c, Rng& rng,
+                                                              const CorrectorTable& g) {
+    PdmpMartingale mart{&c, MartingaleSums{g}};
+    ExcursionOutcome o = pdmp_long_excursion(c, rng, mart);
+    mart.finish(c.k_plus + 1); // the excursion ends where it started
+    o.martingale = mart.sums.m;
+    o.martingale_qv = mart.sums.q;
     return o;
 }
 

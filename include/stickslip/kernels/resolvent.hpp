@@ -28,6 +28,7 @@
 #include "stickslip/config.hpp"
 #include "stickslip/drift_law.hpp"
 #include "stickslip/excursion.hpp"
+#include "stickslip/kernels/corrector.hpp"
 #include "stickslip/kernels/noise.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/random/portable_math.hpp"
@@ -201,9 +202,13 @@ STICKSLIP_HD inline void resolvent_walk_start_half(const ResolventConstants& c, 
 /// (K is c's step kind, as with_step_kind chooses it, fixed at compile time
 /// so that the kernels test the noise and the stop rule once per excursion,
 /// not once per step.)
-template <StepKind K, class Rng, class Observer>
+///
+/// `mart` (kernels/corrector.hpp) sees every step whose draws were made, the
+/// detecting one too: its innovation is the noise's own, so the sums are an
+/// exact martingale of the simulated chain (NoMartingale: nothing).
+template <StepKind K, class Rng, class Observer, class Martingale = NoMartingale>
 STICKSLIP_HD inline WalkStatus resolvent_walk_step_as(const ResolventConstants& c, ResolventWalk& w, Rng& rng,
-                                                      Observer& observe) {
+                                                      Observer& observe, Martingale&& mart = Martingale{}) {
     if (w.steps >= c.max_steps) return WalkStatus::Capped;
     if constexpr (K == StepKind::White) {
         double z;
@@ -217,6 +222,7 @@ STICKSLIP_HD inline WalkStatus resolvent_walk_step_as(const ResolventConstants& 
             w.spare_ok = true;
         }
         const double v_next = resolvent_white_step(c, w.v, z);
+        if constexpr (std::remove_reference_t<Martingale>::active) mart.add(0.0, w.v, c.h_amp * z, c.h_amp * c.h_amp);
         if (w.dir > 0 ? v_next <= -c.level : v_next >= c.level) return WalkStatus::HalfDone;
         observe(0.0, w.v);
         w.vsum += w.v;
@@ -227,6 +233,8 @@ STICKSLIP_HD inline WalkStatus resolvent_walk_step_as(const ResolventConstants& 
     const auto z = rng.normal2();
     double x_next, f;
     resolvent_colored_step(c, w.x, w.v, z.x, z.y, x_next, f);
+    if constexpr (std::remove_reference_t<Martingale>::active)
+        mart.add(w.x, w.v, c.ou.l21 * z.x + c.ou.l22 * z.y, c.ou.s22); // X's exact innovation
     if (w.v == 0.0) {
         if constexpr (K == StepKind::ColoredBridge) {
             if (w.x >= c.x_down && w.x <= c.x_up) { // stuck at the start of the step
@@ -262,21 +270,28 @@ STICKSLIP_HD inline ExcursionOutcome resolvent_walk_outcome(const ResolventConst
 }
 
 /// resolvent_long_excursion for step kind K, c's (as with_step_kind chooses it).
-template <StepKind K, class Rng, class Observer>
+/// (`mart` accumulates the excursion's martingale; its sums are returned in
+/// the outcome.)
+template <StepKind K, class Rng, class Observer, class Martingale = NoMartingale>
 STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion_as(const ResolventConstants& c, Rng& rng,
-                                                                 Observer& observe) {
+                                                                 Observer& observe, Martingale&& mart = Martingale{}) {
     ResolventWalk w;
     resolvent_walk_start_half(c, w, +1);
     WalkStatus st;
-    while ((st = resolvent_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
+    while ((st = resolvent_walk_step_as<K>(c, w, rng, observe, mart)) == WalkStatus::Running) {
     }
     if (st == WalkStatus::HalfDone) {
         w.first = w.steps;
         resolvent_walk_start_half(c, w, -1);
-        while ((st = resolvent_walk_step_as<K>(c, w, rng, observe)) == WalkStatus::Running) {
+        while ((st = resolvent_walk_step_as<K>(c, w, rng, observe, mart)) == WalkStatus::Running) {
         }
     }
-    return resolvent_walk_outcome(c, w, st == WalkStatus::Capped);
+    ExcursionOutcome o = resolvent_walk_outcome(c, w, st == WalkStatus::Capped);
+    if constexpr (std::remove_reference_t<Martingale>::active) {
+        o.martingale = mart.m;
+        o.martingale_qv = mart.q;
+    }
+    return o;
 }
 
 /// One long excursion (+HLE then -HLE) of the inclusion engine; `observe(x, v)`
@@ -285,6 +300,18 @@ template <class Rng, StepObserver Observer = NoPathObserver>
 STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion(const ResolventConstants& c, Rng& rng,
                                                               Observer&& observe = Observer{}) {
     return with_step_kind(c, [&](auto kind) { return resolvent_long_excursion_as<kind.value>(c, rng, observe); });
+}
+
+/// One long excursion with the martingale of the corrector g (outcome's
+/// martingale and martingale_qv; kernels/corrector.hpp). The draws, and so
+/// U and t, are those of resolvent_long_excursion, bit for bit.
+template <class Rng>
+STICKSLIP_HD inline ExcursionOutcome resolvent_long_excursion_with(const ResolventConstants& c, Rng& rng,
+                                                                   const CorrectorTable& g) {
+    NoPathObserver none;
+    return with_step_kind(c, [&](auto kind) {
+        return resolvent_long_excursion_as<kind.value>(c, rng, none, MartingaleSums{g});
+    });
 }
 
 /// Brute-force trajectory (Algorithm 2 with time stepping): from noise x0

@@ -50,6 +50,13 @@ bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, 
                                std::uint64_t count, ExcursionOutcome* out,
                                const std::atomic<bool>* cancel = nullptr);
 
+/// resolvent_long_excursions with the martingale of the corrector g in each
+/// outcome (resolvent_long_excursion_with), one excursion at a time: U and t
+/// bitwise those of resolvent_long_excursions.
+bool resolvent_long_excursions_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                    std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
+                                    const CorrectorTable& g);
+
 /// Whether resolvent_long_excursions runs SIMD lanes on this machine (x86-64
 /// with AVX-512 and a GCC build); otherwise it runs the one-excursion kernel,
 /// with the same results.

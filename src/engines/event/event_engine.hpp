@@ -38,6 +38,13 @@ public:
         return event_long_excursions(c_, seed, first, count, out, cancel);
     }
 
+    /// long_excursions with the martingale of the corrector g in each outcome
+    /// (kernels/corrector.hpp).
+    bool long_excursions_with(std::uint64_t seed, std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                              const std::atomic<bool>* cancel, const CorrectorTable& g) const {
+        return event_long_excursions_with(c_, seed, first, count, out, cancel, g);
+    }
+
     ExcursionOutcome trajectory(std::uint64_t seed, std::uint64_t k, double x0, double v0, double horizon) const {
         const auto at = static_cast<std::uint64_t>(std::llround(horizon / c_.leaf));
         BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);

@@ -298,6 +298,18 @@ bool one_at_a_time(const EventConstants& c, std::uint64_t seed, std::uint64_t fi
 
 } // namespace
 
+bool event_long_excursions_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
+                                const CorrectorTable& g) {
+    for (std::uint64_t i = 0; i < count; ++i) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
+        BatchedCounterRng ref(seed, StreamPurpose::Refinement, first + i);
+        out[i] = event_long_excursion_with(c, rng, ref, g);
+    }
+    return true;
+}
+
 bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                            ExcursionOutcome* out, const std::atomic<bool>* cancel) {
     // With drag, many steps longer than relaxation/16 are not quiet, and a

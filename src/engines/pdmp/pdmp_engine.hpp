@@ -44,6 +44,18 @@ public:
         return true;
     }
 
+    /// long_excursions with the martingale of the corrector g in each outcome
+    /// (pdmp_long_excursion_with).
+    bool long_excursions_with(std::uint64_t seed, std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                              const std::atomic<bool>* cancel, const CorrectorTable& g) const {
+        for (std::uint64_t i = 0; i < count; ++i) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+            BatchedUniformRng rng(seed, StreamPurpose::LongExcursion, first + i);
+            out[i] = pdmp_long_excursion_with(c_, rng, g);
+        }
+        return true;
+    }
+
     /// Brute-force trajectory k on [0, horizon] [s] from (x0, v0).
     ExcursionOutcome trajectory(std::uint64_t seed, std::uint64_t k, double x0, double v0, double horizon) const {
         BatchedUniformRng rng(seed, StreamPurpose::BruteForce, k);

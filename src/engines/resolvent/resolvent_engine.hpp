@@ -39,6 +39,13 @@ public:
         return resolvent_long_excursions(c_, seed, first, count, out, cancel);
     }
 
+    /// long_excursions with the martingale of the corrector g in each outcome
+    /// (kernels/corrector.hpp).
+    bool long_excursions_with(std::uint64_t seed, std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                              const std::atomic<bool>* cancel, const CorrectorTable& g) const {
+        return resolvent_long_excursions_with(c_, seed, first, count, out, cancel, g);
+    }
+
     ExcursionOutcome trajectory(std::uint64_t seed, std::uint64_t k, double x0, double v0, double horizon) const {
         const std::uint64_t nsteps = bruteforce_steps(horizon, c_.h);
         BatchedCounterRng rng(seed, StreamPurpose::BruteForce, k);

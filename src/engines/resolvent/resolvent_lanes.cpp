@@ -224,6 +224,17 @@ bool one_at_a_time(const ResolventConstants& c, std::uint64_t seed, std::uint64_
 
 } // namespace
 
+bool resolvent_long_excursions_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                    std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
+                                    const CorrectorTable& g) {
+    for (std::uint64_t i = 0; i < count; ++i) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+        BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
+        out[i] = resolvent_long_excursion_with(c, rng, g);
+    }
+    return true;
+}
+
 bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel) {
     if (!resolvent_lanes_vectorised()) return one_at_a_time(c, seed, first, count, out, cancel);
