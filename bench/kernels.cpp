@@ -47,6 +47,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "stickslip/corrector.hpp"
 #include "stickslip/kernels/event_lanes.hpp"
 #include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/kernels/resolvent.hpp"
@@ -222,6 +223,46 @@ ModelParams white_dry_params() {
     return p;
 }
 
+// The same kernels with the control variate's martingale (kernels/corrector.hpp),
+// one excursion at a time as the runner calls them: their time per step against
+// the plain kernels' above, side by side in one run (the corrector is made once,
+// outside the timing).
+void run_resolvent_cv(benchmark::State& state, const ModelParams& p, double dt) {
+    const ResolventConstants c = resolvent_constants(p, dt);
+    const auto g = make_corrector(p);
+    time_blocks(state, [&c, &g](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out) {
+        resolvent_long_excursions_with(c, kSeed, first, count, out, nullptr, g->table);
+    });
+}
+
+void run_event_cv(benchmark::State& state, const ModelParams& p, double dt) {
+    EngineSettings s;
+    s.scheme = Scheme::Event;
+    s.dt = dt;
+    const EventConstants c = make_event_constants(p, s);
+    const auto g = make_corrector(p);
+    time_blocks(state, [&c, &g](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out) {
+        event_long_excursions_with(c, kSeed, first, count, out, nullptr, g->table);
+    });
+}
+
+void run_pdmp_cv(benchmark::State& state, const ModelParams& p, double grid) {
+    EngineSettings s;
+    s.engine = Engine::Pdmp;
+    s.grid = grid;
+    const PdmpConstants c = make_pdmp_constants(p, s);
+    const auto g = make_corrector(p);
+    time_excursions(state, "events_per_excursion", [&c, &g](std::uint64_t k) {
+        BatchedUniformRng rng(kSeed, StreamPurpose::LongExcursion, k);
+        return pdmp_long_excursion_with(c, rng, g->table);
+    });
+}
+
+void BM_InclusionStepsCv_dry(benchmark::State& st) { run_resolvent_cv(st, dry_params(), 1e-3); }
+void BM_EventStepsCv_fig2_auto(benchmark::State& st) { run_event_cv(st, fig2_params(), 0.01675); }
+void BM_EventStepsCv_fig2(benchmark::State& st) { run_event_cv(st, fig2_params(), 1e-4); }
+void BM_PdmpEventsCv_dry(benchmark::State& st) { run_pdmp_cv(st, dry_params(), 0.125); }
+
 void BM_EventSteps_fig2(benchmark::State& st) { run_event(st, fig2_params(), 1e-4); }
 void BM_EventSteps_fig2_auto(benchmark::State& st) { run_event(st, fig2_params(), 0.01675); }
 void BM_EventSteps_white(benchmark::State& st) { run_event(st, white_dry_params(), 1e-2); }
@@ -262,6 +303,10 @@ BENCHMARK(BM_EventLanes_fig2_auto)->Name("BM_EventLanes/fig2_dt0.01675")->Unit(b
 BENCHMARK(BM_InclusionLanes_white)->Name("BM_InclusionLanes/white_dry_dt1e-2")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_white)->Name("BM_EventSteps/white_dry_dt1e-2")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_white_auto)->Name("BM_EventSteps/white_dry_dt0.0625")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InclusionStepsCv_dry)->Name("BM_InclusionStepsCv/dry_dt1e-3")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventStepsCv_fig2)->Name("BM_EventStepsCv/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventStepsCv_fig2_auto)->Name("BM_EventStepsCv/fig2_dt0.01675")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PdmpEventsCv_dry)->Name("BM_PdmpEventsCv/dry_grid0.125")->Unit(benchmark::kMillisecond);
 
 // BENCHMARK_MAIN, plus which code paths ran, in the report's context.
 int main(int argc, char** argv) {

@@ -23,10 +23,6 @@
 
 namespace stickslip {
 
-/// A diffusivity run (`stickslip diffusivity`): N long excursions of the
-/// engine, then D, M0 and E[t1] with their intervals (estimators.hpp). The
-/// fields are the shared settings (RunSettings, ExcursionSettings) plus the
-/// estimator and the precision-on-demand mode below.
 /// Whether a diffusivity run uses the martingale control variate (theory.md,
 /// section 12): Auto uses it wherever a corrector exists (the PDMP, the
 /// inclusion engine's resolvent scheme, and its event scheme with coloured
@@ -42,6 +38,10 @@ void parse_setting(const SettingInfo& info, const std::string& text, ControlVari
 const char* setting_form(const ControlVariateMode&);
 /// @}
 
+/// A diffusivity run (`stickslip diffusivity`): N long excursions of the
+/// engine, then D, M0 and E[t1] with their intervals (estimators.hpp). The
+/// fields are the shared settings (RunSettings, ExcursionSettings) plus the
+/// estimator and the precision-on-demand mode below.
 struct DiffusivityRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "diffusivity"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop

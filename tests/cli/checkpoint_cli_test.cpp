@@ -54,7 +54,7 @@ const Case kCases[] = {
     {"diffusivity", {"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "60000"}},
     {"diffusivity_pdmp", {"diffusivity", "--engine", "pdmp", "--excursions", "6000"}},
     {"diffusivity_event", {"diffusivity", "--scheme", "event", "--dt", "0.05", "--excursions", "20000"}},
-    {"precision", {"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "2000", "--rel-precision", "0.02"}},
+    {"precision", {"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "2000", "--rel-precision", "0.004"}},
     {"check_dt", {"diffusivity", "--scheme", "resolvent", "--dt", "1e-2", "--excursions", "30000", "--check-dt"}},
     {"bruteforce", {"bruteforce", "--scheme", "resolvent", "--dt", "1e-2", "--time", "5", "--trajectories", "60000"}},
     {"bruteforce_pdmp", {"bruteforce", "--engine", "pdmp", "--time", "5", "--trajectories", "12000"}},

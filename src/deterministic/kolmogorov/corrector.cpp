@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 
 #include "core/format.hpp"
 #include "deterministic/kolmogorov/chain.hpp"
 #include "stickslip/drift_law_quadrature.hpp"
 #include "stickslip/errors.hpp"
 #include "stickslip/kolmogorov.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip {
 
@@ -181,11 +183,27 @@ bool has_corrector(const ModelParams& p, std::string* why) {
 std::shared_ptr<const Corrector> make_corrector(const ModelParams& p) {
     std::string why;
     if (!has_corrector(p, &why)) throw InvalidParameter("control-variate", "no corrector: " + why);
+    // The last corrector made is kept: a sweep's --check-dt twin, a loop of
+    // runs from Python and a coverage study ask for the same model again and
+    // again, and the table depends on the model alone.
+    static std::mutex mutex;
+    static std::string last_key;
+    static std::shared_ptr<const Corrector> last;
+    std::string key;
+    ModelParams copy = p;
+    visit_settings(copy, [&](auto&& field, const SettingInfo&) { key += format_setting(field) + '\n'; });
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (last && key == last_key) return last;
+    }
     const auto start = std::chrono::steady_clock::now();
     std::shared_ptr<Corrector> c = p.white() ? white_corrector(p) : coloured_corrector(p);
     c->table.slide = c->slide.data();
     c->table.stuck = c->stuck.empty() ? nullptr : c->stuck.data();
     c->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::lock_guard<std::mutex> lock(mutex);
+    last_key = std::move(key);
+    last = c;
     return c;
 }
 
