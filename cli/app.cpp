@@ -78,8 +78,8 @@ std::string flag_suggestion(CLI::App& app, int argc, char** argv) {
 
 int run_command(int argc, char** argv) {
     CLI::App app{"stickslip: diffusivity, mobility and velocity statistics of an object with dry friction under "
-                 "white or colored\nnoise, by the unbiased long-excursion estimators (exact PDMP or "
-                 "differential-inclusion engine),\nwith exact white-noise references."};
+                 "white or colored\nnoise, by the unbiased long-excursion estimators (exact piecewise-deterministic "
+                 "Markov process\n(PDMP) or differential-inclusion engine), with exact white-noise references."};
     app.footer(kConventions);
     app.require_subcommand(1);
     app.set_version_flag("--version", stickslip::version_line());

@@ -33,7 +33,10 @@ Model (SI units): dV/dt + friction*sgn(V) = -V/relaxation + bias + sqrt(noise/2)
 with X the Ornstein-Uhlenbeck noise tau dX = -X dt + sqrt(2) dW (E[X(0)X(t)] =
 exp(-|t|/tau)/tau). As tau -> 0 the random force tends to a white noise of
 intensity `noise` (<f(t)f(s)> = noise*delta(t-s)); tau = 0 is that white noise.
-The object sticks (V = 0) while |bias + force| <= friction.
+The object sticks (V = 0) while |bias + force| <= friction. A long excursion
+runs from rest with the noise X at the upper threshold x* (about to slide up)
+to rest at the lower one (about to slide down: a half long excursion) and back;
+long excursions are independent, E[t1] is their mean duration.
 Nondimensional units: time noise/friction^2, velocity noise/friction, length
 noise^2/friction^3, diffusivity noise^3/friction^4; both are reported.
 Defaults are the paper's Fig. 2 case. Results are bitwise reproducible for a

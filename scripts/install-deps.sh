@@ -30,6 +30,7 @@ PACKAGES=(
   python3-pip         # `pip install .` of the Python module
   python3-setuptools  # build backend of `pip install .` (setup.py drives CMake)
   python3-wheel       # idem
+  python3-venv        # the pip test installs the sdist into a fresh venv (ctest -L pip)
   libopenmpi-dev      # MPI: `mpirun -np P stickslip diffusivity ...` (STICKSLIP_MPI)
   openmpi-bin         # mpirun, for the MPI test
   doxygen             # the C++ API reference: `cmake --build build --target docs` (label docs)

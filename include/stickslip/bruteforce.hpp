@@ -43,8 +43,9 @@ void visit_settings(BruteForceRequest& r, Visitor&& v) {
     v(r.horizon, SettingInfo{"time", "s", "horizon t, > 0"});
     v(r.trajectories, SettingInfo{"trajectories", "", "number N' of trajectories (>= 2)"});
     v(OptionalNumber{r.x0}, SettingInfo{"x0", "s^-1/2",
-                                        "initial noise X(0); default: the upper threshold x* (pdmp: the first lattice "
-                                        "point above it, where the object starts moving)"});
+                                        "initial noise X(0); default: the upper threshold x* = (friction - "
+                                        "b(0))/sqrt(noise/2), where a stuck object starts sliding up (pdmp: the "
+                                        "first lattice point above it)"});
     v(r.v0, SettingInfo{"v0", "m/s", "initial velocity"});
 }
 

@@ -314,7 +314,9 @@ void visit_settings(TrajectoryRequest& r, Visitor&& v) {
     v(r.index, SettingInfo{"index", "", "excursion number (excursion mode)"});
     v(r.paths, SettingInfo{"paths", "", "number of independent paths, at most 1000 (0 = one long excursion instead)"});
     v(r.horizon, SettingInfo{"time", "s", "path length (path mode)"});
-    v(OptionalNumber{r.x0}, SettingInfo{"x0", "s^-1/2", "initial noise X(0) (path mode); default: the upper threshold x*"});
+    v(OptionalNumber{r.x0}, SettingInfo{"x0", "s^-1/2",
+                                        "initial noise X(0) (path mode); default: the upper threshold x* = "
+                                        "(friction - b(0))/sqrt(noise/2), where a stuck object starts sliding up"});
     v(r.v0, SettingInfo{"v0", "m/s", "initial velocity (path mode)"});
     v(r.every, SettingInfo{"every", "s",
                            "recording interval; 0 = every step (inclusion) or event (pdmp) of an excursion, time/1000 "
