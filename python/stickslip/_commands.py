@@ -39,7 +39,7 @@ def _call_text(name, params, keywords):
     """The call as the result records it (its JSON's "command"): one line."""
     args = [] if params is None else [repr(params)]
     args += [f"{k}={v!r}" for k, v in keywords.items()]
-    return " ".join(f"stickslip.{name}({', '.join(args)})".split())
+    return " ".join(f"{name}({', '.join(args)})".split())
 
 
 _PARAMS_DOC = f"""\
@@ -103,7 +103,7 @@ def _setting_doc(s):
     return f"    {s['keyword']} : {kind}\n        {s['help']}{unit}{default}."
 
 
-def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC):
+def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC, module="stickslip"):
     """The keyword function `name`: Request() from its defaults, the keywords
     given set through the library's parser, then run()."""
     settings = request.settings()
@@ -113,7 +113,7 @@ def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC)
 
     def call(params=None, **keywords):
         req = request()
-        req.command = _call_text(name, params, keywords)
+        req.command = _call_text(f"{module}.{name}", params, keywords)
         req.params = params_of(params)
         progress = bool(keywords.pop("progress", False))
         run_keywords = {k: keywords.pop(k) for k in journal if k in keywords}
