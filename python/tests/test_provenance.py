@@ -68,6 +68,11 @@ class CliProvenance(unittest.TestCase):
         self.assertEqual(d["settings"]["excursions"], 256)
         self.assertIsNone(d["settings"]["x0"] if "x0" in d["settings"] else None)
 
+    def test_the_command_is_quoted_as_a_shell_would_need(self):
+        d = json.loads(self.cli("analytic", "--drift", "0.342 - v/0.067", "--format", "json"))
+        self.assertEqual(d["command"], "stickslip analytic --drift '0.342 - v/0.067' --format json --quiet")
+        self.assertEqual(d["settings"]["drift"], "0.342 - v/0.067")
+
     def test_csv_header_is_a_config_that_reproduces_the_run(self):
         with tempfile.TemporaryDirectory() as tmp:
             for args in RUNS:
