@@ -117,7 +117,7 @@ int run_command(int argc, char** argv) {
     const CleanupOnSignals cleanup_on_signals;
     try {
         for (const auto& a : actions)
-            if (a.app->parsed()) a.run();
+            if (a.app->parsed()) a.run(command_line(argc, argv));
     } catch (const stickslip::RunInterrupted& e) {
         return report(exit_code_of_signal(StopOnSignals::signal()), std::string("interrupted: ") + e.what());
     } catch (const stickslip::InvalidParameter& e) {

@@ -145,10 +145,11 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
     add_output_flags(sub, state->output);
     if constexpr (resumable<Request>()) add_checkpoint_flags(sub, state->checkpoint);
     sub->footer(kConventions);
-    return {sub, [state, compute, progress, customise, command] {
+    return {sub, [state, compute, progress, customise, command](const std::string& command_line) {
                 state->flags.apply();
                 read_output_flags(state->output);
                 Request& req = state->request;
+                req.command_line = command_line; // the reports' provenance
                 if constexpr (resumable<Request>()) read_checkpoint_flags(state->checkpoint);
                 if (state->flags.print_config()) {
                     // Checked as the run would check them: a config file
@@ -203,6 +204,23 @@ void sweep_progress(SweepRequest& req, bool quiet) {
 }
 
 } // namespace
+
+std::string command_line(int argc, char** argv) {
+    std::string line = "stickslip";
+    for (int k = 1; k < argc; ++k) {
+        const std::string arg = argv[k];
+        const bool plain = !arg.empty() && arg.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                                                 "0123456789_./:=,+-%@") == std::string::npos;
+        if (plain) {
+            line += " " + arg;
+            continue;
+        }
+        line += " '";
+        for (char c : arg) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        line += "'";
+    }
+    return printable_text(line); // one line, whatever bytes were given
+}
 
 std::vector<Action> register_all(CLI::App& app) {
     return {

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace stickslip::cli {
@@ -15,11 +16,17 @@ namespace stickslip::cli {
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitUntrustworthy = 3;
 
-/// A registered subcommand and what to do when it is the one parsed.
+/// A registered subcommand and what to do when it is the one parsed: `run`
+/// takes the command line (command_line()), which the reports record.
 struct Action {
     CLI::App* app;
-    std::function<void()> run;
+    std::function<void(const std::string& command)> run;
 };
+
+/// The command line as the reports record it: "stickslip" and the arguments
+/// after the program's name (which may be a path of this machine), each
+/// quoted for a POSIX shell where it needs it, so that it can be run again.
+std::string command_line(int argc, char** argv);
 
 std::vector<Action> register_all(CLI::App& app);
 

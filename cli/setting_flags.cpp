@@ -71,7 +71,7 @@ void SettingFlags::register_options(CLI::App* app) {
         std::string help = s.info.help;
         if (*s.info.unit) help += " [" + std::string(s.info.unit) + "]";
         const std::string flag = "--" + std::string(s.info.name);
-        if (s.kind == Kind::Flag) {
+        if (s.kind == SettingKind::Flag) {
             s.option = app->add_flag(flag)->description(help + " (also --" + std::string(s.info.name) +
                                                          "=true|false)");
         } else {
@@ -162,7 +162,7 @@ void SettingFlags::apply() {
         throw InvalidParameter("drift-table", "cannot be combined with --drift: give the law once");
     for (Setting& s : settings_) {
         if (s.option->count() == 0) continue;
-        if (s.kind == Kind::Flag) s.parse(flag_value(*s.option, s.info.name) ? "true" : "false");
+        if (s.kind == SettingKind::Flag) s.parse(flag_value(*s.option, s.info.name) ? "true" : "false");
         else s.parse(s.text);
     }
     print_config_ = flag_value(*print_config_option_, "print-config");
@@ -172,31 +172,7 @@ std::string SettingFlags::config_text(const std::string& command) const {
     std::string out = "# stickslip " + command + ": the effective settings (stickslip " + version() +
                       "). Run them again with\n#   stickslip " + command +
                       " --config FILE\n# and override any of them with flags.\n";
-    const std::vector<std::string> values = current_();
-    for (std::size_t k = 0; k < settings_.size(); ++k) {
-        const Setting& s = settings_[k];
-        const std::string& v = values[k];
-        std::string line = s.info.name + std::string(" = ");
-        if (v.empty() && s.kind != Kind::Text) {
-            line = "# " + line; // unset: its default depends on other settings
-        } else if (s.kind == Kind::Text) {
-            line += "\"" + v + "\"";
-        } else if (s.kind == Kind::List && v.find(':') != std::string::npos) {
-            line += "\"" + v + "\""; // lo:hi:n
-        } else if (s.kind == Kind::List) {
-            line += "[";
-            for (char c : v) line += c == ',' ? std::string(", ") : std::string(1, c);
-            line += "]";
-        } else if (v == "auto") {
-            line += "\"auto\""; // a NumberOrAuto left to the library
-        } else {
-            line += v;
-        }
-        if (line.size() < 32) line.resize(32, ' ');
-        line += "  # ";
-        if (*s.info.unit) line += "[" + std::string(s.info.unit) + "] ";
-        out += line + s.info.help + "\n";
-    }
+    for (const SettingEntry& entry : current_()) out += config_line(entry) + "\n";
     return out;
 }
 

@@ -40,11 +40,7 @@ public:
         visit_settings(request, [&](auto&& field, const SettingInfo& info) {
             add_setting<decltype(field)>(info, std::forward<decltype(field)>(field), defaults[k++]);
         });
-        current_ = [&request] {
-            std::vector<std::string> values;
-            visit_settings(request, [&](auto&& field, const SettingInfo&) { values.push_back(format_setting(field)); });
-            return values;
-        };
+        current_ = [&request] { return setting_entries(request); };
         register_options(app);
     }
 
@@ -60,13 +56,10 @@ public:
     std::string config_text(const std::string& command) const;
 
 private:
-    /// How a value is written in a config file.
-    enum class Kind { Number, Text, List, Flag };
-
     struct Setting {
         SettingInfo info;
         const char* form;
-        Kind kind;
+        SettingKind kind;
         std::string default_text; ///< the default, as --help shows it
         std::function<void(const std::string&)> parse; ///< text -> the request's field
         std::string text;         ///< the command line's value
@@ -81,11 +74,8 @@ private:
             parse = [&field, info](const std::string& text) { parse_setting(info, text, field); };
         else // a wrapper (OptionalNumber, ...) that holds references: keep a copy
             parse = [wrapper = Plain(field), info](const std::string& text) { parse_setting(info, text, wrapper); };
-        const Kind kind = std::is_same_v<Plain, bool> ? Kind::Flag
-                          : std::is_enum_v<Plain> || std::is_same_v<Plain, TextValue> ? Kind::Text
-                          : std::is_same_v<Plain, NumberList> || std::is_same_v<Plain, NumberRange> ? Kind::List
-                                                                                                    : Kind::Number;
-        settings_.push_back(Setting{info, info.form ? info.form : setting_form(field), kind, std::move(default_text),
+        settings_.push_back(Setting{info, info.form ? info.form : setting_form(field), setting_kind<Plain>(),
+                                    std::move(default_text),
                                     std::move(parse), {}, nullptr});
     }
 
@@ -93,7 +83,7 @@ private:
     Setting* find(const std::string& key);
 
     std::vector<Setting> settings_;
-    std::function<std::vector<std::string>()> current_; ///< the request's settings as text, in order
+    std::function<std::vector<SettingEntry>()> current_; ///< the request's settings with their values, in order
     CLI::Option* config_ = nullptr;
     CLI::Option* print_config_option_ = nullptr;
     std::string config_path_;

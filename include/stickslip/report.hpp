@@ -2,7 +2,9 @@
 // stickslip/report.hpp -- machine- and human-readable reports of results.
 //
 // The JSON schema is a contract that users script against (documented in
-// README.md, section "JSON output"); the Python module's to_dict() is the same object. Infinite
+// README.md, section "JSON output"); the Python module's to_dict() is the same object.
+// Every output says what produced it: the JSON's "command" and "settings"
+// (before "version" and "revision"), the CSV's '#' lines (report/common.hpp). Infinite
 // relaxation is written as the string "inf". Timing lives under "work" so that
 // results can be compared with it removed.
 #pragma once
@@ -39,8 +41,10 @@ std::string to_table(const DiffusivityResult& r);
 /// The brute-force result as a table with units, physical and nondimensional.
 std::string to_table(const BruteForceResult& r);
 
-/// CSV: a header line and one row per value (no comment lines, so any CSV
-/// reader takes it); warnings are not part of it (the CLI prints them on stderr).
+/// CSV: '#' comment lines of provenance (version, revision, command, seed,
+/// every setting as a config line), a header line and one row per value,
+/// every number with all its digits (the shortest round-trip text); warnings
+/// are not part of it (the CLI prints them on stderr).
 std::string to_csv(const DiffusivityResult& r);
 /// The brute-force result as CSV (as for DiffusivityResult).
 std::string to_csv(const BruteForceResult& r);

@@ -42,6 +42,11 @@ struct RunSettings {
     /// process split (runner.hpp).
     RunControl control;
     double level = 0.95; ///< confidence level of the intervals, in (0, 1)
+    /// What asked for the run, as the reports' provenance gives it: the
+    /// command line after the program's name (`stickslip diffusivity
+    /// --excursions 2000`), or the Python call; empty for a library call (the
+    /// reports then write null). Not a setting: it changes no result.
+    std::string command_line;
 };
 
 /// The shared settings, as the command line, config files and Python name

@@ -168,6 +168,54 @@ const char* setting_form(const NumberRange&);
 const char* setting_form(const TextValue&);
 /// @}
 
+// ---- the settings of a request, as a config file and a report give them ----------
+
+/// How a setting's value is written in a config file (--print-config) and in
+/// a report's "settings": a number (integers included; "inf", "auto" and the
+/// empty text of an unset value are its other forms), a text (an enum's
+/// choice, an expression, a path: quoted), a list of numbers (NumberList,
+/// NumberRange) or a flag (true/false).
+enum class SettingKind { Number, Text, List, Flag };
+
+/// The kind of a setting by its field's type (see SettingKind).
+template <class Field>
+constexpr SettingKind setting_kind() {
+    using T = std::decay_t<Field>;
+    if constexpr (std::is_same_v<T, bool>) return SettingKind::Flag;
+    else if constexpr (std::is_enum_v<T> || std::is_same_v<T, TextValue>) return SettingKind::Text;
+    else if constexpr (std::is_same_v<T, NumberList> || std::is_same_v<T, NumberRange>) return SettingKind::List;
+    else return SettingKind::Number;
+}
+
+/// One setting of a request with its value: what --print-config writes on one
+/// line, and what the reports' provenance ("settings" in JSON, the comment
+/// lines of CSV) holds.
+struct SettingEntry {
+    SettingInfo info;  ///< its name, unit and help
+    SettingKind kind;  ///< how its value is written
+    std::string text;  ///< the value, format_setting()'s text ("" when unset)
+};
+
+/// Every setting of `request`, in the order of its visit_settings(): the one
+/// list from which --print-config and every report's provenance are written.
+template <class Request>
+std::vector<SettingEntry> setting_entries(const Request& request) {
+    Request copy = request; // visit_settings takes its request by reference, to write into it
+    std::vector<SettingEntry> out;
+    visit_settings(copy, [&](auto&& field, const SettingInfo& info) {
+        out.push_back(SettingEntry{info, setting_kind<decltype(field)>(), format_setting(field)});
+    });
+    return out;
+}
+
+/// The setting as one line of a config file (TOML): `name = value`, the value
+/// quoted for a text, "auto" or lo:hi:n, in brackets for a list; an unset
+/// value (empty text: its default depends on other settings) as the comment
+/// `# name = `. With `help`, padded and followed by `  # [unit] help`.
+/// --print-config writes these lines, and so does a CSV report's header, so
+/// that a config file made from either reproduces the run.
+std::string config_line(const SettingEntry& setting, bool help = true);
+
 /// `text` as a message may quote it: every control byte, and every byte that is
 /// not part of valid UTF-8, written as \\xNN (so that a message stays one
 /// readable line whatever a user or a file gave).

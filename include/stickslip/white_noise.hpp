@@ -35,6 +35,9 @@ struct WhiteNoiseRequest {
     /// Velocities [m/s] at which to evaluate the stationary (Hayakawa) density
     /// and, for every time t > 0, the transition density p(v, t | v0).
     std::vector<double> velocities;
+    /// What asked for the references (the command line, a Python call), as
+    /// RunSettings::command_line; not a setting.
+    std::string command_line;
 };
 
 /// The request's settings: the model's without --tau, then --v0, --times

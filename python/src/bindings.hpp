@@ -10,6 +10,8 @@
 #include <pybind11/stl.h>
 
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "stickslip/stats/estimators.hpp"
@@ -36,7 +38,22 @@ py::object json_loads(const std::string& text);
 struct EstimateSeries {
     std::vector<Estimate> items;
     double level = 0.95;
+    /// The arrays' shape ((n_tau, n_noise) for a sweep); empty: (n,).
+    std::vector<py::ssize_t> shape;
 };
+
+/// A note of the library as Python says it: every flag of a setting
+/// (--max-steps) written as its keyword (max_steps), from the one table that
+/// visit_settings generates (keyword_table()).
+std::string python_text(const std::string& note);
+/// The table: flag ("--max-steps") -> keyword ("max_steps"), for every
+/// setting of every request (the model's included: Params' keywords) and the
+/// checkpoint flags.
+const std::vector<std::pair<std::string, std::string>>& keyword_table();
+
+/// Writes `bytes` to `path` as the CLI writes --output: a regular file (or a
+/// new one) atomically, a device or FIFO directly (detail/atomic_file.hpp).
+void write_output_file(const std::string& path, std::string_view bytes);
 
 /// Python repr of a float ("inf" written as float('inf')).
 std::string float_repr(double x);

@@ -207,6 +207,7 @@ py::array_t<double> series_column(const EstimateSeries& s, Get get) {
     py::array_t<double> a(static_cast<py::ssize_t>(s.items.size()));
     auto* d = a.mutable_data();
     for (std::size_t k = 0; k < s.items.size(); ++k) d[k] = get(s.items[k]);
+    if (!s.shape.empty()) return a.reshape(s.shape);
     return a;
 }
 
@@ -409,7 +410,7 @@ void bind_core(py::module_& m) {
     py::class_<EstimateSeries>(m, "EstimateSeries",
                                "Estimates along an axis (bins, lags, times, sweep points), as NumPy arrays: "
                                "value, stderr, lo, hi (shape (n,)) and ci (shape (n, 2)). np.asarray(s) is "
-                               "s.value; s[k] is the k-th Estimate.")
+                               "s.value; s[k] is the k-th Estimate (in flat order), s[i, j] that of a 2-D series (a sweep).")
         .def_property_readonly("value", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.value; });
         })
@@ -430,11 +431,33 @@ void bind_core(py::module_& m) {
                                        r(static_cast<py::ssize_t>(k), 0) = s.items[k].lo;
                                        r(static_cast<py::ssize_t>(k), 1) = s.items[k].hi;
                                    }
-                                   return a;
+                                   if (s.shape.empty()) return a;
+                                   std::vector<py::ssize_t> shape = s.shape;
+                                   shape.push_back(2);
+                                   return py::array_t<double>(a.reshape(shape));
                                },
-                               "shape (n, 2): the intervals [lo, hi]")
+                               "shape (n, 2), or the series' shape + (2,): the intervals [lo, hi]")
+        .def_property_readonly(
+            "shape",
+            [](const EstimateSeries& s) {
+                py::tuple t(s.shape.empty() ? 1 : s.shape.size());
+                if (s.shape.empty()) t[0] = py::int_(s.items.size());
+                for (std::size_t k = 0; k < s.shape.size(); ++k) t[k] = py::int_(s.shape[k]);
+                return t;
+            },
+            "the arrays' shape: (n,), or (n_tau, n_noise) for a sweep")
         .def_readonly("level", &EstimateSeries::level)
         .def("__len__", [](const EstimateSeries& s) { return s.items.size(); })
+        .def("__getitem__",
+             [](const EstimateSeries& s, py::tuple index) {
+                 // (i, j) of a 2-D series (a sweep's (tau, noise)): row-major
+                 if (s.shape.size() != 2 || index.size() != 2)
+                     throw py::index_error("EstimateSeries takes (i, j) only when 2-D");
+                 const auto i = index[0].cast<py::ssize_t>(), j = index[1].cast<py::ssize_t>();
+                 if (i < 0 || j < 0 || i >= s.shape[0] || j >= s.shape[1])
+                     throw py::index_error("EstimateSeries index out of range");
+                 return s.items[static_cast<std::size_t>(i * s.shape[1] + j)];
+             })
         .def("__getitem__",
              [](const EstimateSeries& s, py::ssize_t k) {
                  const auto n = static_cast<py::ssize_t>(s.items.size());

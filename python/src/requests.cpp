@@ -21,7 +21,11 @@
 // with progress=True the waiting thread prints it on sys.stderr. Runs through
 // the block driver take checkpoint=, checkpoint_every= and resume=
 // (checkpoint.hpp), exactly as the command line's --checkpoint flags.
+#include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -35,6 +39,7 @@
 #include "bindings.hpp"
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/checkpoint.hpp"
+#include "stickslip/detail/atomic_file.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
@@ -196,7 +201,25 @@ struct Monitor {
         };
     }
 
-    /// One progress line on sys.stderr (needs the GIL). Errors are ignored.
+    /// Whether a line without its newline is on sys.stderr.
+    bool open_line = false;
+
+    /// Ends the progress line, if one is open (needs the GIL): whatever
+    /// follows, a traceback or the next output, starts on a line of its own.
+    void end_line() {
+        if (!open_line) return;
+        open_line = false;
+        try {
+            py::object err = py::module_::import("sys").attr("stderr");
+            if (err.is_none()) return;
+            err.attr("write")("\n");
+            err.attr("flush")();
+        } catch (py::error_already_set&) {
+        }
+    }
+
+    /// One progress line on sys.stderr (needs the GIL); `final` ends it with
+    /// a newline. Errors are ignored.
     void print(bool final) {
         std::uint64_t d, t;
         double s;
@@ -219,6 +242,7 @@ struct Monitor {
             if (err.is_none()) return;
             err.attr("write")(line);
             err.attr("flush")();
+            open_line = !final;
         } catch (py::error_already_set&) {
         }
     }
@@ -254,12 +278,9 @@ Result run_interruptible(std::function<Result()> work, Monitor& mon, bool show_p
             }
         }
     }
-    if (show_progress && interrupted) {
-        try {
-            py::module_::import("sys").attr("stderr").attr("write")("\n");
-        } catch (py::error_already_set&) {
-        }
-    }
+    // Whatever ends the run (a result, Ctrl-C, an error), a progress line
+    // printed is ended with a newline.
+    if (interrupted) mon.end_line();
     auto raise_with = [&](py::object result) {
         try {
             py::setattr(interrupted->value(), "result", std::move(result));
@@ -268,15 +289,20 @@ Result run_interruptible(std::function<Result()> work, Monitor& mon, bool show_p
         throw *interrupted;
     };
     try {
-        Result r = fut.get();
-        if (interrupted) raise_with(py::cast(r)); // the prefix of the run (or all of it, if it ended first)
-        if (show_progress) mon.print(true);
-        return r;
-    } catch (const RunCancelled&) {
-        if (interrupted) raise_with(py::none());
-        throw;
-    } catch (const RunInterrupted&) {
-        if (interrupted) raise_with(py::none());
+        try {
+            Result r = fut.get();
+            if (interrupted) raise_with(py::cast(r)); // the prefix of the run (or all of it, if it ended first)
+            if (show_progress) mon.print(true);
+            return r;
+        } catch (const RunCancelled&) {
+            if (interrupted) raise_with(py::none());
+            throw;
+        } catch (const RunInterrupted&) {
+            if (interrupted) raise_with(py::none());
+            throw;
+        }
+    } catch (...) {
+        mon.end_line(); // an error: its traceback starts on a line of its own
         throw;
     }
 }
@@ -386,6 +412,11 @@ void bind_request(py::module_& m, const char* name, const char* doc) {
         .def_property(
             "params", [](const Request& r) { return r.params; },
             [](Request& r, const ModelParams& p) { r.params = p; }, "The model parameters (Params).")
+        .def_property(
+            "command", [](const Request& r) { return r.command_line; },
+            [](Request& r, std::string c) { r.command_line = std::move(c); },
+            "What asks for the run, as the result's JSON (\"command\") and CSV ('# command:') record it: the "
+            "keyword functions set their call; '' (the default) records null.")
         .def("validate", [](const Request& r) { validate(r); },
              "Check the request as a run would (InvalidParameterError on the first problem).")
         .def_static("settings", &describe<Request>,
@@ -393,9 +424,91 @@ void bind_request(py::module_& m, const char* name, const char* doc) {
                     "'default_text', 'form'.");
 }
 
+/// Adds every setting of `Request` to the flag -> keyword table.
+template <class Request>
+void add_keywords(std::vector<std::pair<std::string, std::string>>& table) {
+    Request r;
+    visit_settings(r, [&](auto&&, const SettingInfo& info) {
+        const std::string flag = std::string("--") + info.name;
+        for (const auto& [f, k] : table)
+            if (f == flag) return;
+        table.emplace_back(flag, keyword_of(info.name));
+    });
+}
+
 } // namespace
 
+const std::vector<std::pair<std::string, std::string>>& keyword_table() {
+    static const auto table = [] {
+        std::vector<std::pair<std::string, std::string>> t;
+        add_keywords<DiffusivityRequest>(t);
+        add_keywords<BruteForceRequest>(t);
+        add_keywords<DensityRequest>(t);
+        add_keywords<CorrelationRequest>(t);
+        add_keywords<MomentsRequest>(t);
+        add_keywords<TrajectoryRequest>(t);
+        add_keywords<SweepRequest>(t);
+        add_keywords<WhiteNoiseRequest>(t);
+        for (const char* flag : {"checkpoint", "checkpoint-every", "resume"})
+            t.emplace_back(std::string("--") + flag, keyword_of(flag));
+        return t;
+    }();
+    return table;
+}
+
+std::string python_text(const std::string& note) {
+    // Every "--name" that is a flag of a setting, whole (not the start of a
+    // longer flag), becomes its keyword; anything else is left as it is.
+    const auto& table = keyword_table();
+    std::string out;
+    std::size_t k = 0;
+    while (k < note.size()) {
+        if (note.compare(k, 2, "--") == 0 && (k == 0 || note[k - 1] != '-')) {
+            std::size_t end = k + 2;
+            while (end < note.size() && (std::isalnum(static_cast<unsigned char>(note[end])) || note[end] == '-'))
+                ++end;
+            const std::string flag = note.substr(k, end - k);
+            const auto it = std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.first == flag; });
+            if (it != table.end()) {
+                out += it->second;
+                k = end;
+                continue;
+            }
+        }
+        out += note[k++];
+    }
+    return out;
+}
+
+void write_output_file(const std::string& path, std::string_view bytes) {
+    const detail::FileTarget t = detail::resolve_target(path);
+    if (t.error != 0 || t.kind == detail::FileTarget::Kind::directory)
+        throw py::value_error("cannot write '" + path + "': " +
+                              std::strerror(t.error != 0 ? t.error : EISDIR));
+    if (t.kind == detail::FileTarget::Kind::missing || t.kind == detail::FileTarget::Kind::regular) {
+        py::gil_scoped_release nogil;
+        detail::write_file_atomically(t.path, bytes); // a temporary renamed into place, as --output
+        return;
+    }
+    py::object f = py::module_::import("builtins").attr("open")(path, "wb"); // a device, FIFO: written through
+    f.attr("write")(py::bytes(bytes.data(), bytes.size()));
+    f.attr("close")();
+}
+
 void bind_requests(py::module_& m) {
+    {
+        py::dict table;
+        for (const auto& [flag, keyword] : keyword_table()) table[py::str(flag)] = keyword;
+        m.attr("keyword_of_flag") = table; // the CLI's flag -> the Python keyword, generated from the settings
+    }
+    m.def("python_text", &python_text, py::arg("note"),
+          "A note of the library with every setting's flag written as its Python keyword (keyword_of_flag).");
+    m.def(
+        "write_output_file",
+        [](const std::string& path, py::bytes data) { write_output_file(path, std::string(data)); },
+        py::arg("path"), py::arg("data"),
+        "Write bytes to path as the CLI's --output does: a regular or new file atomically (a temporary in its "
+        "folder renamed into place: nothing left behind on failure), a device or FIFO directly.");
     py::dict checkpoint_help;
     checkpoint_help["checkpoint"] = CheckpointOptions::path_help;
     checkpoint_help["checkpoint_every"] = CheckpointOptions::every_help;

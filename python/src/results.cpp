@@ -3,6 +3,7 @@
 // request, requests.cpp): attributes as NumPy arrays and Estimates, and the
 // CLI's renderings (to_dict() is the CLI's JSON).
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "bindings.hpp"
@@ -28,8 +29,29 @@ void add_renderings(Cls& cls) {
             "to_dict", [](const R& r) { return json_loads(to_json(r, -1)); },
             "json.loads(self.to_json()): exactly the object the CLI prints with --format json.")
         .def("to_table", [](const R& r) { return to_table(r); }, "The CLI's --format table output.")
-        .def("to_csv", [](const R& r) { return to_csv(r); }, "The CLI's --format csv output.")
-        .def_readonly("warnings", &R::warnings, "Notes on the result (list of str), as in the CLI output.");
+        .def("to_csv", [](const R& r) { return to_csv(r); },
+             "The CLI's --format csv output: '#' comment lines (version, revision, command, seed, settings), "
+             "then a header line and the rows.")
+        .def_property_readonly(
+            "warnings",
+            [](const R& r) {
+                std::vector<std::string> out;
+                for (const std::string& w : r.warnings) out.push_back(python_text(w));
+                return out;
+            },
+            "Notes on the result (list of str), as in the CLI output with the settings named by their Python "
+            "keywords; the keyword functions and run() also raise each as a StickslipWarning.")
+        .def_property_readonly(
+            "meta",
+            [](const R& r) {
+                py::dict all = json_loads(to_json(r, -1));
+                py::dict meta;
+                for (const char* key : {"command", "settings", "version", "revision"})
+                    if (all.contains(key)) meta[key] = all[key];
+                return meta;
+            },
+            "What produced the result, as its JSON and CSV give it: {'command' (the call, or None), 'settings' "
+            "(every setting, as --print-config writes them), 'version', 'revision' (when known)}.");
 }
 
 template <class R, class Cls>
@@ -76,7 +98,7 @@ void add_long_excursion(Cls& cls, Get get) {
             "completed", [get](const R& r) { return get(r).excursions; }, "completed long excursions");
 }
 
-EstimateSeries series(const std::vector<Estimate>& v, double level) { return EstimateSeries{v, level}; }
+EstimateSeries series(const std::vector<Estimate>& v, double level) { return EstimateSeries{v, level, {}}; }
 
 std::string g4(double x) { return number_text::general(x, 4); }
 
@@ -474,15 +496,33 @@ void bind_results(py::module_& m) {
             });
         py::class_<R> c(m, "SweepResult",
                         "D, M0 and E[t1] over a grid of noise and tau (stickslip.sweep). Points are tau-major "
-                        "(for each tau in `taus`, the noises in `noises`, both sorted and deduplicated), so "
-                        "r.diffusivity.value.reshape(r.shape) has shape (len(taus), len(noises)). "
+                        "(for each tau in `taus`, the noises in `noises`, both sorted and deduplicated), and every "
+                        "array has shape (len(taus), len(noises)): axis 0 is `taus`, axis 1 `noises`. "
                         "to_dict() is the CLI's JSON.");
         add_renderings<R>(c);
-        auto column = [](const R& r, auto get) {
-            std::vector<Estimate> v;
-            v.reserve(r.points.size());
-            for (const auto& p : r.points) v.push_back(get(p));
-            return series(v, r.request.level);
+        // (n_tau, n_noise), tau-major as the points are run; the points an
+        // interrupted sweep did not reach are NaN.
+        auto grid_shape = [](const R& r) {
+            return std::vector<py::ssize_t>{static_cast<py::ssize_t>(r.request.taus.size()),
+                                            static_cast<py::ssize_t>(r.request.noises.size())};
+        };
+        auto column = [grid_shape](const R& r, auto get) {
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            std::vector<Estimate> v(r.request.taus.size() * r.request.noises.size(),
+                                    Estimate{nan, nan, nan, nan, r.request.level});
+            for (std::size_t k = 0; k < r.points.size() && k < v.size(); ++k) v[k] = get(r.points[k]);
+            EstimateSeries out = series(v, r.request.level);
+            out.shape = grid_shape(r);
+            return out;
+        };
+        auto grid_axis = [grid_shape](const R& r, bool tau) {
+            py::array_t<double> a(grid_shape(r));
+            auto g = a.mutable_unchecked<2>();
+            for (py::ssize_t i = 0; i < g.shape(0); ++i)
+                for (py::ssize_t j = 0; j < g.shape(1); ++j)
+                    g(i, j) = tau ? r.request.taus[static_cast<std::size_t>(i)]
+                                  : r.request.noises[static_cast<std::size_t>(j)];
+            return a;
         };
         c.def_property_readonly(
              "params", [](const R& r) { return r.request.params; },
@@ -495,36 +535,27 @@ void bind_results(py::module_& m) {
                 "shape", [](const R& r) { return py::make_tuple(r.request.taus.size(), r.request.noises.size()); },
                 "(len(taus), len(noises))")
             .def_property_readonly(
-                "noise",
-                [](const R& r) {
-                    std::vector<double> v;
-                    for (const auto& p : r.points) v.push_back(p.noise);
-                    return to_array(v);
-                },
-                "noise of every point [m^2 s^-3], shape (points,)")
+                "noise", [grid_axis](const R& r) { return grid_axis(r, false); },
+                "noise of every point [m^2 s^-3], shape (len(taus), len(noises)) (noises along axis 1)")
             .def_property_readonly(
-                "tau",
-                [](const R& r) {
-                    std::vector<double> v;
-                    for (const auto& p : r.points) v.push_back(p.tau);
-                    return to_array(v);
-                },
-                "tau of every point [s], shape (points,)")
+                "tau", [grid_axis](const R& r) { return grid_axis(r, true); },
+                "tau of every point [s], shape (len(taus), len(noises)) (taus along axis 0)")
             .def_property_readonly(
                 "diffusivity",
                 [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.estimates.diffusivity; }); },
-                "D [m^2/s] per point (EstimateSeries)")
+                "D [m^2/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep did not reach)")
             .def_property_readonly(
                 "mobility",
                 [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.estimates.mobility; }); },
-                "M0 [m/s] per point (EstimateSeries)")
+                "M0 [m/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep did not reach)")
             .def_property_readonly(
                 "mean_duration",
                 [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.estimates.mean_duration; }); },
-                "E[t1] [s] per point (EstimateSeries)")
+                "E[t1] [s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep did not reach)")
             .def_property_readonly(
                 "slope", [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.slope; }); },
-                "local d log D / d log noise per point (EstimateSeries; NaN with one noise value)")
+                "local d log D / d log noise per point (EstimateSeries, shape (len(taus), len(noises)); NaN with one noise "
+                "value)")
             .def_property_readonly(
                 "stop_rule",
                 [](const R& r) {

@@ -45,6 +45,15 @@ r.set("excursions", 2000); stickslip.run(r)``).
 Exact white-noise references (no simulation), vectorised over NumPy arrays:
 the submodule ``stickslip.analytic``.
 
+Every result says what produced it: ``result.meta`` is {"command": the call,
+"settings": every setting as ``--print-config`` writes them, "version",
+"revision"}, also in its JSON, its CSV's '#' comment lines and the .npz files
+of ``result.save("run.npz")`` (or .json, .csv, .txt; written atomically).
+``result.to_dataframe()`` (with pandas) and ``result.to_columns()`` give it as
+a table, one row per point or bin, NAME_stderr, NAME_lo and NAME_hi beside
+each estimate NAME. Its notes (``result.warnings``) are raised as
+``StickslipWarning``, naming the keywords rather than the CLI's flags.
+
 Results are objects with NumPy-array attributes; estimates are ``Estimate``
 (``.value``, ``.stderr``, ``.ci``) or, along an axis, ``EstimateSeries``
 (arrays ``.value``, ``.stderr``, ``.lo``, ``.hi``, ``.ci`` of shape (n, 2)).
@@ -91,9 +100,13 @@ from ._core import (  # noqa: F401  (re-exported)
     TrajectoryRequest,
     TrajectoryResult,
     __version__,
-    run,
+    keyword_of_flag,
 )
 from . import analytic  # noqa: E402,F401
+from ._commands import StickslipWarning, run  # noqa: E402,F401
+from . import _tables  # noqa: E402
+
+_tables.install()  # to_columns, to_dataframe, to_npz, save on every result class
 
 _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityRequest, MomentsRequest,
              SweepRequest, TrajectoryRequest)
@@ -101,7 +114,7 @@ _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityR
 for _cls in (BruteForceResult, CorrelationResult, DensityResult, DiffusivityResult, Estimate, EstimateSeries,
              GridEstimate, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
              TrajectoryResult,
-             InvalidParameterError, UntrustworthyResultError, CappedExcursionsError) + _REQUESTS:
+             InvalidParameterError, UntrustworthyResultError, CappedExcursionsError, StickslipWarning) + _REQUESTS:
     _cls.__module__ = __name__
 run.__module__ = __name__
 del _cls
@@ -112,7 +125,8 @@ __all__ = [
     "TrajectoryResult", "SweepResult", "SweepExponent",
     "DiffusivityRequest", "BruteForceRequest", "DensityRequest", "CorrelationRequest", "MomentsRequest",
     "TrajectoryRequest", "SweepRequest", "run",
-    "InvalidParameterError", "UntrustworthyResultError", "CappedExcursionsError",
+    "InvalidParameterError", "UntrustworthyResultError", "CappedExcursionsError", "StickslipWarning",
+    "keyword_of_flag",
     "diffusivity", "bruteforce", "density", "correlation", "moments", "trajectory", "sweep",
     "logspace", "analytic", "__version__",
 ]
@@ -226,8 +240,8 @@ D, M0 and E[t1] over a grid of noise intensities and correlation times.
     and tau are not used); noise and tau are sequences (sorted and
     deduplicated), e.g. noise=logspace(1, 10, 5).""", """\
     SweepResult
-        Points tau-major (for each tau, the noises increasing): .noise, .tau
-        (points,), .diffusivity, .mobility, .mean_duration, .slope
-        (EstimateSeries, (points,)); .shape = (len(taus), len(noises)) for
-        reshaping; .exponents (one SweepExponent per tau). .to_dict() is the
-        CLI's JSON.""")
+        Every array has shape (len(taus), len(noises)): axis 0 is .taus,
+        axis 1 .noises (points an interrupted sweep did not reach are NaN):
+        .noise, .tau (each point's), .diffusivity, .mobility,
+        .mean_duration, .slope (EstimateSeries); .shape; .exponents (one
+        SweepExponent per tau). .to_dict() is the CLI's JSON.""")

@@ -32,6 +32,7 @@ from ._core import (
     TrajectoryResult as TrajectoryResult,
     UntrustworthyResultError as UntrustworthyResultError,
     __version__ as __version__,
+    keyword_of_flag as keyword_of_flag,
     run as run,
 )
 
@@ -39,6 +40,8 @@ import numpy.typing as npt
 
 _ParamsLike = Union[Params, Mapping[str, float], None]
 _Numbers = Union[Sequence[float], npt.NDArray]
+
+class StickslipWarning(UserWarning): ...
 
 def logspace(lo: float, hi: float, n: int) -> List[float]: ...
 

@@ -6,8 +6,40 @@ keywords, defaults, units and help all come from the request's own settings
 nothing is restated here.
 """
 import inspect as _inspect
+import warnings as _warnings
 
-from ._core import Params, checkpoint_every_default, checkpoint_help, run
+from ._core import Params, checkpoint_every_default, checkpoint_help, run as _run
+
+
+class StickslipWarning(UserWarning):
+    """A note on a result (a coarse step, few samples, capped excursions...):
+    each of a result's `warnings` is raised as one when the result is
+    returned, its advice naming the Python keywords (``max_steps``), not the
+    CLI's flags. Filter them as any warning, e.g.
+    ``warnings.simplefilter("ignore", stickslip.StickslipWarning)``."""
+
+
+def warn_notes(result, stacklevel):
+    """Raise each note of `result` as a StickslipWarning, attributed to the
+    frame `stacklevel` levels above the caller of this function."""
+    for note in result.warnings:
+        _warnings.warn(note, StickslipWarning, stacklevel=stacklevel + 1)
+
+
+def run(request, progress=False, **keywords):
+    result = _run(request, progress, **keywords)
+    warn_notes(result, 2)
+    return result
+
+
+run.__doc__ = _run.__doc__.split("\n", 1)[-1].lstrip() if _run.__doc__ and _run.__doc__.startswith("run(") else _run.__doc__
+
+
+def _call_text(name, params, keywords):
+    """The call as the result records it (its JSON's "command"): one line."""
+    args = [] if params is None else [repr(params)]
+    args += [f"{k}={v!r}" for k, v in keywords.items()]
+    return " ".join(f"{name}({', '.join(args)})".split())
 
 
 _PARAMS_DOC = f"""\
@@ -29,6 +61,11 @@ _CHECKPOINT_DOC = f"""\
         {checkpoint_help["resume"]}."""
 
 _RAISES_DOC = """\
+    Warns
+    -----
+    StickslipWarning
+        Each note of the result (also in its `warnings`).
+
     Raises
     ------
     InvalidParameterError (ValueError)
@@ -66,7 +103,7 @@ def _setting_doc(s):
     return f"    {s['keyword']} : {kind}\n        {s['help']}{unit}{default}."
 
 
-def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC):
+def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC, module="stickslip"):
     """The keyword function `name`: Request() from its defaults, the keywords
     given set through the library's parser, then run()."""
     settings = request.settings()
@@ -76,6 +113,7 @@ def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC)
 
     def call(params=None, **keywords):
         req = request()
+        req.command = _call_text(f"{module}.{name}", params, keywords)
         req.params = params_of(params)
         progress = bool(keywords.pop("progress", False))
         run_keywords = {k: keywords.pop(k) for k in journal if k in keywords}
@@ -86,7 +124,9 @@ def command(name, request, summary, returns, example="", params_doc=_PARAMS_DOC)
                 if str(e).startswith("unexpected keyword"):
                     raise TypeError(f"{name}() got an {e}") from None
                 raise
-        return run(req, progress, **run_keywords)
+        result = _run(req, progress, **run_keywords)
+        warn_notes(result, 2)
+        return result
 
     kw = _inspect.Parameter.KEYWORD_ONLY
     call.__signature__ = _inspect.Signature(

@@ -99,7 +99,9 @@ class GridEstimate:
 
 class EstimateSeries:
     @property
-    def value(self) -> FloatArray: ...   # (n,)
+    def shape(self) -> Tuple[int, ...]: ...  # (n,), or (n_tau, n_noise) for a sweep
+    @property
+    def value(self) -> FloatArray: ...   # (n,); a sweep: (n_tau, n_noise)
     @property
     def stderr(self) -> FloatArray: ...  # (n,)
     @property
@@ -107,7 +109,7 @@ class EstimateSeries:
     @property
     def hi(self) -> FloatArray: ...      # (n,)
     @property
-    def ci(self) -> FloatArray: ...      # (n, 2)
+    def ci(self) -> FloatArray: ...      # (n, 2); a sweep: (n_tau, n_noise, 2)
     @property
     def level(self) -> float: ...
     def __len__(self) -> int: ...
@@ -153,7 +155,14 @@ class _Rendered:
     def to_json(self, indent: int = 2) -> str: ...
     def to_dict(self) -> dict[str, Any]: ...
     def to_table(self) -> str: ...
-    def to_csv(self) -> str: ...
+    def to_csv(self) -> str: ...  # '#' lines of provenance, a header, the rows
+    @property
+    def meta(self) -> dict[str, Any]: ...  # {'command', 'settings', 'version', 'revision'}
+    # Added by the package (stickslip/_tables.py):
+    def to_columns(self) -> dict[str, npt.NDArray[Any]]: ...  # one row per point or bin
+    def to_dataframe(self) -> Any: ...  # pandas.DataFrame of to_columns(); ImportError without pandas
+    def to_npz(self, path: str) -> None: ...  # to_columns() and meta, atomically
+    def save(self, path: str) -> None: ...  # .npz, .json, .csv or .txt, atomically
 
 class _Totals(_Rendered):
     @property
@@ -307,9 +316,9 @@ class SweepResult(_Rendered):
     @property
     def shape(self) -> Tuple[int, int]: ...
     @property
-    def noise(self) -> FloatArray: ...
+    def noise(self) -> FloatArray: ...  # (n_tau, n_noise)
     @property
-    def tau(self) -> FloatArray: ...
+    def tau(self) -> FloatArray: ...  # (n_tau, n_noise)
     @property
     def diffusivity(self) -> EstimateSeries: ...
     @property
@@ -381,6 +390,7 @@ class _Request:
     def set(self, keyword: str, value: Any) -> None: ...
     def get(self, keyword: str) -> Any: ...
     params: Params
+    command: str  # what asks for the run, as its JSON and CSV record it ('' records null)
     def validate(self) -> None: ...
     @staticmethod
     def settings() -> List[Dict[str, Any]]: ...
@@ -402,6 +412,10 @@ def run(
     checkpoint_every: float = 60.0,
     resume: Optional[str] = None,
 ) -> Any: ...
+
+keyword_of_flag: Dict[str, str]  # "--max-steps" -> "max_steps", for every setting
+def python_text(note: str) -> str: ...
+def write_output_file(path: str, data: bytes) -> None: ...
 
 checkpoint_help: Dict[str, str]
 checkpoint_every_default: float

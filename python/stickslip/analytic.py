@@ -204,5 +204,5 @@ Every exact white-noise reference for one parameter set: what ``stickslip analyt
         .transient_density (n, m) (NaN rows at t = 0); .method;
         .to_dict() is the CLI's JSON.""", params_doc="""\
     params : Params
-        friction, noise, relaxation, bias (tau is not used).""")
+        friction, noise, relaxation, bias (tau is not used).""", module="stickslip.analytic")
 white_noise.__module__ = __name__

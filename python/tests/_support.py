@@ -53,10 +53,15 @@ def cli_error(*args):
 
 
 def without_work(d):
-    """A CLI/to_dict() JSON object without its timing parts ("work", also per sweep point)."""
+    """A CLI/to_dict() JSON object without its timing parts ("work", also per
+    sweep point) and what says how the run was asked for rather than what it
+    computed: the command (a command line, a Python call) and the thread count."""
     d = dict(d)
     d.pop("work", None)
     d.pop("revision", None)
+    d.pop("command", None)
+    if "settings" in d:
+        d["settings"] = {k: v for k, v in d["settings"].items() if k != "threads"}
     if "points" in d and isinstance(d["points"], list):
         d["points"] = [{k: v for k, v in p.items() if k != "work"} for p in d["points"]]
     return d

@@ -106,11 +106,10 @@ class SweepTest(unittest.TestCase):
                             seed=6)
         self.assertEqual(r.shape, (2, 3))
         self.assertEqual(list(r.taus), [0.25, 0.5])
-        self.assertEqual(r.diffusivity.value.shape, (6,))
-        self.assertEqual(r.diffusivity.value.reshape(r.shape).shape, (2, 3))
-        self.assertEqual(list(r.noise[:3]), list(r.noises))
-        self.assertEqual(list(r.tau), [0.25] * 3 + [0.5] * 3)
-        self.assertEqual(r.slope.value.shape, (6,))
+        self.assertEqual(r.diffusivity.value.shape, (2, 3))  # (n_tau, n_noise): axis 0 taus, axis 1 noises
+        self.assertEqual(list(r.noise[0]), list(r.noises))
+        self.assertEqual(r.tau.tolist(), [[0.25] * 3, [0.5] * 3])
+        self.assertEqual(r.slope.value.shape, (2, 3))
         self.assertEqual(len(r.exponents), 2)
         self.assertTrue(math.isfinite(r.exponents[0].exponent.value))
         cli = cli_json("sweep", "--noise", "3:10:3", "--tau", "0.5,0.25", "--engine", "pdmp", "--excursions", "64",

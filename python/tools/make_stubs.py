@@ -33,6 +33,8 @@ import numpy.typing as npt
 _ParamsLike = Union[Params, Mapping[str, float], None]
 _Numbers = Union[Sequence[float], npt.NDArray]
 
+class StickslipWarning(UserWarning): ...
+
 def logspace(lo: float, hi: float, n: int) -> List[float]: ...
 '''
 
@@ -60,7 +62,8 @@ def annotation(s):
 
 
 def stub_text():
-    names = sorted({n for n in stickslip.__all__ if n[0].isupper()} | {"__version__", "run"})
+    names = sorted(({n for n in stickslip.__all__ if n[0].isupper()} - {"StickslipWarning"})
+                   | {"__version__", "run", "keyword_of_flag"})
     out = HEAD.format(imports="\n".join(f"    {n} as {n}," for n in names))
     for function, request, result in FUNCTIONS:
         args = ["params: _ParamsLike = None", "*"]

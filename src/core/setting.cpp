@@ -154,6 +154,33 @@ std::string format_setting(const NumberRange& x) {
     return format_setting(x.lo) + "," + format_setting(x.hi);
 }
 
+// ---- config lines ----------------------------------------------------------------
+
+std::string config_line(const SettingEntry& s, bool help) {
+    const std::string& v = s.text;
+    std::string line = s.info.name + std::string(" = ");
+    if (v.empty() && s.kind != SettingKind::Text) {
+        line = "# " + line; // unset: its default depends on other settings
+    } else if (s.kind == SettingKind::Text) {
+        line += "\"" + v + "\"";
+    } else if (s.kind == SettingKind::List && v.find(':') != std::string::npos) {
+        line += "\"" + v + "\""; // lo:hi:n
+    } else if (s.kind == SettingKind::List) {
+        line += "[";
+        for (char c : v) line += c == ',' ? std::string(", ") : std::string(1, c);
+        line += "]";
+    } else if (v == "auto") {
+        line += "\"auto\""; // a NumberOrAuto left to the library
+    } else {
+        line += v;
+    }
+    if (!help) return line;
+    if (line.size() < 32) line.resize(32, ' ');
+    line += "  # ";
+    if (*s.info.unit) line.append("[").append(s.info.unit).append("] "); // not "[" + string: GCC 12's -Wrestrict
+    return line + s.info.help;
+}
+
 // ---- parsing -------------------------------------------------------------------
 
 void parse_setting(const SettingInfo& info, const std::string& text, double& out) {

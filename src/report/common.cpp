@@ -138,11 +138,55 @@ ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
     return work;
 }
 
-void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings,
-                     bool interrupted) {
+namespace {
+
+// A number of a setting's text: integers exactly (a 64-bit seed would not
+// survive a double), the words "inf", "-inf", "auto" as strings.
+ordered_json setting_number(const std::string& text) {
+    if (text == "inf" || text == "-inf" || text == "auto") return text;
+    if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos)
+        if (const auto n = number_text::read_unsigned(text)) return *n;
+    if (const auto x = number_text::read_double(text)) return *x;
+    return text; // not a number's text: kept as it is rather than lost
+}
+
+} // namespace
+
+ordered_json setting_json(const SettingEntry& s) {
+    switch (s.kind) {
+    case SettingKind::Flag: return s.text == "true";
+    case SettingKind::Text: return s.text;
+    case SettingKind::List: {
+        if (s.text.empty()) return nullptr;
+        if (s.text.find(':') != std::string::npos) return s.text; // lo:hi:n
+        ordered_json list = ordered_json::array();
+        std::size_t from = 0;
+        for (std::size_t comma; (comma = s.text.find(',', from)) != std::string::npos; from = comma + 1)
+            list.push_back(setting_number(s.text.substr(from, comma - from)));
+        list.push_back(setting_number(s.text.substr(from)));
+        return list;
+    }
+    case SettingKind::Number: break;
+    }
+    if (s.text.empty()) return nullptr;
+    return setting_number(s.text);
+}
+
+ordered_json provenance_json(const std::string& command, const std::vector<SettingEntry>& settings) {
+    ordered_json j;
+    j["command"] = command.empty() ? ordered_json(nullptr) : ordered_json(command);
+    ordered_json values = ordered_json::object();
+    for (const SettingEntry& s : settings) values[s.info.name] = setting_json(s);
+    j["settings"] = values;
+    return j;
+}
+
+void add_report_tail(ordered_json& j, const ordered_json& provenance, const ordered_json* work,
+                     const std::vector<std::string>& warnings, bool interrupted) {
     if (interrupted) j["interrupted"] = true;
     if (work) j["work"] = *work;
     j["warnings"] = warnings;
+    append_members(j, provenance);
     j["version"] = version();
     if (*source_revision()) j["revision"] = source_revision();
 }
@@ -249,9 +293,10 @@ std::string estimate_cell(const Estimate& e) {
 // ---- CSV --------------------------------------------------------------------------
 
 std::string csv_number(double x) {
-    if (std::isnan(x)) return ""; // undefined (e.g. a slope from one point): an empty cell, never "nan"
-    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-    return format_number(x, 12);
+    // The shortest text that reads back to the same double (at most 17
+    // significant digits), as the JSON writes it: a CSV loses nothing.
+    // Undefined values (a slope from one point) are an empty cell, never "nan".
+    return format_setting(x);
 }
 
 std::string csv_estimate_header(const std::string& name) {
@@ -260,6 +305,21 @@ std::string csv_estimate_header(const std::string& name) {
 
 std::string csv_estimate(const Estimate& e) {
     return csv_number(e.value) + "," + csv_number(e.std_error) + "," + csv_number(e.lo) + "," + csv_number(e.hi);
+}
+
+std::string csv_provenance(const char* command_name, const std::string& command,
+                           const std::vector<SettingEntry>& settings) {
+    // Comment lines: pandas (comment="#"), numpy (genfromtxt) and R
+    // (comment.char = "#") skip them; the revision has a line of its own, so
+    // that outputs of two builds can be compared without it.
+    std::string out = std::string("# stickslip ") + command_name + ", version " + version() + "\n";
+    if (*source_revision()) out += std::string("# revision: ") + source_revision() + "\n";
+    out += "# command: " + (command.empty() ? std::string("(a library call)") : printable_text(command)) + "\n";
+    for (const SettingEntry& s : settings)
+        if (std::string_view(s.info.name) == "seed") out += "# seed: " + s.text + "\n";
+    out += "# settings: the lines below, less their '# ', are a --config file of this run\n";
+    for (const SettingEntry& s : settings) out += "# " + printable_text(config_line(s, false)) + "\n";
+    return out;
 }
 
 } // namespace stickslip::detail
@@ -279,7 +339,9 @@ std::string first_null(const nlohmann::json& j, const std::string& path) {
             // noise), and so may a sweep's fits, which need two (slope) or
             // three (exponent's chi2_per_dof) points: their inputs, the
             // points' D and M0, are checked.
-            if (path.empty() && (it.key() == "params" || it.key() == "nondimensional")) continue;
+            if (path.empty() && (it.key() == "params" || it.key() == "nondimensional" || it.key() == "settings" ||
+                                 it.key() == "command"))
+                continue;
             if (it.key() == "slope" || it.key() == "exponents") continue;
             if (std::string bad = first_null(*it, path + "." + it.key()); !bad.empty()) return bad;
         }

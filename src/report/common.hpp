@@ -13,6 +13,7 @@
 
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip::detail {
 
@@ -39,11 +40,24 @@ ordered_json params_json(const RunSettings& r);
 ordered_json nondimensional_json(const RunSettings& r);
 /// engine_details: the thresholds, the PDMP lattice or the white level, the guard.
 ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r);
+/// A setting's value as the JSON's "settings" give it: a number (an integer
+/// exactly, "inf", "-inf" and "auto" as strings), a string, a bool, a list of
+/// numbers (a lo:hi:n list as its string), null when unset.
+ordered_json setting_json(const SettingEntry& s);
+/// The provenance of a report: "command" (what asked for the run, null when
+/// not known) and "settings" (every setting, as --print-config gives them).
+ordered_json provenance_json(const std::string& command, const std::vector<SettingEntry>& settings);
 /// The tail of a report: "interrupted": true for a run stopped early, "work"
-/// (when `work` is not null), "warnings", "version" and, when the build knows
-/// it, "revision".
-void add_report_tail(ordered_json& j, const ordered_json* work, const std::vector<std::string>& warnings,
-                     bool interrupted = false);
+/// (when `work` is not null), "warnings", the provenance, "version" and, when
+/// the build knows it, "revision".
+void add_report_tail(ordered_json& j, const ordered_json& provenance, const ordered_json* work,
+                     const std::vector<std::string>& warnings, bool interrupted = false);
+/// add_report_tail with the provenance of `request`.
+template <class Request>
+void add_report_tail(ordered_json& j, const Request& request, const ordered_json* work,
+                     const std::vector<std::string>& warnings, bool interrupted = false) {
+    add_report_tail(j, provenance_json(request.command_line, setting_entries(request)), work, warnings, interrupted);
+}
 /// {steps|events, seconds, threads} of a run, and resumed_samples when some
 /// were restored from a checkpoint.
 ordered_json work_json(const EngineSettings& s, const RunTotals& t);
@@ -92,5 +106,16 @@ std::string csv_number(double x);
 std::string csv_estimate_header(const std::string& name);
 /// value,stderr,lo,hi.
 std::string csv_estimate(const Estimate& e);
+/// The comment lines that open every CSV report: the program, its version
+/// and revision, the command, the seed (when the request has one) and every
+/// setting as a line of a config file, each line behind "# " (so that those
+/// lines, less their "# ", are a --config file that reproduces the run).
+std::string csv_provenance(const char* command_name, const std::string& command,
+                           const std::vector<SettingEntry>& settings);
+/// csv_provenance of `request`.
+template <class Request>
+std::string csv_provenance(const Request& request) {
+    return csv_provenance(Request::command, request.command_line, setting_entries(request));
+}
 
 } // namespace stickslip::detail

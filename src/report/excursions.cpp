@@ -30,7 +30,7 @@ std::string solved_json(const DiffusivityResult& r, int indent) {
     j["nondimensional"] = nd;
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
-    add_report_tail(j, &work, r.warnings);
+    add_report_tail(j, r.request, &work, r.warnings);
     return dump(j, indent);
 }
 
@@ -136,7 +136,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     ordered_json work = work_json(q.engine, r.monte_carlo().totals);
     if (r.control_variate) work["corrector_seconds"] = r.control_variate->corrector_seconds; // prepared once per run
-    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
+    add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -192,7 +192,7 @@ std::string to_table(const DiffusivityResult& r) {
 }
 
 std::string to_csv(const DiffusivityResult& r) {
-    if (r.solution) return solved_csv(r);
+    if (r.solution) return csv_provenance(r.request) + solved_csv(r);
     const auto& q = r.request;
     const auto& p = q.params;
     std::ostringstream os = report_stream();
@@ -214,7 +214,7 @@ std::string to_csv(const DiffusivityResult& r) {
            << csv_number(c.mobility_stderr);
     }
     os << "\n";
-    return os.str();
+    return csv_provenance(r.request) + os.str();
 }
 
 // ---- brute force --------------------------------------------------------------
@@ -239,7 +239,7 @@ std::string to_json(const BruteForceResult& r, int indent) {
     j["mobility"] = estimate_json(r.estimates.mobility);
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
-    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
+    add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -270,7 +270,7 @@ std::string to_csv(const BruteForceResult& r) {
        << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
        << csv_number(q.horizon) << "," << r.estimates.trajectories << "," << q.control.seed << ","
        << csv_estimate(r.estimates.diffusivity) << "," << csv_estimate(r.estimates.mobility) << "\n";
-    return os.str();
+    return csv_provenance(r.request) + os.str();
 }
 
 } // namespace stickslip

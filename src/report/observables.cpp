@@ -59,7 +59,7 @@ std::string solved_json(const DensityResult& r, int indent) {
     j["density"] = d;
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
-    add_report_tail(j, &work, r.warnings);
+    add_report_tail(j, r.request, &work, r.warnings);
     return dump(j, indent);
 }
 
@@ -117,7 +117,7 @@ std::string to_json(const DensityResult& r, int indent) {
     j["capped"] = r.monte_carlo().totals.capped;
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
-    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
+    add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -142,7 +142,7 @@ std::string to_table(const DensityResult& r) {
 }
 
 std::string to_csv(const DensityResult& r) {
-    if (r.solution) return solved_csv(r);
+    if (r.solution) return csv_provenance(r.request) + solved_csv(r);
     std::ostringstream os = report_stream();
     os << "kind,v_lo,v_hi,value,stderr,lo,hi\n";
     for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
@@ -151,7 +151,7 @@ std::string to_csv(const DensityResult& r) {
     os << "stuck,0,0," << csv_estimate(r.histogram.stuck) << "\n";
     os << "below,-inf," << csv_number(r.histogram.edges.front()) << "," << csv_estimate(r.histogram.below) << "\n";
     os << "above," << csv_number(r.histogram.edges.back()) << ",inf," << csv_estimate(r.histogram.above) << "\n";
-    return os.str();
+    return csv_provenance(r.request) + os.str();
 }
 
 // ---- transient ------------------------------------------------------------------------
@@ -187,7 +187,7 @@ std::string to_json(const MomentsResult& r, int indent) {
     }
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
-    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
+    add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -221,7 +221,7 @@ std::string to_csv(const MomentsResult& r) {
         for (std::size_t k = 0; k < r.time.size(); ++k)
             os << csv_number(r.time[k]) << "," << csv_estimate(r.first_moment[k]) << "," << csv_estimate(r.second_moment[k])
                << "," << csv_estimate(r.stuck[k]) << "\n";
-        return os.str();
+        return csv_provenance(r.request) + os.str();
     }
     os << "time,v_lo,v_hi,density,stderr\n";
     for (std::size_t k = 0; k < r.time.size(); ++k) {
@@ -260,7 +260,7 @@ std::string to_json(const CorrelationResult& r, int indent) {
     j["capped"] = r.monte_carlo().totals.capped;
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
-    add_report_tail(j, &work, r.warnings, r.monte_carlo().totals.interrupted);
+    add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }
 
@@ -288,7 +288,7 @@ std::string to_csv(const CorrelationResult& r) {
     for (std::size_t k = 0; k < r.lag.size(); ++k)
         os << csv_number(r.lag[k]) << "," << csv_estimate(r.autocorrelation[k]) << "," << csv_estimate(r.covariance[k]) << ","
            << csv_estimate(r.normalised[k]) << "\n";
-    return os.str();
+    return csv_provenance(r.request) + os.str();
 }
 
 // ---- trajectories -------------------------------------------------------------------------
@@ -324,7 +324,7 @@ std::string to_json(const TrajectoryResult& r, int indent) {
     }
     j["paths"] = ps;
     j["engine_details"] = engine_details_json(r.resolved, q);
-    add_report_tail(j, nullptr, r.warnings);
+    add_report_tail(j, r.request, nullptr, r.warnings);
     return dump(j, indent);
 }
 
@@ -337,7 +337,7 @@ std::string to_csv(const TrajectoryResult& r) {
             os << k << "," << csv_number(p.t[i]) << "," << csv_number(p.x[i]) << "," << p.mode[i] << ","
                << csv_number(p.v[i]) << "," << csv_number(p.u[i]) << "\n";
     }
-    return os.str();
+    return csv_provenance(r.request) + os.str();
 }
 
 std::string to_table(const TrajectoryResult& r) {

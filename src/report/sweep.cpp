@@ -71,7 +71,7 @@ std::string to_json(const SweepResult& r, int indent) {
     j["exponents"] = ex;
     ordered_json work = {{"seconds", r.seconds}};
     if (r.resumed) work["resumed_samples"] = r.resumed;
-    add_report_tail(j, &work, r.warnings, r.interrupted);
+    add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
     return dump(j, indent);
 }
 
@@ -134,7 +134,7 @@ std::string to_csv(const SweepResult& r) {
         if (scheme_per_point(r.request.engine)) os << "," << to_string(p.scheme);
         os << "\n";
     }
-    return os.str();
+    return csv_provenance(r.request) + os.str();
 }
 
 } // namespace stickslip

@@ -65,7 +65,7 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
                            {"diffusivity_unit", sc.diffusivity}};
     for (const auto& [key, value] : values.items()) ndj[key] = value;
     j["nondimensional"] = ndj;
-    add_report_tail(j, nullptr, r.warnings);
+    add_report_tail(j, r.request, nullptr, r.warnings);
     return dump(j, indent);
 }
 
@@ -115,7 +115,7 @@ std::string to_csv(const WhiteNoiseResult& r) {
     for (std::size_t k = 0; k < q.times.size(); ++k)
         os << head << "," << csv_number(q.times[k]) << "," << csv_number(r.first_moment[k]) << ","
            << csv_number(r.autocorrelation[k]) << "\n";
-    return os.str();
+    return csv_provenance(r.request) + os.str();
 }
 
 } // namespace stickslip

@@ -206,8 +206,12 @@ inline std::optional<json> run_json(const Args& args) {
     }
 }
 
+/// The JSON less its timing ("work") and what says how the run was asked
+/// for rather than what it computed: the command line and the thread count.
 inline json without_work(json j) {
     j.erase("work");
+    j.erase("command");
+    if (j.contains("settings")) j["settings"].erase("threads");
     return j;
 }
 

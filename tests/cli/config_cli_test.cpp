@@ -20,6 +20,8 @@ std::string write_file(const std::string& text) {
 json strip(json j) {
     j.erase("work");
     j.erase("revision");
+    j.erase("command"); // the flags or --config FILE: the settings must be the same
+    if (j.contains("settings")) j["settings"].erase("threads");
     if (j.contains("points"))
         for (auto& p : j["points"]) p.erase("work");
     return j;

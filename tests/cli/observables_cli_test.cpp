@@ -112,16 +112,25 @@ TEST_P(CliEverySubcommand, JsonCsvAndTable) {
 
     Args c = a;
     c.insert(c.end(), {"--format", "csv"});
-    const Result csv = run(c);
-    ASSERT_EQ(csv.code, 0) << describe(c) << "\n" << csv.err;
-    ASSERT_GE(count_lines(csv.out), 2) << describe(c);
-    EXPECT_EQ(csv.out.substr(0, csv.out.find(',')), GetParam().first_csv_column) << describe(c);
-    const std::string header = csv.out.substr(0, csv.out.find('\n'));
+    const Result run_csv = run(c);
+    ASSERT_EQ(run_csv.code, 0) << describe(c) << "\n" << run_csv.err;
+    // The '#' lines of provenance first: the command line and every setting.
+    EXPECT_EQ(run_csv.out.rfind("# stickslip ", 0), 0u) << run_csv.out;
+    EXPECT_NE(run_csv.out.find("\n# command: stickslip "), std::string::npos) << run_csv.out;
+    std::string csv;
+    {
+        std::istringstream all(run_csv.out);
+        for (std::string line; std::getline(all, line);)
+            if (line.rfind('#', 0) != 0) csv += line + "\n";
+    }
+    ASSERT_GE(count_lines(csv), 2) << describe(c);
+    EXPECT_EQ(csv.substr(0, csv.find(',')), GetParam().first_csv_column) << describe(c);
+    const std::string header = csv.substr(0, csv.find('\n'));
     const auto commas = std::count(header.begin(), header.end(), ',');
-    std::istringstream lines(csv.out);
+    std::istringstream lines(csv);
     std::string line;
     while (std::getline(lines, line)) EXPECT_EQ(std::count(line.begin(), line.end(), ','), commas) << line;
-    EXPECT_EQ(csv.out.find("nan"), std::string::npos) << "no NaN printed as a result:\n" << csv.out;
+    EXPECT_EQ(csv.find("nan"), std::string::npos) << "no NaN printed as a result:\n" << csv;
 
     const Result table = run(a);
     EXPECT_EQ(table.code, 0) << describe(a) << "\n" << table.err;

@@ -84,12 +84,16 @@ TEST(CliParsing, OtherBooleanFlagsReadTheirValue) {
     EXPECT_EQ(printed.code, 0) << printed.err;
     EXPECT_NE(printed.out.find("friction = "), std::string::npos) << printed.out;
     // A moments run without --density=0 has no density.
-    const auto m = run_json({"moments", "--scheme", "resolvent", "--trajectories", "64", "--dt", "1e-3", "--times",
+    auto m = run_json({"moments", "--scheme", "resolvent", "--trajectories", "64", "--dt", "1e-3", "--times",
                              "0.1", "--density=0", "--format", "json"});
     ASSERT_TRUE(m);
-    const auto with = run_json({"moments", "--scheme", "resolvent", "--trajectories", "64", "--dt", "1e-3", "--times",
+    auto with = run_json({"moments", "--scheme", "resolvent", "--trajectories", "64", "--dt", "1e-3", "--times",
                                 "0.1", "--density=1", "--format", "json"});
     ASSERT_TRUE(with);
+    EXPECT_EQ((*m)["settings"]["density"], false);
+    EXPECT_EQ((*with)["settings"]["density"], true);
+    m->erase("settings"); // the results: without a density, no "density" anywhere
+    with->erase("settings");
     EXPECT_EQ(m->dump().find("\"density\""), std::string::npos) << m->dump();
     EXPECT_NE(with->dump().find("\"density\""), std::string::npos) << with->dump();
 }

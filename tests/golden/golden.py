@@ -43,8 +43,8 @@ def normalise(text):
         if m:  # a multi-line "work" object: drop it up to its closing brace
             skip_until = "^" + m.group(1) + r"\},?\s*$"
             continue
-        if re.match(r'^\s*"(work|revision)": ', line):
-            continue
+        if re.match(r'^\s*"(work|revision)": ', line) or line.startswith("# revision: "):
+            continue  # the JSON's and the CSV's source revision
         line = re.sub(r"[0-9.e+-]+ s on \d+ threads?", "<time> s on <threads>", line)
         line = re.sub(r"points in [0-9.e+-]+ s", "points in <time> s", line)
         out.append(line)
