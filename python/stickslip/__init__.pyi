@@ -66,6 +66,7 @@ def diffusivity(
     max_excursions: int = ...,
     check_dt: bool = ...,
     check_knots: bool = ...,
+    control_variate: Literal['auto', 'off'] = ...,
     progress: bool = False,
     checkpoint: Optional[str] = None,
     checkpoint_every: float = ...,
