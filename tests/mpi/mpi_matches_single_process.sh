@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Runs each case once alone and once as `mpirun --oversubscribe -np N` and
-# requires the same JSON apart from "work" (timings and thread counts).
+# requires the same JSON apart from "work" (timings and thread counts) and the
+# provenance ("command", "settings": how each run was asked for).
 #   bash mpi_matches_single_process.sh path/to/stickslip path/to/mpirun
 set -euo pipefail
 bin="$1"
@@ -22,8 +23,9 @@ run_case() {
   if /usr/bin/python3 - "$tmp/one.json" "$tmp/two.json" <<'PY'
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
-for j in (a, b):
-    j.pop("work", None)
+for j in (a, b):  # less how the run was asked for (command line, settings) and its timings
+    for k in ("work", "command", "settings"):
+        j.pop(k, None)
     for p in j.get("points", []):
         p.pop("work", None)
 sys.exit(0 if a == b else 1)
@@ -78,8 +80,9 @@ resume_case() {
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 resumed = b["work"].get("resumed_samples", 0)
-for j in (a, b):
-    j.pop("work", None)
+for j in (a, b):  # less how the run was asked for (command line, settings) and its timings
+    for k in ("work", "command", "settings"):
+        j.pop(k, None)
     for p in j.get("points", []):
         p.pop("work", None)
 print(f"     (resumed {resumed} samples from the checkpoint)")
@@ -133,7 +136,7 @@ memory_case() {
     echo "FAIL memory: -np 2 at 1e7 excursions peaks at ${two} kB per process"; fail=1
   elif ! /usr/bin/python3 -c 'import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
-a.pop("work"); b.pop("work"); sys.exit(a != b)' "$tmp/m1.json" "$tmp/m2.json"; then
+[j.pop(k, None) for j in (a, b) for k in ("work", "command", "settings")]; sys.exit(a != b)' "$tmp/m1.json" "$tmp/m2.json"; then
     echo "FAIL memory: -np 1 and -np 2 at 1e7 excursions differ"; fail=1
   else
     echo "ok   memory: -np 2 at 1e7 excursions in constant memory, bitwise equal to -np 1"
