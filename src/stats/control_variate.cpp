@@ -84,10 +84,6 @@ struct Poly {
         p.c[table().index[x[0]][x[1]][x[2]][x[3]]] = 1;
         return p;
     }
-    friend Poly operator+(Poly a, const Poly& b) {
-        for (int k = 0; k < n_mono; ++k) a.c[k] += b.c[k];
-        return a;
-    }
     friend Poly operator-(Poly a, const Poly& b) {
         for (int k = 0; k < n_mono; ++k) a.c[k] -= b.c[k];
         return a;
