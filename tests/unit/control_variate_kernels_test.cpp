@@ -93,46 +93,47 @@ ss::ModelParams pure_dry(double tau) {
     return p;
 }
 
-/// n long excursions of the resolvent scheme with the corrector g, checking
-/// that U and t are the plain kernel's bit for bit.
-std::vector<Sample> resolvent_samples(const ss::ResolventConstants& c, const ss::CorrectorTable& g, int n) {
+/// n long excursions, excursion k by plain(k) and with the corrector by
+/// with(k) on the same streams, checking that U and t are the plain kernel's
+/// bit for bit; the samples with the martingale sums.
+template <class Plain, class With>
+std::vector<Sample> samples(int n, Plain plain, With with) {
     std::vector<Sample> out;
     for (int k = 0; k < n; ++k) {
-        ss::BatchedCounterRng a(7, ss::StreamPurpose::LongExcursion, k), b(7, ss::StreamPurpose::LongExcursion, k);
-        const ss::ExcursionOutcome plain = ss::resolvent_long_excursion(c, a);
-        const ss::ExcursionOutcome o = ss::resolvent_long_excursion_with(c, b, g);
-        EXPECT_EQ(plain.displacement, o.displacement);
-        EXPECT_EQ(plain.duration, o.duration);
+        const ss::ExcursionOutcome a = plain(k), o = with(k);
+        EXPECT_EQ(a.displacement, o.displacement);
+        EXPECT_EQ(a.duration, o.duration);
         if (!o.capped) out.push_back({o.displacement, o.duration, o.martingale, o.martingale_qv});
     }
     return out;
+}
+
+std::vector<Sample> resolvent_samples(const ss::ResolventConstants& c, const ss::CorrectorTable& g, int n) {
+    using Rng = ss::BatchedCounterRng;
+    return samples(
+        n, [&](int k) { Rng r(7, ss::StreamPurpose::LongExcursion, k); return ss::resolvent_long_excursion(c, r); },
+        [&](int k) { Rng r(7, ss::StreamPurpose::LongExcursion, k); return ss::resolvent_long_excursion_with(c, r, g); });
 }
 
 std::vector<Sample> event_samples(const ss::EventConstants& c, const ss::CorrectorTable& g, int n) {
-    std::vector<Sample> out;
-    for (int k = 0; k < n; ++k) {
-        ss::BatchedCounterRng a(7, ss::StreamPurpose::LongExcursion, k), ar(7, ss::StreamPurpose::Refinement, k);
-        ss::BatchedCounterRng b(7, ss::StreamPurpose::LongExcursion, k), br(7, ss::StreamPurpose::Refinement, k);
-        const ss::ExcursionOutcome plain = ss::event_long_excursion(c, a, ar);
-        const ss::ExcursionOutcome o = ss::event_long_excursion_with(c, b, br, g);
-        EXPECT_EQ(plain.displacement, o.displacement);
-        EXPECT_EQ(plain.duration, o.duration);
-        if (!o.capped) out.push_back({o.displacement, o.duration, o.martingale, o.martingale_qv});
-    }
-    return out;
+    using Rng = ss::BatchedCounterRng;
+    return samples(
+        n,
+        [&](int k) {
+            Rng r(7, ss::StreamPurpose::LongExcursion, k), ref(7, ss::StreamPurpose::Refinement, k);
+            return ss::event_long_excursion(c, r, ref);
+        },
+        [&](int k) {
+            Rng r(7, ss::StreamPurpose::LongExcursion, k), ref(7, ss::StreamPurpose::Refinement, k);
+            return ss::event_long_excursion_with(c, r, ref, g);
+        });
 }
 
 std::vector<Sample> pdmp_samples(const ss::PdmpConstants& c, const ss::CorrectorTable& g, int n) {
-    std::vector<Sample> out;
-    for (int k = 0; k < n; ++k) {
-        ss::BatchedUniformRng a(7, ss::StreamPurpose::LongExcursion, k), b(7, ss::StreamPurpose::LongExcursion, k);
-        const ss::ExcursionOutcome plain = ss::pdmp_long_excursion(c, a);
-        const ss::ExcursionOutcome o = ss::pdmp_long_excursion_with(c, b, g);
-        EXPECT_EQ(plain.displacement, o.displacement);
-        EXPECT_EQ(plain.duration, o.duration);
-        if (!o.capped) out.push_back({o.displacement, o.duration, o.martingale, o.martingale_qv});
-    }
-    return out;
+    using Rng = ss::BatchedUniformRng;
+    return samples(
+        n, [&](int k) { Rng r(7, ss::StreamPurpose::LongExcursion, k); return ss::pdmp_long_excursion(c, r); },
+        [&](int k) { Rng r(7, ss::StreamPurpose::LongExcursion, k); return ss::pdmp_long_excursion_with(c, r, g); });
 }
 
 /// The martingale checks (z-scores within 3.5) and D with the control
