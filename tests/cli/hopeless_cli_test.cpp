@@ -160,12 +160,11 @@ std::string terminal_until(const Args& args, const std::string& want) {
 
 // Runs predicted to last a minute or more say so, with the prediction, before
 // their first block: near-white noise (hours at the defaults), the PDMP at
-// small tau or on a fine grid, white-noise correlation at its defaults.
+// small tau or on a fine grid.
 TEST(HopelessCli, LongRunsSayTheirPredictedDurationBeforeStarting) {
     for (const Args& args : {Args{"diffusivity", "--tau", "1e-6", "--threads", "2"},
                              Args{"diffusivity", "--engine", "pdmp", "--tau", "1e-3", "--threads", "2"},
-                             Args{"diffusivity", "--engine", "pdmp", "--grid", "0.001", "--threads", "2"},
-                             Args{"correlation", "--tau", "0", "--threads", "2"}}) {
+                             Args{"diffusivity", "--engine", "pdmp", "--grid", "0.001", "--threads", "2"}}) {
         const std::string err = terminal_until(args, "keeps it safe");
         EXPECT_NE(err.find("note: a long run: predicted about"), std::string::npos) << describe(args) << ": " << err;
     }
