@@ -118,6 +118,21 @@ std::unique_ptr<RunJournal> open_journal(Request& req, CheckpointOptions options
     return journal;
 }
 
+/// Writes the report of a run stopped before it had an estimate (report.hpp),
+/// in the chosen format; `checkpoint`: the run's checkpoint path ("" none).
+void emit_interrupted(Output& out, const RunInterrupted& e, const std::string& command,
+                      const std::string& checkpoint) {
+    const std::vector<std::string> warnings{
+        checkpoint.empty()
+            ? std::string("interrupted before a block finished; run it again, with --checkpoint FILE to keep what "
+                          "a run has done")
+            : "interrupted before a block finished; --resume " + printable_text(checkpoint) +
+                  " continues the run from its checkpoint"};
+    if (out.format() == "json") out.commit(to_json(e, command.c_str(), warnings), {});
+    else if (out.format() == "csv") out.commit(to_csv(e, command.c_str()), warnings);
+    else out.commit(to_table(e, command.c_str(), warnings), {});
+}
+
 template <class Request>
 constexpr bool resumable() {
     if constexpr (requires { Request::resumable; }) return Request::resumable;
@@ -176,6 +191,7 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                     // the result afterwards is not stopped gracefully.
                     std::optional<GracefulStop> graceful(std::in_place);
                     req.control.stop = StopOnSignals::flag();
+                    req.control.cancel = StopOnSignals::drop_flag();
                     const std::unique_ptr<RunJournal> journal = open_journal(req, state->checkpoint.options);
                     req.control.journal = journal.get();
                     if (customise) customise(req, state->output.quiet);
@@ -184,8 +200,12 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                         graceful.reset();
                         if (journal) journal->write();
                         emit(out, r);
-                    } catch (const RunInterrupted&) {
+                    } catch (const RunInterrupted& e) {
+                        // Stopped before anything could be estimated: the
+                        // checkpoint and a result that says so, every time.
+                        graceful.reset(); // writing to a FIFO nobody reads must not swallow the next signal
                         if (journal) journal->write();
+                        emit_interrupted(out, e, command, state->checkpoint.options.path);
                         throw;
                     }
                 } else {

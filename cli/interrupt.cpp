@@ -2,6 +2,7 @@
 #include "interrupt.hpp"
 
 #include <csignal>
+#include <pthread.h>
 #include <cstring>
 #include <cstdint>
 #include <ctime>
@@ -40,6 +41,15 @@ std::int64_t now_ns() {
     return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
+/// Seconds the blocks in flight get to finish after the first signal; then
+/// they are dropped (RunControl::cancel with RunControl::stop set: the result
+/// is of the blocks finished before), so that a run whose blocks take minutes
+/// (a PDMP at tau 1e-3, a tiny --sample-dt) still stops at once.
+constexpr unsigned kFinishSeconds = 5;
+std::atomic<bool> g_drop{false};
+
+extern "C" void on_alarm(int) { g_drop = true; }
+
 constexpr int kSignals[] = {SIGINT, SIGTERM};
 struct sigaction g_previous[std::size(kSignals)];
 bool g_installed[std::size(kSignals)] = {};
@@ -73,8 +83,9 @@ extern "C" void on_stop_signal(int sig) {
     if (!g_stop.exchange(true)) { // the first: stop gracefully
         g_signal = sig;
         g_first_ns = now_ns();
-        say("\nstickslip: stopping: finishing the blocks in flight, then writing the result so far (another "
-            "signal, a second or more later, aborts)\n");
+        say("\nstickslip: stopping: finishing the blocks in flight (at most 5 s, then they are dropped), then "
+            "writing the result so far (another signal, a second or more later, aborts)\n");
+        ::alarm(kFinishSeconds);
         return;
     }
     abort_by(sig); // a second, later one
@@ -87,6 +98,12 @@ StopOnSignals::StopOnSignals() {
     g_signal = 0;
     g_first_ns = 0;
     g_announce = is_root() ? 1 : 0;
+    g_drop = false;
+    struct sigaction alarm_action {};
+    alarm_action.sa_handler = on_alarm;
+    sigemptyset(&alarm_action.sa_mask);
+    alarm_action.sa_flags = SA_RESTART;
+    ::sigaction(SIGALRM, &alarm_action, nullptr);
     for (std::size_t i = 0; i < std::size(kSignals); ++i) {
         struct sigaction current {};
         if (::sigaction(kSignals[i], nullptr, &current) != 0) continue;
@@ -108,10 +125,25 @@ StopOnSignals::~StopOnSignals() {
         }
 }
 
-GracefulStop::GracefulStop() { g_graceful = 1; }
-GracefulStop::~GracefulStop() { g_graceful = 0; }
+GracefulStop::GracefulStop() {
+    g_graceful = 1;
+    // A launcher may start the process with these signals blocked (an
+    // inherited mask): a stop request would then wait for ever. Unblocked
+    // here, one sent before the run began is honoured as it begins (the run
+    // stops before its first block and says so), and the worker threads,
+    // started later, inherit the mask.
+    sigset_t set;
+    sigemptyset(&set);
+    for (int s : kSignals) sigaddset(&set, s);
+    ::pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+}
+GracefulStop::~GracefulStop() {
+    g_graceful = 0;
+    ::alarm(0);
+}
 
 const std::atomic<bool>* StopOnSignals::flag() { return &g_stop; }
 int StopOnSignals::signal() { return g_signal; }
+const std::atomic<bool>* StopOnSignals::drop_flag() { return &g_drop; }
 
 } // namespace stickslip::cli

@@ -4,7 +4,8 @@
 // block is started, the blocks in flight finish, and the command writes the
 // result of the prefix of blocks completed, marked "interrupted", and the
 // checkpoint if one was asked for; it then exits 128 + the signal (130 for
-// SIGINT, 143 for SIGTERM). A second signal at least a second after the
+// SIGINT, 143 for SIGTERM). Blocks still in flight 5 s after the signal are
+// dropped (the result is of those finished before). A second signal at least a second after the
 // first aborts at once (one within the second is the same request delivered
 // again, to the process and to its group, as GNU timeout does): the temporary
 // output file is removed and the process dies by that signal, leaving no
@@ -28,6 +29,10 @@ public:
 
     /// Set by the first signal; give it to RunControl::stop.
     static const std::atomic<bool>* flag();
+    /// Set 5 s after the first signal if the run has not stopped by then;
+    /// give it to RunControl::cancel: with the stop flag set, the blocks in
+    /// flight are dropped and the result is of those finished before.
+    static const std::atomic<bool>* drop_flag();
     /// The first signal received (0: none).
     static int signal();
 };

@@ -14,6 +14,7 @@
 /// The exceptions of the library. The comment at the top of this header
 /// explains the design.
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -43,9 +44,27 @@ struct RunCancelled : std::runtime_error {
 };
 
 /// Thrown when a run was stopped (RunControl::stop) before it had anything to
-/// report (fewer than two samples, or during a pilot run).
+/// report (fewer than two samples, or during a pilot run). The checkpoint, if
+/// any, still holds the run's state; the command line writes a report that
+/// says no estimate exists (to_json(const RunInterrupted&...), report.hpp).
 struct RunInterrupted : std::runtime_error {
+    /// Stopped before the run proper (a pilot run): nothing counted.
     RunInterrupted() : std::runtime_error("interrupted before any result") {}
+    /// Stopped with `completed` of `requested` samples done (fewer than 2);
+    /// `samples` names them ("excursions", "trajectories").
+    RunInterrupted(std::uint64_t done, std::uint64_t asked, std::string what)
+        : std::runtime_error(text(done, asked, what)), completed(done), requested(asked), samples(std::move(what)) {}
+    std::uint64_t completed = 0; ///< samples completed before the stop (0 or 1)
+    std::uint64_t requested = 0; ///< samples asked for (0: unknown, a pilot run)
+    std::string samples = "excursions"; ///< what the samples are: "excursions" or "trajectories"
+
+private:
+    static std::string text(std::uint64_t done, std::uint64_t asked, const std::string& what) {
+        const std::string singular = what.substr(0, what.size() - 1);
+        return (done == 0 ? "no " + singular + " completed" : "only 1 " + singular + " completed") +
+               " before the stop (" + std::to_string(done) + " of " + std::to_string(asked) + " " + what +
+               "): no estimate";
+    }
 };
 
 /// Thrown when a run finished but its numbers cannot be believed: every

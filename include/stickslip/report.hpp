@@ -14,6 +14,7 @@
 /// header explains the design.
 
 #include <string>
+#include <vector>
 
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
@@ -86,5 +87,18 @@ std::string to_json(const SweepResult& r, int indent = 2);
 /// The sweep as a table, one row per point, then the exponents per tau.
 std::string to_table(const SweepResult& r);
 std::string to_csv(const SweepResult& r); ///< one row per (tau, noise) point
+
+/// @name A run stopped before it had anything to estimate
+/// What the command line writes when RunInterrupted is thrown by a run on the
+/// block driver (a signal before its first block finished): the command, "result":
+/// "no excursion completed" (or "only 1 ..."), the counts, "interrupted": true,
+/// the warnings, the version; no estimate, so no number stands in for one.
+/// `command` is the subcommand's name ("diffusivity").
+/// @{
+std::string to_json(const RunInterrupted& e, const char* command, const std::vector<std::string>& warnings,
+                    int indent = 2);
+std::string to_table(const RunInterrupted& e, const char* command, const std::vector<std::string>& warnings);
+std::string to_csv(const RunInterrupted& e, const char* command); ///< a header and one row
+/// @}
 
 } // namespace stickslip

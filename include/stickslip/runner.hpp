@@ -65,7 +65,9 @@ struct RunControl {
     std::function<void(const std::string&)> notice;
     /// Optional cancel flag, read by the workers before every sample: set it
     /// from any thread (a signal watcher, a GUI) to stop the run within one
-    /// sample; the run then throws RunCancelled.
+    /// sample; the run then throws RunCancelled. Set after `stop` (a single
+    /// process), it drops the blocks in flight instead, and the run returns
+    /// the prefix of whole blocks finished before their round, as for `stop`.
     const std::atomic<bool>* cancel = nullptr;
     /// Optional stop flag, for a graceful stop (Ctrl-C): set it from any
     /// thread and the workers start no new block, finish those in flight and

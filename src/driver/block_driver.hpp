@@ -13,8 +13,8 @@
 // sum (total.add_block(block), total.merge(other), and words for MPI and
 // checkpoints).
 //
-// Rounds: a run with a journal (checkpoints) or split across processes
-// completes its blocks in rounds of consecutive blocks, sized to last about a
+// Rounds: a run with a journal (checkpoints), a stop flag or split across
+// processes completes its blocks in rounds of consecutive blocks, sized to last about a
 // second. A round ends when all its blocks are done; a distributed run then
 // reduces the round's sums over every process (one all-reduce of the sums'
 // words, never of per-block records). So after each round every process holds
@@ -169,7 +169,9 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeBlock make_bloc
     auto last_report = start;
     // A first report at once: a run whose first block is slow shows it has started.
     if (ctl.progress && b0 < blocks && !ctl.progress(Progress{done.done, n, 0.0, nullptr})) throw RunCancelled();
-    const bool rounds = ctl.journal || ranks > 1;
+    // With a stop flag too: a stopped run that must drop its blocks in
+    // flight (RunControl::cancel after stop) then loses a round, not the run.
+    const bool rounds = ctl.journal || ranks > 1 || ctl.stop;
     // Rounds of about a second: the time a stopped distributed run may lose,
     // and the granularity of checkpoints (shorter when they are asked for more often).
     const double round_seconds = ctl.journal ? std::min(1.0, ctl.journal->every()) : 1.0;
@@ -273,7 +275,17 @@ RunTotals run_blocks(std::uint64_t n, const RunControl& ctl, MakeBlock make_bloc
             for (auto& th : pool) th.join();
         }
         if (error) std::rethrow_exception(error);
-        if (cancelled) throw RunCancelled();
+        if (cancelled) {
+            // A cancel after a stop request (the command line's deadline for
+            // the blocks in flight, when they take minutes): the round's
+            // blocks are dropped and the run returns the prefix before it.
+            // A distributed run cannot: its processes would disagree.
+            if (!(ctl.stop && ctl.stop->load(std::memory_order_relaxed)) || ranks > 1) throw RunCancelled();
+            totals.interrupted = b0 < blocks;
+            save();
+            if (call) ctl.journal->updated();
+            break;
+        }
 
         const double elapsed = std::chrono::duration<double>(clock::now() - round_start).count();
         double mean_elapsed = elapsed;

@@ -77,7 +77,7 @@ void check_finite(const LongExcursionEstimates& est) {
 std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
                                      double sample_dt) {
     std::vector<std::string> notes = e.notes;
-    if (excursions > 0) note_cost(e, excursions, notes, sample_dt);
+    if (excursions > 0) note_cost(e, excursions, ctl, notes, sample_dt);
     if (ctl.notice)
         for (const auto& n : notes) ctl.notice(n);
     return notes;
@@ -86,7 +86,7 @@ std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excu
 void note_interruption(const RunTotals& totals, const char* samples, std::vector<std::string>& warnings) {
     if (!totals.interrupted) return;
     const std::uint64_t done = totals.moments.count() + totals.capped;
-    if (totals.moments.count() < 2) throw RunInterrupted();
+    if (totals.moments.count() < 2) throw RunInterrupted(totals.moments.count(), totals.requested, samples);
     warnings.push_back("interrupted: the result is from the first " + std::to_string(done) + " of " +
                        std::to_string(totals.requested) + " " + samples +
                        " (whole blocks in index order, so unbiased; the intervals are wider)");

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/format.hpp"
+#include "stickslip/threads.hpp"
 #include "engines/event/event_steps.hpp"
 #include "engines/resolvent/resolvent_steps.hpp"
 #include "engines/visit_engine.hpp"
@@ -14,8 +15,15 @@ namespace stickslip::detail {
 
 namespace {
 
-constexpr double kLongRun = 3e10;     ///< steps or events in all: "this run is long" (a lower bound: 2-3x short)
-constexpr double kStepsPerSecond = 1e8; ///< one core, the inclusion kernel (bench/): for the time estimate
+constexpr double kNoteSeconds = 60.0; ///< a run predicted to last longer says so before it starts
+/// Steps or events per second on one core, measured on the CLI (docs/validation.md,
+/// reliability): the resolvent scheme 5e7 to 1e8 (64 excursions at tau 1e-6: 1.0e8), the
+/// event scheme 5e6 steps, the PDMP 1.4e7 events. A sample every sample_dt
+/// costs about a step.
+constexpr double kResolventPerSecond = 5e7, kEventPerSecond = 5e6, kPdmpPerSecond = 1.4e7;
+/// Predicted E[t1] over the OU first-passage bound: measured 1.2 to 2.6 for
+/// coloured noise (the bound is 2-3x short).
+constexpr double kBoundFactor = 3.0;
 
 
 
@@ -108,14 +116,63 @@ void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
     }
 }
 
-void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes, double sample_dt) {
-    const double work = excursion_work_lower_bound(e, sample_dt) * static_cast<double>(samples);
-    if (!(work > kLongRun)) return;
-    const char* unit = work_unit(e.settings);
-    notes.push_back("a long run: at least about " + rounded(work) + " " + unit + " in all (" +
-                    std::to_string(samples) + " excursions of at least " +
-                    duration_text(excursion_duration_lower_bound(e.params)) + " each), about " +
-                    duration_text(work / kStepsPerSecond) + " on one core; --checkpoint FILE keeps it safe");
+RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl, double sample_dt) {
+    const ModelParams& p = e.params;
+    const EngineSettings& s = e.settings;
+    RunPrediction r;
+    const double friction_time = p.noise / (p.friction * p.friction);
+    r.excursion_seconds = std::max(kBoundFactor * excursion_duration_lower_bound(p), friction_time);
+    // Near-white coloured noise: an excursion ends stuck with the noise past
+    // the opposite threshold, which gets rarer as tau' falls; measured (Fig. 2
+    // model, --dt auto) 1.67 friction times at tau' = 0.003 and 383 at 3e-6.
+    if (!p.white()) {
+        const double tau_nd = to_nondimensional(p).tau;
+        r.excursion_seconds = std::max(r.excursion_seconds, 1.67 * friction_time * std::pow(tau_nd / 0.003, -0.79));
+    }
+    const double t = r.excursion_seconds;
+    const double steps = visit_engine(e, [t](const auto& engine) { return engine.work_for(t); });
+    const double sampled = sample_dt > 0 ? t / sample_dt : 0.0;
+    r.work = steps + sampled;
+    const double rate = s.engine == Engine::Pdmp ? kPdmpPerSecond
+                        : s.scheme == Scheme::Event ? kEventPerSecond
+                                                    : kResolventPerSecond;
+    const unsigned wanted = ctl.threads ? ctl.threads : default_threads().threads;
+    const std::uint64_t blocks = (samples + block_size - 1) / block_size;
+    r.threads = static_cast<unsigned>(std::clamp<std::uint64_t>(blocks, 1, std::max(wanted, 1u)));
+    r.seconds = r.work * static_cast<double>(samples) / rate / r.threads;
+    // What makes it long: the samples, a single excursion's cost, or their number.
+    const ModelParams model_defaults;
+    const EngineSettings engine_defaults;
+    if (sampled > steps) r.cause = "sample-dt";
+    else if (r.work / rate < 1.0 && samples > 1000) r.cause = "excursions";
+    else if (s.engine == Engine::Pdmp && s.grid != engine_defaults.grid) r.cause = "grid";
+    else if (p.tau != model_defaults.tau) r.cause = "tau";
+    else if (p.friction != model_defaults.friction) r.cause = "friction";
+    else if (p.noise != model_defaults.noise) r.cause = "noise";
+    else r.cause = s.engine == Engine::Pdmp ? "grid" : "dt";
+    return r;
+}
+
+void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl, double sample_dt) {
+    const RunPrediction r = predict_run(e, samples, ctl, sample_dt);
+    if (!(r.seconds > hopeless_seconds)) return;
+    throw InvalidParameter(r.cause, "this run would take about " + duration_text(r.seconds) + " on " +
+                                        std::to_string(r.threads) + (r.threads == 1 ? " thread" : " threads") +
+                                        " (predicted: " + std::to_string(samples) + " excursions of about " +
+                                        rounded(r.work) + " " + work_unit(e.settings) + " each, E[t1] ~ " +
+                                        duration_text(r.excursion_seconds) +
+                                        "), more than two days: refused; change --" + r.cause +
+                                        ", or run fewer --excursions (with --checkpoint, and --resume to extend)");
+}
+
+void note_cost(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
+               std::vector<std::string>& notes, double sample_dt) {
+    const RunPrediction r = predict_run(e, samples, ctl, sample_dt);
+    if (!(r.seconds >= kNoteSeconds)) return;
+    notes.push_back("a long run: predicted about " + duration_text(r.seconds) + " on " + std::to_string(r.threads) +
+                    (r.threads == 1 ? " thread" : " threads") + " (" + std::to_string(samples) +
+                    " excursions of about " + rounded(r.work) + " " + work_unit(e.settings) +
+                    " each; the prediction is good to a factor of 3); --checkpoint FILE keeps it safe");
 }
 
 } // namespace stickslip::detail

@@ -71,10 +71,39 @@ void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
 /// alone would exceed the guard.
 void check_excursions_can_end(const PreparedEngine& e, double sample_dt = 0.0);
 
-/// A note when `samples` long excursions are predicted to cost more than
-/// 3e10 steps or events (five minutes on one core at least; the bound is 2-3x short), with the
-/// estimate; nothing otherwise.
-void note_cost(const PreparedEngine& e, std::uint64_t samples, std::vector<std::string>& notes,
-               double sample_dt = 0.0);
+/// The one prediction of a run's duration, made before its first block:
+/// the mean duration of an excursion from the model's time scales (the
+/// larger of 3 times the OU first-passage bound above and one friction time
+/// noise/friction^2, which near-white and white noise reach), in steps or
+/// events of the engine (its step, its event rate) plus its samples every
+/// sample_dt, times a measured cost per step or event on one core, times the
+/// excursions, over the threads. Measured against real runs in
+/// docs/validation.md (reliability): within a factor of 3 either way.
+struct RunPrediction {
+    double excursion_seconds = 0.0; ///< predicted mean duration E[t1] of one excursion [s] (model time)
+    double work = 0.0;              ///< predicted steps or events (samples included) per excursion
+    double seconds = 0.0;           ///< predicted wall time of the whole run [s] on `threads`
+    unsigned threads = 1;           ///< the worker threads the run will use
+    std::string cause;              ///< the setting that makes it long ("tau", "grid", "excursions"...)
+};
+
+/// The prediction of `samples` long excursions of `e` on the threads `ctl`
+/// asks for (0: default_threads()).
+RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
+                          double sample_dt = 0.0);
+
+/// Predicted wall time [s] beyond which a run is refused as hopeless: two days.
+inline constexpr double hopeless_seconds = 2 * 86400.0;
+
+/// Refuses (InvalidParameter naming RunPrediction::cause) a run of `samples`
+/// long excursions predicted to last more than hopeless_seconds, with the
+/// prediction and what to change.
+void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
+                        double sample_dt = 0.0);
+
+/// A note with the predicted duration when `samples` long excursions are
+/// predicted to last a minute or more; nothing otherwise.
+void note_cost(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
+               std::vector<std::string>& notes, double sample_dt = 0.0);
 
 } // namespace stickslip::detail

@@ -48,6 +48,7 @@ PreparedEngine prepare_request(const CorrelationRequest& req_in) {
         throw InvalidParameter("max-lag", "max-lag / sampling interval exceeds " + std::to_string(kMaxLagSamples) +
                                               " samples; use a shorter --max-lag (pdmp: or a coarser --sample-dt)");
     detail::check_excursions_can_end(engine, extra_sampling(req.engine, req.sample_dt));
+    detail::check_run_duration(engine, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
     return engine;
 }
 

@@ -40,6 +40,7 @@ PreparedEngine prepare_request(const DensityRequest& req_in) {
     check_event_sampling(req);
     sampling_interval(req.engine, req.sample_dt);
     detail::check_excursions_can_end(engine, extra_sampling(req.engine, req.sample_dt));
+    detail::check_run_duration(engine, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
     return engine;
 }
 

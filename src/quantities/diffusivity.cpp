@@ -60,10 +60,23 @@ PreparedEngine prepare(const DiffusivityRequest& req_in) {
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     check_rel_precision(req);
+    // D's relative half-width is about 7/sqrt(N) (measured at the Fig. 2
+    // case, 95%): a target below 1e-7 needs more than 2^56 excursions, which
+    // no run has (--rel-precision 5e-324 ran to --max-excursions, hours).
+    if (req.rel_precision > 0 && req.rel_precision < 1e-7)
+        throw InvalidParameter("rel-precision", "rel-precision " + detail::format_number(req.rel_precision) +
+                                                    " cannot be reached: D's relative half-width falls like about "
+                                                    "7/sqrt(N), so it needs " +
+                                                    (std::isfinite(49 / req.rel_precision / req.rel_precision)
+                                                         ? "about " + detail::format_number(
+                                                                          49 / req.rel_precision / req.rel_precision, 2)
+                                                         : std::string("unboundedly many")) +
+                                                    " excursions, more than any run (2^56); use 1e-7 or more");
     if (req.rel_precision > 0 && req.max_excursions < req.excursions)
         throw InvalidParameter("max-excursions", "max-excursions must be >= excursions (got " +
                                                      std::to_string(req.max_excursions) + ")");
     detail::check_excursions_can_end(engine);
+    detail::check_run_duration(engine, req.rel_precision > 0 ? req.max_excursions : req.excursions, req.control);
     if (req.check_dt) {
         if (!has_time_step(req.engine))
             throw InvalidParameter("check-dt", "check-dt needs the inclusion engine (the pdmp has no time step)");

@@ -225,8 +225,11 @@ inline int count_lines(const std::string& s) {
 /// default (a test run from a background shell inherits SIGINT and SIGQUIT
 /// ignored) except `ignored`, none blocked, stdin from /dev/null, stdout and
 /// stderr to the given files, no core file (SIGQUIT, SIGXCPU and SIGXFSZ dump
-/// core by default). For tests that signal or kill the run.
-inline pid_t start(const Args& args, const std::string& out_path, const std::string& err_path, int ignored = 0) {
+/// core by default). For tests that signal or kill the run. With `pending`,
+/// that signal is blocked and already sent when the command starts (pending
+/// signals survive exec): a signal that surely comes before the run begins.
+inline pid_t start(const Args& args, const std::string& out_path, const std::string& err_path, int ignored = 0,
+                   int pending = 0) {
     std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
     argv_s.insert(argv_s.end(), args.begin(), args.end());
     std::vector<char*> argv;
@@ -240,7 +243,9 @@ inline pid_t start(const Args& args, const std::string& out_path, const std::str
             if (s != SIGKILL && s != SIGSTOP) ::signal(s, s == ignored ? SIG_IGN : SIG_DFL);
         sigset_t none;
         sigemptyset(&none);
+        if (pending) sigaddset(&none, pending);
         ::sigprocmask(SIG_SETMASK, &none, nullptr);
+        if (pending) ::kill(::getpid(), pending);
         const int in = ::open("/dev/null", O_RDONLY);
         const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

@@ -4,14 +4,18 @@
 // claim "~0 s left" before it has measured anything.
 #include <fcntl.h>
 #include <poll.h>
+#include <signal.h>
 #include <stdlib.h>
+#include <sys/wait.h>
 
 #include "cli_support.hpp"
 
 namespace {
 
 using clitest::Args;
+using clitest::describe;
 using clitest::run;
+using clitest::with;
 
 TEST(HopelessCli, DensitySamplingEveryDenormalIsRefused) {
     // Sampled every 5e-324 s, the run never ended.
@@ -81,6 +85,89 @@ TEST(HopelessCli, ProgressSaysEstimatingBeforeAnyBlockHasFinished) {
     // The last report has the measured rate.
     EXPECT_NE(err.find("2000/2000 excursions"), std::string::npos) << err;
     EXPECT_NE(err.find(" s left"), std::string::npos) << err;
+}
+
+// Runs predicted to last more than two days are refused before any work:
+// exit 2, one line naming the setting that makes them long, the predicted
+// duration and what to change (driver/step_check.hpp, predict_run).
+struct Hopeless {
+    Args args;
+    const char* flag;
+};
+
+TEST(HopelessCli, RunsPredictedToLastDaysAreRefusedNamingTheSetting) {
+    const std::vector<Hopeless> cases{
+        {{"diffusivity", "--friction", "1e-3"}, "--friction"},
+        {{"diffusivity", "--noise", "1e9"}, "--noise"},
+        {{"diffusivity", "--noise", "1e15"}, "--noise"},
+        {{"density", "--noise", "1e9"}, "--noise"},
+    };
+    for (const auto& c : cases) {
+        const auto r = run(with(c.args, {"--threads", "2"}));
+        EXPECT_EQ(r.code, 2) << describe(c.args) << ": " << r.err;
+        EXPECT_EQ(r.err.rfind(std::string("stickslip: error: ") + c.flag + ":", 0), 0u) << describe(c.args) << ": " << r.err;
+        EXPECT_NE(r.err.find("this run would take about"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("more than two days: refused"), std::string::npos) << r.err;
+        EXPECT_EQ(clitest::count_lines(r.err), 1) << r.err;
+        EXPECT_TRUE(r.out.empty()) << describe(c.args);
+    }
+}
+
+TEST(HopelessCli, AnUnreachablePrecisionIsRefused) {
+    const auto r = run({"diffusivity", "--rel-precision", "5e-324"});
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("stickslip: error: --rel-precision:", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("cannot be reached"), std::string::npos) << r.err;
+    EXPECT_EQ(clitest::count_lines(r.err), 1) << r.err;
+}
+
+/// The first `want` text a run writes to a terminal's stderr, read until
+/// `want` appears (or 60 s pass); the run is then killed.
+std::string terminal_until(const Args& args, const std::string& want) {
+    const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return "no pty";
+    const int slave = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
+    if (slave < 0) return "no pty";
+    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
+    argv_s.insert(argv_s.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : argv_s) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&fa, slave, 2);
+    pid_t pid = 0;
+    const int rc = ::posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    ::close(slave);
+    if (rc != 0) return "spawn failed";
+    std::string text;
+    char buf[4096];
+    while (text.find(want) == std::string::npos) {
+        pollfd p{master, POLLIN, 0};
+        if (::poll(&p, 1, 60000) <= 0) break;
+        const ssize_t n = ::read(master, buf, sizeof buf);
+        if (n <= 0) break;
+        text.append(buf, static_cast<std::size_t>(n));
+    }
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    ::close(master);
+    return text;
+}
+
+// Runs predicted to last a minute or more say so, with the prediction, before
+// their first block: near-white noise (hours at the defaults), the PDMP at
+// small tau or on a fine grid.
+TEST(HopelessCli, LongRunsSayTheirPredictedDurationBeforeStarting) {
+    for (const Args& args : {Args{"diffusivity", "--tau", "1e-6", "--threads", "2"},
+                             Args{"diffusivity", "--engine", "pdmp", "--tau", "1e-3", "--threads", "2"},
+                             Args{"diffusivity", "--engine", "pdmp", "--grid", "0.001", "--threads", "2"}}) {
+        const std::string err = terminal_until(args, "keeps it safe");
+        EXPECT_NE(err.find("note: a long run: predicted about"), std::string::npos) << describe(args) << ": " << err;
+    }
 }
 
 } // namespace
