@@ -50,6 +50,31 @@ std::atomic<bool> g_drop{false};
 
 extern "C" void on_alarm(int) { g_drop = true; }
 
+// SIGALRM is ours only between a first stop signal and the end of the run:
+// before that it keeps its default (a SIGALRM ends the process and the
+// output's clean-up removes the temporary, as for any terminating signal).
+struct sigaction g_previous_alarm;
+volatile std::sig_atomic_t g_alarm_installed = 0;
+
+/// Starts the deadline for the blocks in flight. Async-signal-safe
+/// (sigaction and alarm are, POSIX).
+void start_finish_deadline() {
+    struct sigaction alarm_action {};
+    alarm_action.sa_handler = on_alarm;
+    sigemptyset(&alarm_action.sa_mask);
+    alarm_action.sa_flags = SA_RESTART;
+    if (::sigaction(SIGALRM, &alarm_action, &g_previous_alarm) == 0) g_alarm_installed = 1;
+    ::alarm(kFinishSeconds);
+}
+
+void end_finish_deadline() {
+    ::alarm(0);
+    if (g_alarm_installed) {
+        ::sigaction(SIGALRM, &g_previous_alarm, nullptr);
+        g_alarm_installed = 0;
+    }
+}
+
 constexpr int kSignals[] = {SIGINT, SIGTERM};
 struct sigaction g_previous[std::size(kSignals)];
 bool g_installed[std::size(kSignals)] = {};
@@ -85,7 +110,7 @@ extern "C" void on_stop_signal(int sig) {
         g_first_ns = now_ns();
         say("\nstickslip: stopping: finishing the blocks in flight (at most 5 s, then they are dropped), then "
             "writing the result so far (another signal, a second or more later, aborts)\n");
-        ::alarm(kFinishSeconds);
+        start_finish_deadline();
         return;
     }
     abort_by(sig); // a second, later one
@@ -99,11 +124,6 @@ StopOnSignals::StopOnSignals() {
     g_first_ns = 0;
     g_announce = is_root() ? 1 : 0;
     g_drop = false;
-    struct sigaction alarm_action {};
-    alarm_action.sa_handler = on_alarm;
-    sigemptyset(&alarm_action.sa_mask);
-    alarm_action.sa_flags = SA_RESTART;
-    ::sigaction(SIGALRM, &alarm_action, nullptr);
     for (std::size_t i = 0; i < std::size(kSignals); ++i) {
         struct sigaction current {};
         if (::sigaction(kSignals[i], nullptr, &current) != 0) continue;
@@ -139,7 +159,7 @@ GracefulStop::GracefulStop() {
 }
 GracefulStop::~GracefulStop() {
     g_graceful = 0;
-    ::alarm(0);
+    end_finish_deadline();
 }
 
 const std::atomic<bool>* StopOnSignals::flag() { return &g_stop; }

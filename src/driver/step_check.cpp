@@ -29,7 +29,15 @@ constexpr double kBoundFactor = 3.0;
 
 
 
-std::string rounded(double x) { return format_number(x, 2); }
+/// Two significant digits, written out below a million ("600 steps", "100
+/// min", not "6e+02"), in exponent form above.
+std::string rounded(double x) {
+    if (std::abs(x) >= 10 && std::abs(x) < 1e6) {
+        const double unit = std::pow(10.0, std::floor(std::log10(std::abs(x))) - 1);
+        return format_number(std::round(x / unit) * unit, 7);
+    }
+    return format_number(x, 2);
+}
 
 /// Phi(u) e^{u^2/2}, without overflow for the u used here (u <= 37).
 double integrand(double u) { return 0.5 * std::erfc(-u / std::sqrt(2.0)) * std::exp(0.5 * u * u); }
@@ -156,6 +164,10 @@ RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const 
 void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl, double sample_dt) {
     const RunPrediction r = predict_run(e, samples, ctl, sample_dt);
     if (!(r.seconds > hopeless_seconds)) return;
+    // Long only by the number asked for (each excursion is short): not
+    // hopeless. A signal stops it at any time with the result so far, and a
+    // checkpoint extends it; note_cost says how long it will take.
+    if (r.cause == "excursions") return;
     throw InvalidParameter(r.cause, "this run would take about " + duration_text(r.seconds) + " on " +
                                         std::to_string(r.threads) + (r.threads == 1 ? " thread" : " threads") +
                                         " (predicted: " + std::to_string(samples) + " excursions of about " +

@@ -97,7 +97,9 @@ inline constexpr double hopeless_seconds = 2 * 86400.0;
 
 /// Refuses (InvalidParameter naming RunPrediction::cause) a run of `samples`
 /// long excursions predicted to last more than hopeless_seconds, with the
-/// prediction and what to change.
+/// prediction and what to change; unless only their number makes it long
+/// (RunPrediction::cause "excursions"): such a run stops at any signal with
+/// the result so far, and note_cost gives its duration.
 void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
                         double sample_dt = 0.0);
 

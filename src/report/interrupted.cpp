@@ -26,7 +26,9 @@ std::string to_json(const RunInterrupted& e, const char* command, const std::vec
     j["result"] = what_completed(e);
     j["completed"] = e.completed;
     j["requested"] = e.requested;
-    detail::add_report_tail(j, nullptr, warnings, true);
+    // No request reaches this report (the run threw before it had a result):
+    // its provenance is the subcommand alone.
+    detail::add_report_tail(j, ordered_json::object(), nullptr, warnings, true);
     return detail::dump(j, indent);
 }
 

@@ -65,12 +65,12 @@ TEST(CostNote, SaysALongRunIsLongBeforeItStarts) {
     req.params.noise = 1.0;
     const PreparedEngine e = prepare(req);
     std::vector<std::string> notes;
-    note_cost(e, 5000, notes);
+    note_cost(e, 5000, RunControl{}, notes);
     ASSERT_EQ(notes.size(), 1u);
-    EXPECT_NE(notes[0].find("a long run: at least about"), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("a long run: predicted about"), std::string::npos) << notes[0];
     EXPECT_NE(notes[0].find("--checkpoint"), std::string::npos) << notes[0];
     notes.clear();
-    note_cost(e, 64, notes);
+    note_cost(e, 64, RunControl{}, notes);
     EXPECT_TRUE(notes.empty());
 }
 
