@@ -75,9 +75,9 @@ void check_finite(const LongExcursionEstimates& est) {
 }
 
 std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
-                                     double sample_dt) {
+                                     const PathSampling& sampling) {
     std::vector<std::string> notes = e.notes;
-    if (excursions > 0) note_cost(e, excursions, ctl, notes, sample_dt);
+    if (excursions > 0) note_cost(e, excursions, ctl, notes, sampling);
     if (ctl.notice)
         for (const auto& n : notes) ctl.notice(n);
     return notes;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "driver/step_check.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
 
@@ -29,10 +30,10 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
 void check_finite(const LongExcursionEstimates& est);
 
 /// The notes of a run about to start (the engine's, and for `excursions` > 0
-/// long excursions the predicted cost, samples every sample_dt > 0 [s]
-/// included), each passed to RunControl::notice.
+/// long excursions the predicted cost, the path's samples included:
+/// predict_run), each passed to RunControl::notice.
 std::vector<std::string> start_notes(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
-                                     double sample_dt = 0.0);
+                                     const PathSampling& sampling = {});
 
 /// A run stopped early (RunControl::stop): throws RunInterrupted when fewer
 /// than 2 of its `samples` ("excursions", "trajectories") completed, else adds

@@ -124,7 +124,8 @@ void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
     }
 }
 
-RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl, double sample_dt) {
+RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
+                          const PathSampling& sampling) {
     const ModelParams& p = e.params;
     const EngineSettings& s = e.settings;
     RunPrediction r;
@@ -137,9 +138,13 @@ RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const 
         const double tau_nd = to_nondimensional(p).tau;
         r.excursion_seconds = std::max(r.excursion_seconds, 1.67 * friction_time * std::pow(tau_nd / 0.003, -0.79));
     }
-    const double t = r.excursion_seconds;
+    const double t = r.excursion_seconds + sampling.continued;
     const double steps = visit_engine(e, [t](const auto& engine) { return engine.work_for(t); });
-    const double sampled = sample_dt > 0 ? t / sample_dt : 0.0;
+    // The samples' own work: a unit each beyond the steps (every interval),
+    // and per_sample more each, wherever they are taken (at the steps when
+    // there is no interval).
+    const double every_interval = sampling.interval > 0 ? t / sampling.interval : 0.0;
+    const double sampled = every_interval + sampling.per_sample * (sampling.interval > 0 ? every_interval : steps);
     r.work = steps + sampled;
     const double rate = s.engine == Engine::Pdmp ? kPdmpPerSecond
                         : s.scheme == Scheme::Event ? kEventPerSecond
@@ -151,7 +156,9 @@ RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const 
     // What makes it long: the samples, a single excursion's cost, or their number.
     const ModelParams model_defaults;
     const EngineSettings engine_defaults;
-    if (sampled > steps) r.cause = "sample-dt";
+    // The samples are to blame only when the steps alone would not be long.
+    const bool long_without_samples = steps * static_cast<double>(samples) / rate / r.threads > hopeless_seconds;
+    if (sampled > steps && !long_without_samples) r.cause = sampling.interval > 0 ? "sample-dt" : "lags";
     else if (r.work / rate < 1.0 && samples > 1000) r.cause = "excursions";
     else if (s.engine == Engine::Pdmp && s.grid != engine_defaults.grid) r.cause = "grid";
     else if (p.tau != model_defaults.tau) r.cause = "tau";
@@ -161,8 +168,9 @@ RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const 
     return r;
 }
 
-void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl, double sample_dt) {
-    const RunPrediction r = predict_run(e, samples, ctl, sample_dt);
+void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
+                        const PathSampling& sampling) {
+    const RunPrediction r = predict_run(e, samples, ctl, sampling);
     if (!(r.seconds > hopeless_seconds)) return;
     // Long only by the number asked for (each excursion is short): not
     // hopeless. A signal stops it at any time with the result so far, and a
@@ -178,8 +186,8 @@ void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const Ru
 }
 
 void note_cost(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
-               std::vector<std::string>& notes, double sample_dt) {
-    const RunPrediction r = predict_run(e, samples, ctl, sample_dt);
+               std::vector<std::string>& notes, const PathSampling& sampling) {
+    const RunPrediction r = predict_run(e, samples, ctl, sampling);
     if (!(r.seconds >= kNoteSeconds)) return;
     notes.push_back("a long run: predicted about " + duration_text(r.seconds) + " on " + std::to_string(r.threads) +
                     (r.threads == 1 ? " thread" : " threads") + " (" + std::to_string(samples) +

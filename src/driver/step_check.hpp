@@ -71,12 +71,24 @@ void check_step(const PreparedEngine& e, std::vector<std::string>& notes);
 /// alone would exceed the guard.
 void check_excursions_can_end(const PreparedEngine& e, double sample_dt = 0.0);
 
+/// What a run records along each excursion, for the prediction of its cost
+/// (predict_run): nothing for `diffusivity`; `density` and `correlation`
+/// sample the path, and `correlation` continues it past the excursion's end.
+struct PathSampling {
+    double interval = 0.0;   ///< a sample every `interval` [s] beyond the engine's steps (0: none, or at the steps)
+    double per_sample = 0.0; ///< extra work of one sample [steps of the engine] (correlation: its lag products)
+    double continued = 0.0;  ///< time [s] each path runs past its excursion's end (correlation: the largest lag)
+};
+
 /// The one prediction of a run's duration, made before its first block:
 /// the mean duration of an excursion from the model's time scales (the
 /// larger of 3 times the OU first-passage bound above and one friction time
 /// noise/friction^2, which near-white and white noise reach), in steps or
 /// events of the engine (its step, its event rate) plus its samples every
-/// sample_dt, times a measured cost per step or event on one core, times the
+/// the path's samples (PathSampling: each excursion's path continued by
+/// `continued`, a unit of work per sample every `interval`, `per_sample` more
+/// per sample wherever taken), times a measured cost per step or event on one
+/// core, times the
 /// excursions, over the threads. Measured against real runs in
 /// docs/validation.md (reliability): within a factor of 3 either way.
 struct RunPrediction {
@@ -90,7 +102,7 @@ struct RunPrediction {
 /// The prediction of `samples` long excursions of `e` on the threads `ctl`
 /// asks for (0: default_threads()).
 RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
-                          double sample_dt = 0.0);
+                          const PathSampling& sampling = {});
 
 /// Predicted wall time [s] beyond which a run is refused as hopeless: two days.
 inline constexpr double hopeless_seconds = 2 * 86400.0;
@@ -101,11 +113,11 @@ inline constexpr double hopeless_seconds = 2 * 86400.0;
 /// (RunPrediction::cause "excursions"): such a run stops at any signal with
 /// the result so far, and note_cost gives its duration.
 void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
-                        double sample_dt = 0.0);
+                        const PathSampling& sampling = {});
 
 /// A note with the predicted duration when `samples` long excursions are
 /// predicted to last a minute or more; nothing otherwise.
 void note_cost(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
-               std::vector<std::string>& notes, double sample_dt = 0.0);
+               std::vector<std::string>& notes, const PathSampling& sampling = {});
 
 } // namespace stickslip::detail

@@ -40,7 +40,8 @@ PreparedEngine prepare_request(const DensityRequest& req_in) {
     check_event_sampling(req);
     sampling_interval(req.engine, req.sample_dt);
     detail::check_excursions_can_end(engine, extra_sampling(req.engine, req.sample_dt));
-    detail::check_run_duration(engine, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
+    detail::check_run_duration(engine, req.excursions, req.control,
+                               {.interval = extra_sampling(req.engine, req.sample_dt)});
     return engine;
 }
 
@@ -217,7 +218,7 @@ DensityResult compute_density(const DensityRequest& req_in) {
     const DensityRequest req = with_resolved_engine(req_in, PathUse::GridSamples);
     const PreparedEngine prepared = prepare_request(req);
     const std::vector<std::string> notes =
-        detail::start_notes(prepared, req.excursions, req.control, extra_sampling(req.engine, req.sample_dt));
+        detail::start_notes(prepared, req.excursions, req.control, {.interval = extra_sampling(req.engine, req.sample_dt)});
     return detail::visit_engine(prepared, [&](const auto& engine) { return density_of(engine, req, prepared, notes); });
 }
 

@@ -164,7 +164,13 @@ std::string terminal_until(const Args& args, const std::string& want) {
 TEST(HopelessCli, LongRunsSayTheirPredictedDurationBeforeStarting) {
     for (const Args& args : {Args{"diffusivity", "--tau", "1e-6", "--threads", "2"},
                              Args{"diffusivity", "--engine", "pdmp", "--tau", "1e-3", "--threads", "2"},
-                             Args{"diffusivity", "--engine", "pdmp", "--grid", "0.001", "--threads", "2"}}) {
+                             Args{"diffusivity", "--engine", "pdmp", "--grid", "0.001", "--threads", "2"},
+                             // Long only by the number asked for (a week): noted, never refused, since
+                             // a signal stops it with the result so far and --resume extends it.
+                             Args{"diffusivity", "--excursions", "1e10", "--threads", "2"},
+                             // White noise at the defaults, about 100 s: each path runs the largest
+                             // lag past its excursion and each of its samples costs 51 lag products.
+                             Args{"correlation", "--tau", "0", "--threads", "2"}}) {
         const std::string err = terminal_until(args, "keeps it safe");
         EXPECT_NE(err.find("note: a long run: predicted about"), std::string::npos) << describe(args) << ": " << err;
     }
