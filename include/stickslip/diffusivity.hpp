@@ -148,7 +148,7 @@ struct ControlVariateReport {
     /// "closed-form" (white noise).
     std::string source;
     std::string grid;            ///< the corrector's grid, in words
-    double corrector_seconds = 0; ///< time to make the corrector [s]
+    double corrector_seconds = 0; ///< wall time this run spent making the corrector [s] (about 0 when the process had made it for the same model already)
     double beta = 0;             ///< coefficient of C = M^2 - Q in D's estimate
     double beta_mobility = 0;    ///< coefficient of M in M0's estimate
     /// Variance of the plain estimator of D over the control variate's, from
