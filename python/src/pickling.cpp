@@ -99,16 +99,21 @@ template <class F> void fields(F& f, ModelParams& x) {
     f(x.drift_table_v, x.drift_table_b);
 }
 
-/// A request: every setting (visit_settings), then what is not one.
+/// A request: the whole model first (some requests leave parts of it out of
+/// their settings, e.g. analytic's tau, a sweep's noise and tau, which the
+/// reports still give), every setting (visit_settings; the model's again,
+/// harmlessly), then what is not a setting.
 template <class Request>
 concept RunRequest = std::is_base_of_v<RunSettings, Request>;
 template <class F, RunRequest R> void fields(F& f, R& x) {
+    f(x.params);
     visit_settings(x, [&](auto&& setting, const SettingInfo&) { f(setting); });
-    f(x.params.drift_table_v, x.params.drift_table_b, x.command_line, x.control.first_index);
+    f(x.command_line, x.control.first_index);
 }
 template <class F> void fields(F& f, WhiteNoiseRequest& x) {
+    f(x.params);
     visit_settings(x, [&](auto&& setting, const SettingInfo&) { f(setting); });
-    f(x.params.drift_table_v, x.params.drift_table_b, x.command_line);
+    f(x.command_line);
 }
 
 template <class F> void fields(F& f, DiffusivityResult& x) {
