@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Pickling of every class the module returns (results, their parts, Params,
 // the requests), by one mechanism: a value's state is its C++ members as
-// plain Python objects (float, int, bool, bytes, None, lists and tuples),
-// nested as the structs nest, written and read by the same per-struct list of
-// members (fields() below). Floats are Python floats, so a round trip gives
-// the same bits; nothing in the state depends on the machine (no pointers, no
-// byte order). The state is tagged with the module's version and refused by
-// any other version: the format follows the library's structs and is not
-// stable across versions (pickles are for multiprocessing, joblib and caches,
-// not for archives: save() writes those).
+// plain Python objects (float, int, bool, bytes, None, lists and tuples;
+// columns of numbers as NumPy arrays), nested as the structs nest, written
+// and read by the same per-struct list of members (fields() below). Floats
+// stay doubles, so a round trip gives the same bits; nothing in the state
+// depends on the machine (no pointers; an array's dtype records its byte
+// order). The state is tagged with the module's version and refused by any
+// other version: the format follows the library's structs and is not stable
+// across versions (pickles are for multiprocessing, joblib and caches, not
+// for archives: save() writes those).
 //
 // A struct's members are listed once, in fields(f, x): f(member, ...) either
 // appends each member's state (Save) or reads it back (Load). The requests'
@@ -191,10 +192,14 @@ template <class T> py::object encode(T& x) {
     else if constexpr (std::is_integral_v<U>) return py::int_(x);
     else if constexpr (std::is_enum_v<U>) return py::int_(static_cast<std::underlying_type_t<U>>(x));
     else if constexpr (std::is_same_v<U, std::string>) return py::bytes(x); // any bytes, as they are
+    // Columns of numbers as NumPy arrays: a path of a million points pickles in
+    // milliseconds, and the array's dtype records its byte order.
+    else if constexpr (std::is_same_v<U, std::vector<double>> || std::is_same_v<U, std::vector<int>>)
+        return to_array(x);
     else if constexpr (is_vector<U>::value || is_array<U>::value) {
         py::list l;
         for (auto& e : x) l.append(encode(e));
-        return std::move(l);
+        return l;
     } else if constexpr (is_optional<U>::value) return x ? encode(*x) : py::object(py::none());
     else if constexpr (is_variant<U>::value)
         return py::make_tuple(x.index(), std::visit([](auto& a) { return encode(a); }, x));
@@ -243,7 +248,14 @@ template <class T> void decode(const py::handle& h, T& x) {
     using U = std::remove_cv_t<T>;
     if constexpr (std::is_same_v<U, bool> || std::is_arithmetic_v<U> || std::is_same_v<U, std::string>) x = h.cast<U>();
     else if constexpr (std::is_enum_v<U>) x = static_cast<U>(h.cast<std::underlying_type_t<U>>());
-    else if constexpr (is_vector<U>::value) {
+    else if constexpr (std::is_same_v<U, std::vector<double>> || std::is_same_v<U, std::vector<int>>) {
+        using Item = std::conditional_t<std::is_same_v<U, std::vector<double>>, double, std::int64_t>;
+        if (!py::isinstance<py::array>(h)) bad_state("an array expected");
+        const auto a = py::array_t<Item, py::array::c_style | py::array::forcecast>::ensure(h);
+        if (!a || a.ndim() != 1) bad_state("a 1-D array expected");
+        x.resize(static_cast<std::size_t>(a.size()));
+        for (std::size_t k = 0; k < x.size(); ++k) x[k] = static_cast<typename U::value_type>(a.data()[k]);
+    } else if constexpr (is_vector<U>::value) {
         if (!py::isinstance<py::list>(h)) bad_state("a list expected");
         auto l = py::reinterpret_borrow<py::list>(h);
         x.clear();
