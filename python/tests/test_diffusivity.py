@@ -98,13 +98,21 @@ class DiffusivityTest(unittest.TestCase):
         self.assertGreater(r.capped, 0)
         self.assertEqual(r.completed + r.capped, 64)
 
-    def test_excursions_shorter_than_a_step_raise_untrustworthy(self):
-        # tau' = 1e-8: every excursion ends within its first step; D would be 0/0.
+    def test_near_white_noise_at_a_tiny_step_is_refused_not_nan(self):
+        # tau' = 1e-8 at dt = 1e-10: the discrete chain's excursions all ended
+        # within their first step, so D was 0/0; the chain itself, resolved,
+        # has excursions of hours (the near-white law of E[t1]). As the CLI
+        # (cli_test.cpp): refused before any work naming tau, or (were the
+        # prediction to let it through) untrustworthy, saying why; never a NaN.
         fast = stickslip.Params(friction=1, noise=1, tau=1e-8, relaxation=float("inf"), bias=0)
-        with self.assertRaises(stickslip.UntrustworthyResultError) as c:
+        with self.assertRaises((stickslip.InvalidParameterError, stickslip.UntrustworthyResultError)) as c:
             stickslip.diffusivity(fast, scheme="resolvent", dt=1e-10, excursions=64, threads=1)
         self.assertNotIsInstance(c.exception, stickslip.CappedExcursionsError)
-        self.assertIn("first step", str(c.exception))
+        if isinstance(c.exception, stickslip.InvalidParameterError):
+            self.assertEqual(c.exception.parameter, "tau")
+            self.assertIn("this run would take", str(c.exception))
+        else:
+            self.assertIn("first step", str(c.exception))
 
     def test_level_too_close_to_one_is_invalid_not_overflow(self):
         with self.assertRaises(stickslip.InvalidParameterError) as c:
