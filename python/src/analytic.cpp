@@ -178,10 +178,11 @@ void bind_analytic(py::module_& m) {
 
     // ---- everything `stickslip analytic` prints ---------------------------------------------------
     using R = WhiteNoiseResult;
-    py::class_<R>(m, "WhiteNoiseResult",
-                  "Exact white-noise references for one parameter set (stickslip.analytic.white_noise): what "
-                  "`stickslip analytic` prints. to_dict() is the CLI's JSON.")
-        .def_property_readonly("params", [](const R& r) { return r.request.params; })
+    py::class_<R> c(m, "WhiteNoiseResult",
+                    "Exact white-noise references for one parameter set (stickslip.analytic.white_noise): what "
+                    "`stickslip analytic` prints. to_dict() is the CLI's JSON.");
+    add_renderings<R>(c);
+    c.def_property_readonly("params", [](const R& r) { return r.request.params; })
         .def_property_readonly("mobility", [](const R& r) { return r.reference.mobility; }, "M0 [m/s]")
         .def_property_readonly("diffusivity", [](const R& r) { return r.reference.diffusivity; }, "D [m^2/s]")
         .def_property_readonly("variance", [](const R& r) { return r.reference.variance; }, "Var(V) [m^2/s^2]")
@@ -203,12 +204,6 @@ void bind_analytic(py::module_& m) {
             "p(v, t | v0) [s/m], shape (n, m); rows at t = 0 (a delta function) are NaN")
         .def_property_readonly(
             "method", [](const R& r) { return r.grid().solver; }, "'closed form (...)' or 'fokker-planck (...)'")
-        .def_readonly("warnings", &R::warnings)
-        .def(
-            "to_json", [](const R& r, int indent) { return to_json(r, indent); }, py::arg("indent") = 2)
-        .def("to_dict", [](const R& r) { return json_loads(to_json(r, -1)); })
-        .def("to_table", [](const R& r) { return to_table(r); })
-        .def("to_csv", [](const R& r) { return to_csv(r); })
         .def("__repr__", [](const R& r) {
             using number_text::general;
             return "WhiteNoiseResult(mobility=" + general(r.reference.mobility) + " m/s, diffusivity=" +

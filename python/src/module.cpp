@@ -351,15 +351,7 @@ void bind_core(py::module_& m) {
                  if (!py::isinstance<ModelParams>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
                  return py::bool_(params_tuple(a).equal(params_tuple(other.cast<const ModelParams&>())));
              })
-        .def("__hash__", [](const ModelParams& p) { return py::hash(params_tuple(p)); })
-        .def(py::pickle([](const ModelParams& p) { return params_tuple(p); },
-                        [](const py::tuple& t) {
-                            const auto fields = param_fields(ModelParams{});
-                            if (t.size() != fields.size()) throw std::runtime_error("Params: bad pickle state");
-                            py::kwargs kw;
-                            for (std::size_t k = 0; k < fields.size(); ++k) kw[py::str(fields[k].name)] = t[k];
-                            return params_with(ModelParams{}, kw, "Params()");
-                        }));
+        .def("__hash__", [](const ModelParams& p) { return py::hash(params_tuple(p)); });
 
     // ---- Estimate ----------------------------------------------------------------------
     py::class_<Estimate>(m, "Estimate",
@@ -376,18 +368,7 @@ void bind_core(py::module_& m) {
                                "(lo, hi): the confidence interval at `level`")
         .def("to_dict", &estimate_dict, "{'value', 'stderr', 'ci': (lo, hi), 'level'}")
         .def("__float__", [](const Estimate& e) { return e.value; })
-        .def("__repr__", &estimate_repr)
-        .def(py::pickle(
-            [](const Estimate& e) { return py::make_tuple(e.value, e.std_error, e.lo, e.hi, e.level); },
-            [](const py::tuple& t) {
-                Estimate e;
-                e.value = t[0].cast<double>();
-                e.std_error = t[1].cast<double>();
-                e.lo = t[2].cast<double>();
-                e.hi = t[3].cast<double>();
-                e.level = t[4].cast<double>();
-                return e;
-            }));
+        .def("__repr__", &estimate_repr);
 
     py::class_<KolmogorovEstimate>(m, "GridEstimate",
                                    "A value computed by a grid solver (engine='kolmogorov') with its estimated "
@@ -505,4 +486,5 @@ PYBIND11_MODULE(_core, m) {
     stickslip::python::bind_results(m);
     stickslip::python::bind_requests(m);
     stickslip::python::bind_analytic(m);
+    stickslip::python::bind_pickling(m); // last: it adds to the classes bound above
 }

@@ -18,42 +18,6 @@ namespace stickslip::python {
 
 namespace {
 
-// ---- renderings shared by every result class -------------------------------------
-
-template <class R, class Cls>
-void add_renderings(Cls& cls) {
-    cls.def(
-           "to_json", [](const R& r, int indent) { return to_json(r, indent); }, py::arg("indent") = 2,
-           "The CLI's --format json output (indent -1: one line).")
-        .def(
-            "to_dict", [](const R& r) { return json_loads(to_json(r, -1)); },
-            "json.loads(self.to_json()): exactly the object the CLI prints with --format json.")
-        .def("to_table", [](const R& r) { return to_table(r); }, "The CLI's --format table output.")
-        .def("to_csv", [](const R& r) { return to_csv(r); },
-             "The CLI's --format csv output: '#' comment lines (version, revision, command, seed, settings), "
-             "then a header line and the rows.")
-        .def_property_readonly(
-            "warnings",
-            [](const R& r) {
-                std::vector<std::string> out;
-                for (const std::string& w : r.warnings) out.push_back(python_text(w));
-                return out;
-            },
-            "Notes on the result (list of str), as in the CLI output with the settings named by their Python "
-            "keywords; the keyword functions and run() also raise each as a StickslipWarning.")
-        .def_property_readonly(
-            "meta",
-            [](const R& r) {
-                py::dict all = json_loads(to_json(r, -1));
-                py::dict meta;
-                for (const char* key : {"command", "settings", "version", "revision"})
-                    if (all.contains(key)) meta[key] = all[key];
-                return meta;
-            },
-            "What produced the result, as its JSON and CSV give it: {'command' (the call, or None), 'settings' "
-            "(every setting, as --print-config writes them), 'version', 'revision' (when known)}.");
-}
-
 template <class R, class Cls>
 void add_request_params(Cls& cls) {
     cls.def_property_readonly(

@@ -53,6 +53,9 @@ of ``result.save("run.npz")`` (or .json, .csv, .txt; written atomically).
 a table, one row per point or bin, NAME_stderr, NAME_lo and NAME_hi beside
 each estimate NAME. Its notes (``result.warnings``) are raised as
 ``StickslipWarning``, naming the keywords rather than the CLI's flags.
+Results (and Params, the requests) pickle, bit for bit, for
+``multiprocessing``, ``joblib`` and caches; a pickle is read only by the
+version that wrote it.
 
 Results are objects with NumPy-array attributes; estimates are ``Estimate``
 (``.value``, ``.stderr``, ``.ci``) or, along an axis, ``EstimateSeries``

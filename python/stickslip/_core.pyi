@@ -8,6 +8,9 @@ import numpy.typing as npt
 
 __version__: str
 
+# Every class below but FokkerPlanck pickles (pickle, multiprocessing, joblib):
+# an equal object, bit for bit; the format is not stable across versions.
+
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
@@ -338,9 +341,7 @@ class SweepResult(_Rendered):
     @property
     def resumed(self) -> int: ...
 
-class WhiteNoiseResult:
-    @property
-    def params(self) -> Params: ...
+class WhiteNoiseResult(_Rendered):
     @property
     def mobility(self) -> float: ...
     @property
@@ -363,14 +364,8 @@ class WhiteNoiseResult:
     def transient_density(self) -> FloatArray: ...  # (times, velocities)
     @property
     def method(self) -> str: ...
-    @property
-    def warnings(self) -> List[str]: ...
-    def to_json(self, indent: int = 2) -> str: ...
-    def to_dict(self) -> dict[str, Any]: ...
-    def to_table(self) -> str: ...
-    def to_csv(self) -> str: ...
 
-class FokkerPlanck:
+class FokkerPlanck:  # not picklable: make it again from its Params
     def __init__(self, params: Params, cells: int = 4000, half_width: float = 0.0,
                  steps_per_unit_time: int = 1000, richardson: bool = True) -> None: ...
     def first_moment(self, v0: float, t: npt.ArrayLike) -> FloatArray: ...

@@ -2,10 +2,11 @@
 """The results as tables and files: to_columns(), to_dataframe(), to_npz()
 and save(), added to every result class by the package.
 
-One definition of each result's table (columns_of): the rows are the result's
-points (one per bin, lag, time, recorded point or sweep point; one row for a
-single estimate), and an estimate NAME has the columns NAME, NAME_stderr,
-NAME_lo and NAME_hi, as in the CSV. to_dataframe() makes a pandas DataFrame of
+One definition of each result's table (COLUMNS): the rows are the result's
+points (one per bin, lag, time, recorded point or sweep point, or (time,
+velocity) pair of the white-noise references; one row for a single
+estimate), and an estimate NAME has the columns NAME, NAME_stderr, NAME_lo
+and NAME_hi, as in the CSV. to_dataframe() makes a pandas DataFrame of
 it, to_npz() a NumPy .npz file with the result's provenance (meta) beside the
 arrays, written as the CLI writes --output: atomically.
 """
@@ -92,6 +93,25 @@ def _sweep(r):
     return cols
 
 
+def _white_noise(r):
+    # One row per (time, velocity) pair, time-major (the stationary values on
+    # every row): the times alone (the CLI's CSV rows) without velocities, the
+    # velocities alone without times, one row with neither.
+    times, vs = _np.asarray(r.times), _np.asarray(r.velocities)
+    n, m = max(len(times), 1), max(len(vs), 1)
+    cols = {name: _np.full(n * m, getattr(r, name)) for name in ("mobility", "diffusivity", "variance")}
+    if len(times):
+        cols["time"] = _np.repeat(times, m)
+        cols["first_moment"] = _np.repeat(r.first_moment, m)
+        cols["autocorrelation"] = _np.repeat(r.autocorrelation, m)
+    if len(vs):
+        cols["v"] = _np.tile(vs, n)
+        cols["stationary_density"] = _np.tile(r.stationary_density, n)
+        if len(times):
+            cols["transient_density"] = _np.asarray(r.transient_density).ravel()  # NaN at t = 0
+    return cols
+
+
 COLUMNS = {
     "DiffusivityResult": _diffusivity,
     "BruteForceResult": _bruteforce,
@@ -100,13 +120,14 @@ COLUMNS = {
     "MomentsResult": _moments,
     "TrajectoryResult": _trajectory,
     "SweepResult": _sweep,
+    "WhiteNoiseResult": _white_noise,
 }
 
 
 def to_columns(self):
     """The result as a table: a dict of equally long 1-D NumPy arrays, one row
-    per point (bin, lag, time, recorded point, sweep point; one row for a
-    single estimate), an estimate NAME as the columns NAME, NAME_stderr,
+    per point (bin, lag, time, recorded point, sweep point, (time, velocity)
+    pair of WhiteNoiseResult; one row for a single estimate), an estimate NAME as the columns NAME, NAME_stderr,
     NAME_lo and NAME_hi (a solved value: NAME and NAME_error)."""
     return COLUMNS[type(self).__name__](self)
 

@@ -201,8 +201,9 @@ Every exact white-noise reference for one parameter set: what ``stickslip analyt
     WhiteNoiseResult
         .mobility, .diffusivity, .variance (floats); .times, .first_moment,
         .autocorrelation (n,); .velocities, .stationary_density (m,);
-        .transient_density (n, m) (NaN rows at t = 0); .method;
-        .to_dict() is the CLI's JSON.""", params_doc="""\
+        .transient_density (n, m) (NaN rows at t = 0); .method; .meta;
+        .to_dict() is the CLI's JSON; .to_columns() and .to_dataframe()
+        give one row per (time, velocity) pair.""", params_doc="""\
     params : Params
         friction, noise, relaxation, bias (tau is not used).""", module="stickslip.analytic")
 white_noise.__module__ = __name__
