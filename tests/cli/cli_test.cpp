@@ -459,8 +459,12 @@ TEST(CliUntrustworthy, NearWhiteNoiseAtATinyStepIsRefusedNotNaN) {
         EXPECT_TRUE(r.code == 2 || r.code == 3) << what << "\n" << r.err;
         EXPECT_EQ(r.out, "") << what;
         EXPECT_EQ(count_lines(r.err), 1) << r.err;
-        if (r.code == 2) EXPECT_NE(r.err.find("--tau: this run would take"), std::string::npos) << r.err;
-        if (r.code == 3) EXPECT_NE(r.err.find("first step"), std::string::npos) << r.err;
+        if (r.code == 2) {
+            EXPECT_NE(r.err.find("--tau: this run would take"), std::string::npos) << r.err;
+        }
+        if (r.code == 3) {
+            EXPECT_NE(r.err.find("first step"), std::string::npos) << r.err;
+        }
         EXPECT_EQ(r.err.find("nan"), std::string::npos) << r.err;
     };
     for (const char* cmd : {"diffusivity", "density", "correlation"}) {
