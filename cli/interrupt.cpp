@@ -138,6 +138,12 @@ StopOnSignals::StopOnSignals() {
 }
 
 StopOnSignals::~StopOnSignals() {
+    // Stopped by a signal: the handlers stay, so that the same request
+    // delivered again (to the process group, a few ms later) still finds
+    // them when the result is already written and the process is ending; a
+    // restored default action would kill it by that repeat, after its
+    // result, with the wrong status (seen in CI: two SIGINTs 5 ms apart).
+    if (g_stop) return;
     for (std::size_t i = 0; i < std::size(kSignals); ++i)
         if (g_installed[i]) {
             ::sigaction(kSignals[i], &g_previous[i], nullptr);

@@ -17,7 +17,9 @@
 namespace stickslip::cli {
 
 /// Installs the handlers for its lifetime (only for signals at their default
-/// action: an ignored SIGINT, as in a background job, stays ignored). Install
+/// action: an ignored SIGINT, as in a background job, stays ignored), and for
+/// the rest of the process once a stop signal came (a repeat of it must not
+/// kill the process after its result is written). Install
 /// before CleanupOnSignals (output.hpp), so that its handlers leave these two
 /// signals to it.
 class StopOnSignals {

@@ -94,6 +94,18 @@ TEST_P(CliMerging, ThreadCountsGiveIdenticalJson) {
 // random moments and resumed, with 1 and 2 threads in turn, the run prints
 // the uninterrupted run's JSON. The kill times are drawn from a fixed seed,
 // as fractions of the uninterrupted run's wall time.
+/// Whether the checkpoint at `path` exists and records a completed block
+/// (its calls' blocks_done; written atomically, so never half a file).
+bool holds_a_block(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) return false;
+    const json j = json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.contains("calls")) return false;
+    for (const auto& call : j.at("calls"))
+        if (call.value("blocks_done", 0) > 0) return true;
+    return false;
+}
+
 TEST_P(CliMerging, KilledAndResumedRunEqualsTheUninterruptedOne) {
     const Scratch dir("kill");
     const Args base = with(GetParam().args, {"--format", "json", "--quiet", "--seed", "5"});
@@ -112,12 +124,13 @@ TEST_P(CliMerging, KilledAndResumedRunEqualsTheUninterruptedOne) {
         ASSERT_GT(pid, 0);
         if (kills < 2) {
             std::this_thread::sleep_for(std::chrono::duration<double>(when(gen) * seconds));
-            // The first kill waits, if need be, for the first checkpoint: on a
-            // loaded machine the drawn moment can come before it, and the
-            // resumed run would then start afresh and test nothing.
+            // The first kill waits, if need be, for a checkpoint holding a
+            // completed block: on a loaded machine the drawn moment can come
+            // before it (the first checkpoint is written at set-up, empty),
+            // and the resumed run would then start afresh and test nothing.
             int st = 0;
             bool running = ::waitpid(pid, &st, WNOHANG) == 0;
-            while (running && kills == 0 && !std::ifstream(ckpt)) {
+            while (running && kills == 0 && !holds_a_block(ckpt)) {
                 std::this_thread::sleep_for(std::chrono::milliseconds(2));
                 running = ::waitpid(pid, &st, WNOHANG) == 0;
             }
