@@ -39,8 +39,10 @@ TEST(HopelessCli, CoarseEnoughSamplingStillRuns) {
 }
 
 /// stderr of a run on a terminal (a pseudo-terminal's master read here), so
-/// that the progress line and the notes are written.
-std::string stderr_on_terminal(const Args& args) {
+/// that the progress line and the notes are written: all of it, the run
+/// waited for; or, with `want`, read until `want` appears (or 60 s pass)
+/// and the run then killed.
+std::string stderr_on_terminal(const Args& args, const std::string& want = "") {
     const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
     if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return "no pty";
     const int slave = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
@@ -62,15 +64,15 @@ std::string stderr_on_terminal(const Args& args) {
     if (rc != 0) return "spawn failed";
     std::string text;
     char buf[4096];
-    for (;;) {
+    while (want.empty() || text.find(want) == std::string::npos) {
         pollfd p{master, POLLIN, 0};
         if (::poll(&p, 1, 60000) <= 0) break;
         const ssize_t n = ::read(master, buf, sizeof buf);
         if (n <= 0) break; // EIO once the child has closed its end
         text.append(buf, static_cast<std::size_t>(n));
     }
-    int status = 0;
-    ::waitpid(pid, &status, 0);
+    if (!want.empty()) ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
     ::close(master);
     return text;
 }
@@ -121,43 +123,6 @@ TEST(HopelessCli, AnUnreachablePrecisionIsRefused) {
     EXPECT_EQ(clitest::count_lines(r.err), 1) << r.err;
 }
 
-/// The first `want` text a run writes to a terminal's stderr, read until
-/// `want` appears (or 60 s pass); the run is then killed.
-std::string terminal_until(const Args& args, const std::string& want) {
-    const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
-    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return "no pty";
-    const int slave = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
-    if (slave < 0) return "no pty";
-    std::vector<std::string> argv_s{STICKSLIP_CLI_PATH};
-    argv_s.insert(argv_s.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : argv_s) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_adddup2(&fa, slave, 2);
-    pid_t pid = 0;
-    const int rc = ::posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    ::close(slave);
-    if (rc != 0) return "spawn failed";
-    std::string text;
-    char buf[4096];
-    while (text.find(want) == std::string::npos) {
-        pollfd p{master, POLLIN, 0};
-        if (::poll(&p, 1, 60000) <= 0) break;
-        const ssize_t n = ::read(master, buf, sizeof buf);
-        if (n <= 0) break;
-        text.append(buf, static_cast<std::size_t>(n));
-    }
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, nullptr, 0);
-    ::close(master);
-    return text;
-}
-
 // Runs predicted to last a minute or more say so, with the prediction, before
 // their first block: near-white noise (hours at the defaults), the PDMP at
 // small tau or on a fine grid.
@@ -171,7 +136,7 @@ TEST(HopelessCli, LongRunsSayTheirPredictedDurationBeforeStarting) {
                              // White noise at the defaults, about 100 s: each path runs the largest
                              // lag past its excursion and each of its samples costs 51 lag products.
                              Args{"correlation", "--tau", "0", "--threads", "2"}}) {
-        const std::string err = terminal_until(args, "keeps it safe");
+        const std::string err = stderr_on_terminal(args, "keeps it safe");
         EXPECT_NE(err.find("note: a long run: predicted about"), std::string::npos) << describe(args) << ": " << err;
     }
 }
