@@ -75,6 +75,12 @@
 // (0.8 standard errors); pure dry friction at tau' = 1 to 0.26%, at tau' =
 // 0.1 to 0.55% in 13 s.
 //
+// E[t1], the mean duration of a long excursion, needs no sampling either:
+// the mean time to a transition that ends a half excursion solves a Poisson
+// problem whose right-hand side is the stationary rate of those transitions
+// (Kac's formula), so the two halves take one more solve with the factors
+// already made (chain.cpp), and the value is extrapolated like D.
+//
 // The PDMP lattice mode (KolmogorovSettings::pdmp_grid) keeps the PDMP
 // engine's own chain in x, its lattice and jump rates, and refines only v:
 // the result is the PDMP's D, M0 and P(V = 0) at that grid, a sharp check
@@ -143,6 +149,10 @@ struct KolmogorovGridSolution {
     double diffusivity_x = 0;       ///< the x moves' carre du champ of chi [m^2/s] (D less the upwind diffusion)
     double mobility = 0;            ///< M0 of the chain [m/s]
     double stuck_probability = 0;   ///< P(V = 0) of the chain
+    /// E[t1] of the chain, the mean duration of a long excursion [s] (a +HLE
+    /// from (x*, 0) until stuck at x-*, then the mirror image), by one more
+    /// Poisson solve with the same factors (chain.cpp)
+    double mean_duration = 0;
     /// Stationary mass on the end x nodes and in the outermost v cell of each
     /// half line: a check that the domain is wide enough.
     double tail_mass = 0;
@@ -203,6 +213,10 @@ struct KolmogorovResult : MethodResult {
     KolmogorovEstimate diffusivity;      ///< D [m^2/s]
     KolmogorovEstimate mobility;         ///< M0 [m/s]
     KolmogorovEstimate stuck_probability; ///< P(V = 0)
+    /// E[t1], the mean duration of a long excursion [s], extrapolated like D
+    /// (the continuum's; a time-stepping scheme's depends on its step and stop
+    /// rule: compare at steps well below tau)
+    KolmogorovEstimate mean_duration;
     /// D from the x moves' carre du champ of chi, E[(2/tau^2) chi_x^2], extrapolated
     /// like D: the same continuum limit with a different discretisation error,
     /// a check on the extrapolation [m^2/s].
@@ -223,8 +237,8 @@ inline constexpr double kolmogorov_bytes_per_lu_nonzero = 16.0;
 /// The smallest nondimensional tau' = tau friction^2/noise the solver takes.
 inline constexpr double kolmogorov_min_tau_prime = 0.05;
 
-/// Solves the chain on one given grid, without extrapolation: D, M0 and
-/// P(V = 0) exact for the chain, the stationary velocity density. SI units;
+/// Solves the chain on one given grid, without extrapolation: D, M0,
+/// P(V = 0) and E[t1] exact for the chain, the stationary velocity density. SI units;
 /// p must be valid with tau > 0 (validate_kolmogorov), the grid as
 /// kolmogorov_grid makes it (band_intervals >= 2, cells >= 1 on each side).
 /// std::runtime_error if the factorisation fails.
@@ -243,7 +257,7 @@ KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s
 /// no stationary state ("bias"), invalid settings (the field's name).
 void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings);
 
-/// D [m^2/s], M0 [m/s] and P(V = 0) of p (SI units) by rounds of grid
+/// D [m^2/s], M0 [m/s], P(V = 0) and E[t1] [s] of p (SI units) by rounds of grid
 /// refinement and Richardson extrapolation, each with its estimated
 /// discretisation error, until the error of D is below
 /// settings.rel_precision or a budget stops it (converged false, note says

@@ -168,6 +168,13 @@ void bind_results(py::module_& m) {
                 },
                 "P(V = 0) (GridEstimate) with engine='kolmogorov'; None for a sampled result")
             .def_property_readonly(
+                "mean_duration",
+                [](const DiffusivityResult& r) -> py::object {
+                    if (r.solution) return py::cast(r.solution->mean_duration);
+                    return py::cast(r.estimates.mean_duration);
+                },
+                "E[t1], mean duration of a long excursion [s] (Estimate; a GridEstimate with engine='kolmogorov')")
+            .def_property_readonly(
                 "method", [](const DiffusivityResult& r) -> std::string {
                     return r.sampled() ? std::string("monte carlo") : r.grid().solver;
                 },
@@ -220,7 +227,8 @@ void bind_results(py::module_& m) {
                            g4(r.solution->diffusivity.error) + " m^2/s, mobility=" + g4(r.solution->mobility.value) +
                            " +- " + g4(r.solution->mobility.error) + " m/s, stuck_probability=" +
                            g4(r.solution->stuck_probability.value) + " +- " + g4(r.solution->stuck_probability.error) +
-                           ", engine='kolmogorov' (discretisation errors))";
+                           ", mean_duration=" + g4(r.solution->mean_duration.value) + " +- " +
+                           g4(r.solution->mean_duration.error) + " s, engine='kolmogorov' (discretisation errors))";
                 return "DiffusivityResult(diffusivity=" + estimate_short(r.estimates.diffusivity) +
                        " m^2/s, mobility=" + estimate_short(r.estimates.mobility) +
                        " m/s, mean_duration=" + estimate_short(r.estimates.mean_duration) +
@@ -328,7 +336,8 @@ void bind_results(py::module_& m) {
                     return "DensityResult(cells=" + std::to_string(fine.velocity_density.size()) + ", range=(" +
                            g4(fine.velocity_faces.front()) + ", " + g4(fine.velocity_faces.back()) + ") m/s, stuck=" +
                            g4(r.solution->stuck_probability.value) + " +- " + g4(r.solution->stuck_probability.error) +
-                           ", engine='kolmogorov' (discretisation errors))";
+                           ", mean_duration=" + g4(r.solution->mean_duration.value) + " +- " +
+                           g4(r.solution->mean_duration.error) + " s, engine='kolmogorov' (discretisation errors))";
                 }
                 return "DensityResult(bins=" + std::to_string(r.histogram.density.size()) + ", range=(" +
                        g4(r.histogram.edges.front()) + ", " + g4(r.histogram.edges.back()) +

@@ -162,9 +162,9 @@ D, mobility M0 and mean long-excursion duration E[t1] from N long excursions.
         .diffusivity [m^2/s], .mobility [m/s], .mean_duration [s] (Estimate:
         .value, .stderr, .ci), .completed, .capped, .warnings, .params;
         .to_dict() is the CLI's JSON (nondimensional values included). With
-        engine="kolmogorov": .diffusivity, .mobility and .stuck_probability
-        are GridEstimate (.value, .error: the estimated discretisation
-        error), and .method is "kolmogorov".""", """
+        engine="kolmogorov": .diffusivity, .mobility, .stuck_probability and
+        .mean_duration are GridEstimate (.value, .error: the estimated
+        discretisation error), and .method is "kolmogorov".""", """
 
     Example
     -------

@@ -201,6 +201,8 @@ class DiffusivityResult(_LongExcursions):
     @property
     def stuck_probability(self) -> Optional[GridEstimate]: ...  # P(V = 0), engine="kolmogorov"
     @property
+    def mean_duration(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]  # E[t1] [s]
+    @property
     def method(self) -> str: ...  # "monte carlo" or "kolmogorov"
     @property
     def precision(self) -> Optional[Dict[str, Any]]: ...

@@ -34,7 +34,7 @@ def _grid_estimate(cols, name, e):  # a solved value: its discretisation error, 
 def _diffusivity(r):
     cols = {}
     if r.method != "monte carlo":
-        for name in ("diffusivity", "mobility", "stuck_probability"):
+        for name in ("diffusivity", "mobility", "stuck_probability", "mean_duration"):
             _grid_estimate(cols, name, getattr(r, name))
         return cols
     for name in ("diffusivity", "mobility", "mean_duration"):

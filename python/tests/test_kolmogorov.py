@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""diffusivity(engine="kolmogorov"): the grid solver's D, M0 and P(V = 0), each
+"""diffusivity(engine="kolmogorov"): the grid solver's D, M0, P(V = 0) and E[t1], each
 with its estimated discretisation error and no standard error; the engines it
 does not serve refuse it."""
 import unittest
@@ -15,7 +15,7 @@ class KolmogorovEngineTest(unittest.TestCase):
 
     def test_values_with_discretisation_errors(self):
         r = self.r
-        for e in (r.diffusivity, r.mobility, r.stuck_probability):
+        for e in (r.diffusivity, r.mobility, r.stuck_probability, r.mean_duration):
             self.assertIsInstance(e, stickslip.GridEstimate)
             self.assertGreater(e.error, 0)
             self.assertLess(e.error, abs(e.value))
@@ -26,7 +26,7 @@ class KolmogorovEngineTest(unittest.TestCase):
     def test_json_has_value_and_error_and_no_stderr(self):
         d = self.r.to_dict()
         self.assertEqual(d["engine"], "kolmogorov")
-        for key in ("diffusivity", "mobility", "stuck_probability"):
+        for key in ("diffusivity", "mobility", "stuck_probability", "mean_duration"):
             self.assertEqual(set(d[key]), {"value", "error"})
             self.assertEqual(d[key], getattr(self.r, key).to_dict())
         self.assertTrue(d["precision"]["reached"])

@@ -205,7 +205,7 @@ DensityResult solve_density(const DensityRequest& req) {
     out.warnings.push_back("the density is the solver's finest grid's, one value per velocity cell (" +
                            std::to_string(fine.velocity_density.size()) +
                            " cells, graded towards v = 0; --bins and --range do not apply): a grid value has no "
-                           "standard error, and its discretisation error is estimated only for D, M0 and P(V = 0). "
+                           "standard error, and its discretisation error is estimated only for D, M0, P(V = 0) and E[t1]. "
                            "It integrates to 1 less that grid's own P(V = 0), " +
                            detail::format_number(fine.stuck_probability) + "; the P(V = 0) reported is extrapolated");
     return out;

@@ -27,6 +27,7 @@ std::string solved_json(const DiffusivityResult& r, int indent) {
     const Scales sc = scales_of(q.params);
     nd["diffusivity"] = s.diffusivity.value / sc.diffusivity;
     nd["mobility"] = s.mobility.value / sc.velocity;
+    nd["mean_duration"] = s.mean_duration.value / sc.time;
     j["nondimensional"] = nd;
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
@@ -51,12 +52,13 @@ std::string solved_csv(const DiffusivityResult& r) {
     const KolmogorovResult& s = *r.solution;
     std::ostringstream os = report_stream();
     os << "engine,friction,noise,tau,relaxation,bias,diffusivity,diffusivity_error,mobility,mobility_error,"
-          "stuck_probability,stuck_probability_error\n";
+          "stuck_probability,stuck_probability_error,mean_duration,mean_duration_error\n";
     os << to_string(r.request.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
        << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
        << csv_number(s.diffusivity.value) << "," << csv_number(s.diffusivity.error) << ","
        << csv_number(s.mobility.value) << "," << csv_number(s.mobility.error) << ","
-       << csv_number(s.stuck_probability.value) << "," << csv_number(s.stuck_probability.error) << "\n";
+       << csv_number(s.stuck_probability.value) << "," << csv_number(s.stuck_probability.error) << ","
+       << csv_number(s.mean_duration.value) << "," << csv_number(s.mean_duration.error) << "\n";
     return os.str();
 }
 

@@ -46,6 +46,7 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
     j["diffusivity"] = solved_json(s.diffusivity);
     j["mobility"] = solved_json(s.mobility);
     j["stuck_probability"] = solved_json(s.stuck_probability);
+    j["mean_duration"] = solved_json(s.mean_duration);
     ordered_json pr;
     pr["target"] = settings.rel_precision;
     pr["relative_error"] = json_number(relative_error(s));
@@ -83,6 +84,7 @@ void solved_table_rows(std::ostringstream& os, const KolmogorovResult& s, const 
     solved_row(os, "diffusivity D", s.diffusivity, sc.diffusivity, "m^2/s");
     solved_row(os, "mobility M0", s.mobility, sc.velocity, "m/s");
     solved_row(os, "P(V = 0)", s.stuck_probability, 1.0, "");
+    solved_row(os, "mean E[t1]", s.mean_duration, sc.time, "s");
 }
 
 std::string solved_work_line(const KolmogorovResult& s, const KolmogorovSettings& settings) {

@@ -16,7 +16,8 @@ namespace stickslip::detail {
 /// The head of a solved report: "quantity" (when given), "engine", "method"
 /// (the solver) and "params" (the model, no step or seed).
 ordered_json solved_head(const char* quantity, const RunSettings& r, const KolmogorovResult& s);
-/// "diffusivity", "mobility", "stuck_probability" as {value, error};
+/// "diffusivity", "mobility", "stuck_probability", "mean_duration" (E[t1])
+/// as {value, error};
 /// "precision" {target, relative_error, reached}; "grid" (the finest grid,
 /// the grids solved, the stationary mass at the domain's ends, and D from the
 /// x moves' carre du champ, the solver's check).
@@ -25,7 +26,7 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
 ordered_json solved_work_json(const KolmogorovResult& s, const KolmogorovSettings& settings);
 /// Column titles of the solved table: value, "+- error (discretisation)", unit, nondim.
 std::string solved_table_head();
-/// The rows of D, M0 and P(V = 0), `sc` the nondimensional units.
+/// The rows of D, M0, P(V = 0) and E[t1], `sc` the nondimensional units.
 void solved_table_rows(std::ostringstream& os, const KolmogorovResult& s, const Scales& sc);
 /// "finest grid N states (...), K grids solved, T s on K threads; estimated
 /// relative error of D: E% (target P%)\n".

@@ -21,7 +21,7 @@ TEST(CliKolmogorov, DiffusivityJsonHasValueAndErrorNoStderr) {
     const auto j = run_json(kBase);
     ASSERT_TRUE(j);
     EXPECT_EQ((*j)["engine"], "kolmogorov");
-    for (const char* key : {"diffusivity", "mobility", "stuck_probability"}) {
+    for (const char* key : {"diffusivity", "mobility", "stuck_probability", "mean_duration"}) {
         const json& e = (*j)[key];
         ASSERT_TRUE(e.contains("value") && e.contains("error")) << key;
         EXPECT_FALSE(e.contains("stderr") || e.contains("ci")) << key;
@@ -31,7 +31,7 @@ TEST(CliKolmogorov, DiffusivityJsonHasValueAndErrorNoStderr) {
     EXPECT_TRUE((*j)["precision"]["reached"].get<bool>());
     EXPECT_LE((*j)["precision"]["relative_error"].get<double>(), 0.01);
     // No excursion totals, step or seed for a solver.
-    for (const char* key : {"completed", "capped", "mean_duration", "engine_details"}) EXPECT_FALSE(j->contains(key)) << key;
+    for (const char* key : {"completed", "capped", "engine_details"}) EXPECT_FALSE(j->contains(key)) << key;
     EXPECT_FALSE((*j)["params"].contains("dt") || (*j)["params"].contains("seed"));
 }
 

@@ -35,6 +35,7 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseLU>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace stickslip::detail::kolmogorov {
@@ -68,6 +69,7 @@ ChainGrid make_grid(const ModelParams& p, const KolmogorovGrid& g) {
         }
         grid.stuck_first = static_cast<std::size_t>(c.k_minus + c.n_max);
         grid.stuck_last = static_cast<std::size_t>(c.k_plus + c.n_max);
+        grid.pdmp_lattice = true;
     } else {
         grid.x.resize(g.x_nodes);
         for (std::size_t j = 0; j < g.x_nodes; ++j)
@@ -158,6 +160,15 @@ Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& d
         entries.emplace_back(static_cast<int>(from), static_cast<int>(to), r);
         out[from] += r;
     };
+    // The transitions that end a half long excursion (chain.hpp), each added
+    // as a rate and recorded.
+    const std::size_t below = grid.stuck_first - 1, above = grid.stuck_last + 1; // the band's edge nodes
+    chain.plus_start = pos(above, 0);
+    chain.minus_start = neg(below, 0);
+    auto end = [&](std::vector<Chain::End>& ends, std::size_t from, std::size_t to, double r) {
+        rate(from, to, r);
+        if (r > 0.0) ends.push_back({from, r});
+    };
 
     // x moves.
     for (std::size_t j = 0; j + 1 < nx; ++j) {
@@ -172,8 +183,14 @@ Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& d
             rate(pos(j + 1, k), pos(j, k), down);
         }
         // Stuck states move along the band and leave it at its edges.
-        if (grid.in_band(j)) rate(stuck(j), grid.in_band(j + 1) ? stuck(j + 1) : pos(j + 1, 0), up);
-        if (grid.in_band(j + 1)) rate(stuck(j + 1), grid.in_band(j) ? stuck(j) : neg(j, 0), down);
+        if (grid.in_band(j)) {
+            if (grid.in_band(j + 1)) rate(stuck(j), stuck(j + 1), up);
+            else end(chain.minus_ends, stuck(j), pos(j + 1, 0), up); // stuck, and X reaches x*
+        }
+        if (grid.in_band(j + 1)) {
+            if (grid.in_band(j)) rate(stuck(j + 1), stuck(j), down);
+            else end(chain.plus_ends, stuck(j + 1), neg(j, 0), down); // stuck, and X reaches x-*
+        }
     }
 
     // v moves.
@@ -204,9 +221,16 @@ Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& d
             rate(pos(j, 0), stuck(j), std::max(-c_pos, 0.0) / chain.width[pos(j, 0)]);
             rate(neg(j, 0), stuck(j), std::max(c_neg, 0.0) / chain.width[neg(j, 0)]);
         } else if (j > grid.stuck_last) {
-            rate(neg(j, 0), pos(j, 0), std::max(c_neg, 0.0) / chain.width[neg(j, 0)]);
+            // On the PDMP lattice a landing from below at x_{k+ +1} arrives at
+            // s+ and ends a -HLE; in the continuum a landing exactly at x* has
+            // probability 0, and only a stuck path's exit ends it.
+            const double r = std::max(c_neg, 0.0) / chain.width[neg(j, 0)];
+            if (grid.pdmp_lattice && j == above) end(chain.minus_ends, neg(j, 0), pos(j, 0), r);
+            else rate(neg(j, 0), pos(j, 0), r);
         } else {
-            rate(pos(j, 0), neg(j, 0), std::max(-c_pos, 0.0) / chain.width[pos(j, 0)]);
+            const double r = std::max(-c_pos, 0.0) / chain.width[pos(j, 0)];
+            if (grid.pdmp_lattice && j == below) end(chain.plus_ends, pos(j, 0), neg(j, 0), r);
+            else rate(pos(j, 0), neg(j, 0), r);
         }
     }
 
@@ -282,6 +306,33 @@ ChainSolution solve_chain(const Chain& chain) {
 
     for (std::size_t s = 0; s < n; ++s)
         sol.diffusivity += 2.0 * sol.stationary[s] * (chain.velocity[s] - sol.mobility) * sol.chi[s];
+
+    // E[t1]. With f+(i) the mean time from state i to the next transition
+    // that ends a +HLE (chain.plus_ends, all into minus_start), first-step
+    // analysis gives Q f+ = -1 + phi+ f+(minus_start), phi+_i the rate of the
+    // ending transitions out of i; multiplying by pi (pi^T Q = 0) gives
+    // f+(minus_start) = 1/F+, F+ = sum pi_i phi+_i the stationary rate of the
+    // ends (Kac). So Q f+ = -1 + phi+/F+, a Poisson problem like chi's, and
+    // the same for f-. E[t1] = f+(plus_start) + f-(minus_start)
+    //   = 1/F+ + 1/F- + w(plus_start) - w(minus_start),  w = f+ - f-,
+    // with Q w = phi+/F+ - phi-/F-: one more solve with the same factors (the
+    // right-hand side is orthogonal to pi, and the constant in w cancels).
+    double flux_plus = 0, flux_minus = 0;
+    for (const Chain::End& e : chain.plus_ends) flux_plus += sol.stationary[e.from] * e.rate;
+    for (const Chain::End& e : chain.minus_ends) flux_minus += sol.stationary[e.from] * e.rate;
+    if (flux_plus > 0 && flux_minus > 0) {
+        Eigen::VectorXd source = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+        for (const Chain::End& e : chain.plus_ends) source[static_cast<Eigen::Index>(e.from)] += e.rate / flux_plus;
+        for (const Chain::End& e : chain.minus_ends) source[static_cast<Eigen::Index>(e.from)] -= e.rate / flux_minus;
+        Eigen::VectorXd w_rhs(static_cast<Eigen::Index>(n - 1));
+        for (std::size_t s = 0, r = 0; s < n; ++s)
+            if (s != k) w_rhs[static_cast<Eigen::Index>(r++)] = source[static_cast<Eigen::Index>(s)];
+        const Eigen::VectorXd w_rest = lu.solve(w_rhs);
+        auto w = [&](std::size_t s) { return s == k ? 0.0 : w_rest[static_cast<Eigen::Index>(shrink(static_cast<Eigen::Index>(s)))]; };
+        sol.mean_duration = 1.0 / flux_plus + 1.0 / flux_minus + w(chain.plus_start) - w(chain.minus_start);
+    } else {
+        sol.mean_duration = std::numeric_limits<double>::infinity(); // no way out of a half: never ends
+    }
 
     // The carre du champ of the x moves alone: the continuum's D = E[(2/tau^2)
     // chi_x^2]; the v moves add the upwind scheme's numerical diffusion.

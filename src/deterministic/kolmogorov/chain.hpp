@@ -49,6 +49,7 @@ struct ChainGrid {
     std::size_t stuck_last = 0;     ///< the last node with a stuck state
     std::vector<double> faces_pos;  ///< 0 = f_0 < f_1 < ... < f_m [m/s]: faces of the cells on v > 0
     std::vector<double> faces_neg;  ///< 0 = g_0 > g_1 > ... > g_m [m/s]: faces of the cells on v < 0
+    bool pdmp_lattice = false;      ///< whether x is the PDMP engine's lattice (KolmogorovGrid::lattice_step > 0)
 
     /// Whether node j carries a stuck state. On the Scharfetter-Gummel grid,
     /// the nodes strictly inside the band (kolmogorov.hpp: a stuck path leaves
@@ -78,6 +79,28 @@ struct Chain {
     std::vector<std::size_t> first;   ///< first state of each x node (and one past the last node)
     std::size_t pinned = 0;           ///< the state whose chi is pinned to 0 (a stuck state mid-band)
 
+    /// A transition of the chain that ends a half long excursion: its state
+    /// and rate [s^-1] (all of them lead to the state where the next half
+    /// starts).
+    struct End {
+        std::size_t from;
+        double rate;
+    };
+    /// Where a +HLE starts: the first positive cell at the band's upper edge
+    /// node, where a stuck path that leaves the band upwards goes (the
+    /// continuum's (x*, 0)); on the PDMP lattice its s+ = (x_{k+ +1}, +1, 0).
+    std::size_t plus_start = 0;
+    /// Where a -HLE starts, the mirror image: the first negative cell at the
+    /// band's lower edge node.
+    std::size_t minus_start = 0;
+    /// The transitions into minus_start that end a +HLE: a stuck path
+    /// leaving the band downwards (the continuum's "stuck, and X reaches
+    /// x-*"); on the PDMP lattice also a landing from above at that node, as
+    /// the PDMP engine ends it at any arrival at s- (pdmp_half).
+    std::vector<End> plus_ends;
+    /// The transitions into plus_start that end a -HLE (the mirror image).
+    std::vector<End> minus_ends;
+
     std::size_t size() const { return velocity.size(); }
 };
 
@@ -94,11 +117,15 @@ struct ChainSolution {
     double diffusivity_x = 0;       ///< sum pi_i Q_ij (chi_j - chi_i)^2 over the x moves only [m^2/s]
     double stuck_probability = 0;   ///< pi(S)
     double tail_mass = 0;           ///< mass in the two end x nodes and the two outermost v cells of each half line
+    /// E[t1] of the chain [s]: the mean time from plus_start to a +HLE's end
+    /// plus the mean time from minus_start to a -HLE's end (solve_chain).
+    double mean_duration = 0;
     std::size_t nonzeros_lu = 0;    ///< nonzeros of the L and U factors
 };
 
 /// Solves pi^T Q = 0 and Q chi = -(g - M0) with one sparse LU factorisation
-/// (COLAMD ordering) of Q less the pinned state's row and column.
+/// (COLAMD ordering) of Q less the pinned state's row and column, and with the
+/// same factors the Poisson problem that gives E[t1] (solve_chain's comment).
 ChainSolution solve_chain(const Chain& chain);
 
 /// The Scharfetter-Gummel weight B(z) = z/(e^z - 1), B(0) = 1, without

@@ -124,6 +124,7 @@ KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& gr
     out.diffusivity_x = sol.diffusivity_x;
     out.mobility = sol.mobility;
     out.stuck_probability = sol.stuck_probability;
+    out.mean_duration = sol.mean_duration;
 
     // The v-marginal density of the sliding states, and the mass at the ends.
     const std::size_t mn = chain_grid.cells_neg(), mp = chain_grid.cells_pos(), nx = chain_grid.x.size();
@@ -283,6 +284,7 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         result.diffusivity_x = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity_x; }, false);
         result.mobility = estimate([](const KolmogorovGridSolution& s) { return s.mobility; }, false);
         result.stuck_probability = estimate([](const KolmogorovGridSolution& s) { return s.stuck_probability; }, false);
+        result.mean_duration = estimate([](const KolmogorovGridSolution& s) { return s.mean_duration; }, false);
         for (auto& s : solved) result.levels.push_back(std::move(s));
 
         const double relative = result.diffusivity.error / std::abs(result.diffusivity.value);
