@@ -8,6 +8,12 @@
 // own streams, the points' errors are independent and the slope errors below
 // are exact (to first order); any point can be recomputed alone
 // with RunControl::first_index = k * 2^40.
+//
+// With --engine kolmogorov nothing is sampled: every point is the solver's
+// diffusivity there (bit for bit `diffusivity --engine kolmogorov` at that
+// point), and the slope and exponent errors are propagated from the
+// estimated discretisation errors of D the same way, as a scale, not as a
+// sampling distribution (no intervals).
 #pragma once
 
 /// \file
@@ -17,6 +23,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "stickslip/diffusivity.hpp"
@@ -39,6 +46,11 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     std::vector<double> taus = {0.125, 0.25, 0.5, 1.0}; ///< tau values [s], >= 0
     /// The estimator of D at every point (as DiffusivityRequest::estimator).
     Estimator estimator = Estimator::RenewalReward;
+    /// With --engine kolmogorov: the target estimated relative discretisation
+    /// error of D at every point (as DiffusivityRequest::rel_precision; 0 takes
+    /// the solver's default, 1e-3). A Monte Carlo sweep has no precision mode
+    /// and refuses a value > 0.
+    double rel_precision = 0.0;
     /// Optional: the progress callback for point k of n at (noise, tau).
     std::function<std::function<bool(const Progress&)>(std::size_t k, std::size_t n, double noise, double tau)>
         point_progress;
@@ -53,6 +65,9 @@ void visit_settings(SweepRequest& r, Visitor&& v) {
     v(NumberList{r.taus}, SettingInfo{"tau", "s", "correlation times: comma-separated or lo:hi:n (n log-spaced)"});
     visit_settings(static_cast<ExcursionSettings&>(r), v);
     v(r.estimator, SettingInfo{"estimator", "", "renewal (default) or paper (eq. 12)"});
+    v(r.rel_precision, SettingInfo{"rel-precision", "",
+                                   "with --engine kolmogorov: the target estimated relative error of D at every "
+                                   "point (0: the solver's default, 1e-3; 0.01 is about 10 times faster)"});
 }
 
 /// One point (noise, tau) of a sweep: the diffusivity run there.
@@ -61,8 +76,13 @@ struct SweepPoint {
     /// The point: noise intensity Gamma [m^2 s^-3] and correlation time tau [s].
     double noise = 0, tau = 0;
     /// @}
-    /// D [m^2/s], M0 [m/s] and E[t1] [s] at the point.
+    /// D [m^2/s], M0 [m/s] and E[t1] [s] at the point (sampled; unset when
+    /// `solution` holds the point).
     LongExcursionEstimates estimates;
+    /// With --engine kolmogorov, the solver's result at the point: D, M0,
+    /// P(V = 0) and E[t1], each with its estimated discretisation error (no
+    /// samples, so no stop rule, step or scheme either).
+    std::optional<KolmogorovResult> solution;
     /// The stop rule used there (ResolvedEngine::stop_rule): with the
     /// automatic rule it can change along the grid, as dt/tau does.
     std::string stop_rule;
@@ -77,7 +97,9 @@ struct SweepPoint {
     /// Wall time of the point [s].
     double seconds = 0;
     /// d log D / d log Gamma at this point (central difference inside the
-    /// grid, one-sided at its ends; NaN with a single noise value).
+    /// grid, one-sided at its ends; NaN with a single noise value). Solved
+    /// points: std_error is the error propagated from D's discretisation
+    /// errors, and the interval is NaN (there is no sampling distribution).
     Estimate slope;
     /// The point's own warnings (DiffusivityResult::warnings).
     std::vector<std::string> warnings;
@@ -87,8 +109,13 @@ struct SweepPoint {
 struct SweepExponent {
     /// The correlation time [s] of the fit.
     double tau = 0;
-    Estimate exponent;  ///< alpha of D ~ Gamma^alpha, weighted least squares in log-log
-    double chi2_per_dof = 0; ///< of the power-law fit: >> 1 means no single power law
+    /// alpha of D ~ Gamma^alpha, weighted least squares in log-log (solved
+    /// points: weights and std_error from D's discretisation errors, the
+    /// interval NaN)
+    Estimate exponent;
+    /// Of the power-law fit: >> 1 means no single power law (solved points:
+    /// the residuals in units of D's discretisation errors)
+    double chi2_per_dof = 0;
     /// Points fitted (fewer than the noises when the sweep was interrupted).
     int points = 0;
 };
@@ -106,17 +133,23 @@ struct SweepResult {
     /// The points' distinct warnings, an interrupted sweep, and few
     /// excursions per point.
     std::vector<std::string> warnings;
+
+    /// Whether the points were solved (--engine kolmogorov), not sampled.
+    bool solved() const { return !samples(request.engine); }
 };
 
 /// Every check of the sweep (InvalidParameter on the first problem): at least
 /// one noise and one tau, no NaN, at most 65536 points, at most 2^40
-/// excursions per point, first_index 0, then every point as a diffusivity
-/// request (the message names the first bad point).
+/// excursions per point, first_index 0, rel_precision only with the
+/// Kolmogorov engine, then every point as a diffusivity request (the message
+/// names the first bad point).
 void validate(const SweepRequest& req);
 /// Validates every point before running any, then runs them tau-major, each
 /// on its own sample indices (top of the file), and fits the slopes and
 /// exponents. RunControl::stop ends it after the point in progress (a
-/// prefix of its excursions).
+/// prefix of its excursions). With --engine kolmogorov every point is solved
+/// (solve_kolmogorov) instead of sampled, and a stop ends the sweep after the
+/// point in progress.
 SweepResult compute_sweep(const SweepRequest& req);
 
 } // namespace stickslip

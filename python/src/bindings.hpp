@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "stickslip/kolmogorov.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/params.hpp"
 
@@ -38,6 +39,15 @@ py::object json_loads(const std::string& text);
 struct EstimateSeries {
     std::vector<Estimate> items;
     double level = 0.95;
+    /// The arrays' shape ((n_tau, n_noise) for a sweep); empty: (n,).
+    std::vector<py::ssize_t> shape;
+};
+
+/// Values of a grid solver along an axis (a solved sweep's points), each with
+/// its estimated discretisation error: GridEstimate as EstimateSeries is to
+/// Estimate, with no standard errors or intervals.
+struct GridEstimateSeries {
+    std::vector<KolmogorovEstimate> items;
     /// The arrays' shape ((n_tau, n_noise) for a sweep); empty: (n,).
     std::vector<py::ssize_t> shape;
 };

@@ -202,8 +202,8 @@ py::dict estimate_dict(const Estimate& e) {
     return d;
 }
 
-template <class Get>
-py::array_t<double> series_column(const EstimateSeries& s, Get get) {
+template <class Series, class Get>
+py::array_t<double> series_column(const Series& s, Get get) {
     py::array_t<double> a(static_cast<py::ssize_t>(s.items.size()));
     auto* d = a.mutable_data();
     for (std::size_t k = 0; k < s.items.size(); ++k) d[k] = get(s.items[k]);
@@ -386,6 +386,70 @@ void bind_core(py::module_& m) {
         .def("__repr__", [](const KolmogorovEstimate& e) {
             return "GridEstimate(value=" + number_text::general(e.value, 6) + ", error=" +
                    number_text::general(e.error, 3) + ")";
+        });
+
+    py::class_<GridEstimateSeries>(m, "GridEstimateSeries",
+                                   "Values of a grid solver (engine='kolmogorov') along an axis, with their "
+                                   "estimated discretisation errors, as NumPy arrays: value, error (shape (n,), or "
+                                   "(n_tau, n_noise) for a sweep). np.asarray(s) is s.value; s[k] is the k-th "
+                                   "GridEstimate (flat order), s[i, j] that of a 2-D series.")
+        .def_property_readonly("value", [](const GridEstimateSeries& s) {
+            return series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
+        })
+        .def_property_readonly("error", [](const GridEstimateSeries& s) {
+            return series_column(s, [](const KolmogorovEstimate& e) { return e.error; });
+        }, "estimated discretisation errors (absolute)")
+        .def_property_readonly(
+            "shape",
+            [](const GridEstimateSeries& s) {
+                py::tuple t(s.shape.empty() ? 1 : s.shape.size());
+                if (s.shape.empty()) t[0] = py::int_(s.items.size());
+                for (std::size_t k = 0; k < s.shape.size(); ++k) t[k] = py::int_(s.shape[k]);
+                return t;
+            },
+            "the arrays' shape: (n,), or (n_tau, n_noise) for a sweep")
+        .def("__len__", [](const GridEstimateSeries& s) { return s.items.size(); })
+        .def("__getitem__",
+             [](const GridEstimateSeries& s, py::tuple index) {
+                 if (s.shape.size() != 2 || index.size() != 2)
+                     throw py::index_error("GridEstimateSeries takes (i, j) only when 2-D");
+                 const auto i = index[0].cast<py::ssize_t>(), j = index[1].cast<py::ssize_t>();
+                 if (i < 0 || j < 0 || i >= s.shape[0] || j >= s.shape[1])
+                     throw py::index_error("GridEstimateSeries index out of range");
+                 return s.items[static_cast<std::size_t>(i * s.shape[1] + j)];
+             })
+        .def("__getitem__",
+             [](const GridEstimateSeries& s, py::ssize_t k) {
+                 const auto n = static_cast<py::ssize_t>(s.items.size());
+                 if (k < 0) k += n;
+                 if (k < 0 || k >= n) throw py::index_error("GridEstimateSeries index out of range");
+                 return s.items[static_cast<std::size_t>(k)];
+             })
+        .def(
+            "__array__",
+            [](const GridEstimateSeries& s, const py::object& dtype) {
+                py::array a = series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
+                if (!dtype.is_none()) a = a.attr("astype")(dtype);
+                return a;
+            },
+            py::arg("dtype") = py::none())
+        .def("to_dict",
+             [](const GridEstimateSeries& s) {
+                 py::dict d;
+                 d["value"] = series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
+                 d["error"] = series_column(s, [](const KolmogorovEstimate& e) { return e.error; });
+                 return d;
+             },
+             "{'value', 'error'} arrays")
+        .def("__repr__", [](const GridEstimateSeries& s) {
+            std::string out = "GridEstimateSeries(n=" + std::to_string(s.items.size());
+            if (!s.items.empty()) {
+                out += ", value=[" + float_repr(s.items.front().value);
+                if (s.items.size() > 2) out += ", ...";
+                if (s.items.size() > 1) out += ", " + float_repr(s.items.back().value);
+                out += "]";
+            }
+            return out + ")";
         });
 
     py::class_<EstimateSeries>(m, "EstimateSeries",

@@ -44,6 +44,7 @@ template <class F> void fields(F& f, Scales& x) {
     f(x.time, x.length, x.velocity, x.acceleration, x.diffusivity, x.noise_level);
 }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
+template <class F> void fields(F& f, GridEstimateSeries& x) { f(x.items, x.shape); }
 template <class F> void fields(F& f, LongExcursionEstimates& x) {
     f(x.diffusivity, x.mobility, x.mean_duration, x.excursions, x.estimator);
 }
@@ -89,7 +90,7 @@ template <class F> void fields(F& f, ExcursionOutcome& x) {
     f(x.displacement, x.duration, x.work, x.capped, x.first_half, x.martingale, x.martingale_qv);
 }
 template <class F> void fields(F& f, SweepPoint& x) {
-    f(x.noise, x.tau, x.estimates, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope, x.warnings);
+    f(x.noise, x.tau, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope, x.warnings);
 }
 template <class F> void fields(F& f, SweepExponent& x) { f(x.tau, x.exponent, x.chi2_per_dof, x.points); }
 template <class F> void fields(F& f, WhiteNoiseReference& x) { f(x.mobility, x.diffusivity, x.variance); }
@@ -341,6 +342,7 @@ void bind_pickling(py::module_& m) {
     pickled<Estimate>(m, "Estimate");
     pickled<KolmogorovEstimate>(m, "GridEstimate");
     pickled<EstimateSeries>(m, "EstimateSeries");
+    pickled<GridEstimateSeries>(m, "GridEstimateSeries");
     pickled<VelocityHistogram>(m, "Histogram");
     pickled<SamplePath>(m, "Path");
     pickled<SweepExponent>(m, "SweepExponent");

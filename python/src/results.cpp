@@ -479,6 +479,25 @@ void bind_results(py::module_& m) {
             return std::vector<py::ssize_t>{static_cast<py::ssize_t>(r.request.taus.size()),
                                             static_cast<py::ssize_t>(r.request.noises.size())};
         };
+        // A solved sweep's (engine='kolmogorov'): values with their
+        // discretisation errors, NaN where an interrupted sweep did not reach.
+        auto solved_column = [grid_shape](const R& r, auto get) {
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            GridEstimateSeries out;
+            out.items.assign(r.request.taus.size() * r.request.noises.size(), KolmogorovEstimate{nan, nan});
+            for (std::size_t k = 0; k < r.points.size() && k < out.items.size(); ++k) out.items[k] = get(r.points[k]);
+            out.shape = grid_shape(r);
+            return out;
+        };
+        // The column of a quantity: an EstimateSeries, or a GridEstimateSeries
+        // for a solved sweep (`solved` picks the point's value, or nullptr
+        // where the solver has none).
+        auto column_of = [solved_column](auto column, auto sampled, auto solved) {
+            return [column, solved_column, sampled, solved](const R& r) -> py::object {
+                if (r.solved()) return py::cast(solved_column(r, solved));
+                return py::cast(column(r, sampled));
+            };
+        };
         auto column = [grid_shape](const R& r, auto get) {
             const double nan = std::numeric_limits<double>::quiet_NaN();
             std::vector<Estimate> v(r.request.taus.size() * r.request.noises.size(),
@@ -515,20 +534,38 @@ void bind_results(py::module_& m) {
                 "tau of every point [s], shape (len(taus), len(noises)) (taus along axis 0)")
             .def_property_readonly(
                 "diffusivity",
-                [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.estimates.diffusivity; }); },
-                "D [m^2/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep did not reach)")
+                column_of(column, [](const SweepPoint& p) { return p.estimates.diffusivity; },
+                          [](const SweepPoint& p) { return p.solution->diffusivity; }),
+                "D [m^2/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep "
+                "did not reach; a GridEstimateSeries with engine='kolmogorov')")
             .def_property_readonly(
                 "mobility",
-                [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.estimates.mobility; }); },
-                "M0 [m/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep did not reach)")
+                column_of(column, [](const SweepPoint& p) { return p.estimates.mobility; },
+                          [](const SweepPoint& p) { return p.solution->mobility; }),
+                "M0 [m/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep "
+                "did not reach; a GridEstimateSeries with engine='kolmogorov')")
             .def_property_readonly(
                 "mean_duration",
-                [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.estimates.mean_duration; }); },
-                "E[t1] [s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep did not reach)")
+                column_of(column, [](const SweepPoint& p) { return p.estimates.mean_duration; },
+                          [](const SweepPoint& p) { return p.solution->mean_duration; }),
+                "E[t1] [s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep "
+                "did not reach; a GridEstimateSeries with engine='kolmogorov')")
             .def_property_readonly(
-                "slope", [column](const R& r) { return column(r, [](const SweepPoint& p) { return p.slope; }); },
-                "local d log D / d log noise per point (EstimateSeries, shape (len(taus), len(noises)); NaN with one noise "
-                "value)")
+                "stuck_probability",
+                [solved_column](const R& r) -> py::object {
+                    if (!r.solved()) return py::none();
+                    return py::cast(solved_column(r, [](const SweepPoint& p) { return p.solution->stuck_probability; }));
+                },
+                "P(V = 0) per point (GridEstimateSeries) with engine='kolmogorov'; None for a sampled sweep")
+            .def_property_readonly(
+                "slope",
+                column_of(column, [](const SweepPoint& p) { return p.slope; },
+                          [](const SweepPoint& p) { return KolmogorovEstimate{p.slope.value, p.slope.std_error}; }),
+                "local d log D / d log noise per point (EstimateSeries, shape (len(taus), len(noises)); NaN with one "
+                "noise value; a GridEstimateSeries with engine='kolmogorov', its error propagated from D's)")
+            .def_property_readonly(
+                "method", [](const R& r) -> std::string { return r.solved() ? "kolmogorov" : "monte carlo"; },
+                "'monte carlo', or 'kolmogorov' with engine='kolmogorov'")
             .def_property_readonly(
                 "stop_rule",
                 [](const R& r) {
@@ -545,7 +582,8 @@ void bind_results(py::module_& m) {
             .def("__repr__", [](const R& r) {
                 return "SweepResult(taus=" + std::to_string(r.request.taus.size()) +
                        ", noises=" + std::to_string(r.request.noises.size()) +
-                       ", excursions=" + std::to_string(r.request.excursions) + " per point)";
+                       (r.solved() ? std::string(", engine='kolmogorov' (discretisation errors))")
+                                   : ", excursions=" + std::to_string(r.request.excursions) + " per point)");
             });
 
     }

@@ -90,6 +90,7 @@ from ._core import (  # noqa: F401  (re-exported)
     Estimate,
     EstimateSeries,
     GridEstimate,
+    GridEstimateSeries,
     Histogram,
     InvalidParameterError,
     MomentsRequest,
@@ -115,7 +116,7 @@ _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityR
              SweepRequest, TrajectoryRequest)
 # Show (and pickle) the compiled classes under the names users import.
 for _cls in (BruteForceResult, CorrelationResult, DensityResult, DiffusivityResult, Estimate, EstimateSeries,
-             GridEstimate, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
+             GridEstimate, GridEstimateSeries, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
              TrajectoryResult,
              InvalidParameterError, UntrustworthyResultError, CappedExcursionsError, StickslipWarning) + _REQUESTS:
     _cls.__module__ = __name__
@@ -123,7 +124,7 @@ run.__module__ = __name__
 del _cls
 
 __all__ = [
-    "Params", "Scales", "Estimate", "EstimateSeries", "GridEstimate", "Histogram", "Path",
+    "Params", "Scales", "Estimate", "EstimateSeries", "GridEstimate", "GridEstimateSeries", "Histogram", "Path",
     "DiffusivityResult", "BruteForceResult", "DensityResult", "CorrelationResult", "MomentsResult",
     "TrajectoryResult", "SweepResult", "SweepExponent",
     "DiffusivityRequest", "BruteForceRequest", "DensityRequest", "CorrelationRequest", "MomentsRequest",
@@ -241,10 +242,15 @@ D, M0 and E[t1] over a grid of noise intensities and correlation times.
     fitted exponent of D ~ noise^alpha with chi^2/dof. Same as
     ``stickslip sweep``. params gives friction, relaxation and bias (its noise
     and tau are not used); noise and tau are sequences (sorted and
-    deduplicated), e.g. noise=logspace(1, 10, 5).""", """\
+    deduplicated), e.g. noise=logspace(1, 10, 5). With engine="kolmogorov"
+    every point is solved without sampling, to the relative precision
+    rel_precision of D (default 1e-3; 1e-2 is about 10 times faster).""", """\
     SweepResult
         Every array has shape (len(taus), len(noises)): axis 0 is .taus,
         axis 1 .noises (points an interrupted sweep did not reach are NaN):
         .noise, .tau (each point's), .diffusivity, .mobility,
         .mean_duration, .slope (EstimateSeries); .shape; .exponents (one
-        SweepExponent per tau). .to_dict() is the CLI's JSON.""")
+        SweepExponent per tau). .to_dict() is the CLI's JSON. With
+        engine="kolmogorov" they are GridEstimateSeries (.value, .error:
+        the estimated discretisation errors), .stuck_probability too, and
+        .method is "kolmogorov".""")

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""diffusivity(engine="kolmogorov"): the grid solver's D, M0, P(V = 0) and E[t1], each
+"""diffusivity(engine="kolmogorov") and sweep(engine="kolmogorov"): the grid
+solver's D, M0, P(V = 0) and E[t1], each
 with its estimated discretisation error and no standard error; the engines it
 does not serve refuse it."""
 import unittest
@@ -39,6 +40,23 @@ class KolmogorovEngineTest(unittest.TestCase):
         mass = float((d.density * (d.edges[1:] - d.edges[:-1])).sum())
         self.assertAlmostEqual(mass + d.stuck.value, 1.0, delta=10 * d.stuck.error)
         self.assertIn("engine='kolmogorov'", repr(d))
+
+    def test_sweep_solved_at_every_point(self):
+        s = stickslip.sweep(engine="kolmogorov", noise=[3, 5], tau=[0.5], rel_precision=0.01)
+        self.assertEqual(s.method, "kolmogorov")
+        for name in ("diffusivity", "mobility", "mean_duration", "stuck_probability", "slope"):
+            series = getattr(s, name)
+            self.assertIsInstance(series, stickslip.GridEstimateSeries)
+            self.assertEqual(series.value.shape, (1, 2))
+            self.assertTrue((series.error > 0).all(), name)
+        # The point at noise 5, tau 0.5 is the default model's diffusivity(), bit for bit.
+        self.assertEqual(s.diffusivity[0, 1].value, self.r.diffusivity.value)
+        self.assertEqual(s.mean_duration[0, 1].error, self.r.mean_duration.error)
+        cols = s.to_columns()
+        self.assertIn("diffusivity_error", cols)
+        self.assertNotIn("diffusivity_stderr", cols)
+        with self.assertRaisesRegex(ValueError, "engine kolmogorov"):
+            stickslip.sweep(noise=[3, 5], tau=[0.5], rel_precision=0.01)
 
     def test_refused_where_it_cannot_serve(self):
         with self.assertRaisesRegex(ValueError, "--engine inclusion or pdmp"):

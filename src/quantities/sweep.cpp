@@ -27,6 +27,7 @@ DiffusivityRequest point_request(const SweepRequest& req, double noise, double t
     d.params.noise = noise;
     d.params.tau = tau;
     d.estimator = req.estimator;
+    d.rel_precision = req.rel_precision;
     d.control.first_index = req.control.first_index + k * sweep_index_stride;
     return d;
 }
@@ -46,10 +47,11 @@ struct PreparedSweep {
 /// Every check of a sweep, once: the grid, then every point as a diffusivity
 /// run (the first bad point is named).
 PreparedSweep prepare_sweep(const SweepRequest& req) {
-    if (!samples(req.engine))
-        throw InvalidParameter("engine", "sweep does not take the kolmogorov engine (its fits weigh the points by "
-                                         "standard errors, which a grid solver does not have): run `stickslip "
-                                         "diffusivity --engine kolmogorov` at each point");
+    const bool solved = !samples(req.engine);
+    if (!solved && req.rel_precision != 0)
+        throw InvalidParameter("rel-precision", "a Monte Carlo sweep has no precision mode: --rel-precision is the "
+                                                "Kolmogorov engine's target error of D (--engine kolmogorov); set "
+                                                "--excursions per point instead");
     if (req.noises.empty()) throw InvalidParameter("noise", "the sweep needs at least one noise value");
     if (req.taus.empty()) throw InvalidParameter("tau", "the sweep needs at least one tau value");
     if (req.noises.size() * req.taus.size() > kMaxPoints)
@@ -65,7 +67,10 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
     for (double t : out.taus)
         for (double g : out.noises) {
             try {
-                out.engines.push_back(prepare(point_request(req, g, t, k++)));
+                // A solved point has no engine to prepare: its checks are the solver's.
+                const DiffusivityRequest point = point_request(req, g, t, k++);
+                if (solved) validate(point);
+                else out.engines.push_back(prepare(point));
             } catch (const InvalidParameter& e) {
                 const std::string where =
                     " (at noise " + detail::format_number(g) + ", tau " + detail::format_number(t) + ")";
@@ -102,7 +107,16 @@ SweepResult compute_sweep(const SweepRequest& req) {
             d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
             DiffusivityResult r;
             try {
-                r = compute_diffusivity(d, prepared.engines[k]);
+                if (out.solved()) {
+                    if (req.control.stop && req.control.stop->load()) {
+                        if (out.points.empty()) throw RunInterrupted();
+                        out.interrupted = true;
+                        break;
+                    }
+                    r = compute_diffusivity(d);
+                } else {
+                    r = compute_diffusivity(d, prepared.engines[k]);
+                }
             } catch (const CappedExcursions& e) {
                 throw CappedExcursions(std::string(e.what()) + at_point(noise, tau));
             } catch (const UntrustworthyResult& e) {
@@ -112,17 +126,25 @@ SweepResult compute_sweep(const SweepRequest& req) {
                 out.interrupted = true; // stopped before this point had a result
                 break;
             }
-            out.resumed += r.monte_carlo().totals.resumed;
             SweepPoint p;
             p.noise = noise;
             p.tau = tau;
+            p.warnings = r.warnings;
+            if (r.solution) {
+                p.work = r.solution->levels.back().states;
+                p.seconds = r.solution->seconds;
+                p.solution = std::move(r.solution);
+                out.points.push_back(std::move(p));
+                ++k;
+                continue;
+            }
+            out.resumed += r.monte_carlo().totals.resumed;
             p.estimates = r.estimates;
             p.stop_rule = r.monte_carlo().engine.stop_rule;
             p.dt = r.request.engine.dt;
             p.scheme = r.request.engine.scheme;
             p.work = r.monte_carlo().totals.work;
             p.seconds = r.monte_carlo().totals.seconds;
-            p.warnings = r.warnings;
             out.points.push_back(p);
             ++k;
             if (r.monte_carlo().totals.interrupted) {
@@ -130,12 +152,22 @@ SweepResult compute_sweep(const SweepRequest& req) {
                 break;
             }
         }
-        // Local slopes from the neighbours; errors from the independent standard errors.
+        // Local slopes from the neighbours; errors from the independent
+        // standard errors, or for solved points from the discretisation
+        // errors (propagated alike, though they are not random: a bound's
+        // scale, not a sampling distribution, so no interval).
         const std::size_t n = out.points.size() - first; // all the noises, unless interrupted
-        auto logd = [&](std::size_t i) { return std::log(out.points[first + i].estimates.diffusivity.value); };
+        auto d_value = [&](std::size_t i) {
+            const SweepPoint& p = out.points[first + i];
+            return p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
+        };
+        auto logd = [&](std::size_t i) { return std::log(d_value(i)); };
         auto sig = [&](std::size_t i) {
-            const auto& e = out.points[first + i].estimates.diffusivity;
-            return e.std_error / e.value;
+            const SweepPoint& p = out.points[first + i];
+            return (p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.std_error) / d_value(i);
+        };
+        auto spread = [&](double value, double error) {
+            return out.solved() ? Estimate{value, error, nan, nan, req.level} : make_interval(value, error, req.level);
         };
         for (std::size_t i = 0; i < n; ++i) {
             if (n < 2) {
@@ -146,7 +178,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             const double dx = std::log(noises[b]) - std::log(noises[a]);
             const double s = (logd(b) - logd(a)) / dx;
             const double se = std::hypot(sig(a), sig(b)) / dx;
-            out.points[first + i].slope = make_interval(s, se, req.level);
+            out.points[first + i].slope = spread(s, se);
         }
         if (n >= 2) {
             // Weighted least squares of log D on log Gamma.
@@ -172,7 +204,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             }
             SweepExponent e;
             e.tau = tau;
-            e.exponent = make_interval(alpha, std::sqrt(1 / sxx), req.level);
+            e.exponent = spread(alpha, std::sqrt(1 / sxx));
             e.points = static_cast<int>(n);
             e.chi2_per_dof = n > 2 ? chi2 / static_cast<double>(n - 2) : nan;
             out.exponents.push_back(e);
@@ -186,7 +218,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
                 w.rfind("only ", 0) != 0)
                 out.warnings.push_back(w);
-    if (req.excursions < 5000)
+    if (req.excursions < 5000 && !out.solved())
         out.warnings.push_back("fewer than 5000 excursions per point: the standard errors (and so the slope errors) "
                                "are themselves uncertain");
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -13,15 +13,14 @@
 
 namespace stickslip::detail {
 
-namespace {
-
-/// {value, error}: a value and its estimated discretisation error.
-ordered_json solved_json(const KolmogorovEstimate& e) {
+ordered_json grid_estimate_json(const KolmogorovEstimate& e) {
     ordered_json j;
     j["value"] = json_number(e.value);
     j["error"] = json_number(e.error);
     return j;
 }
+
+namespace {
 
 /// "value +- error" in the columns of the solved table.
 void solved_row(std::ostringstream& os, const std::string& name, const KolmogorovEstimate& e, double unit,
@@ -43,10 +42,10 @@ ordered_json solved_head(const char* quantity, const RunSettings& r, const Kolmo
 }
 
 void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const KolmogorovSettings& settings) {
-    j["diffusivity"] = solved_json(s.diffusivity);
-    j["mobility"] = solved_json(s.mobility);
-    j["stuck_probability"] = solved_json(s.stuck_probability);
-    j["mean_duration"] = solved_json(s.mean_duration);
+    j["diffusivity"] = grid_estimate_json(s.diffusivity);
+    j["mobility"] = grid_estimate_json(s.mobility);
+    j["stuck_probability"] = grid_estimate_json(s.stuck_probability);
+    j["mean_duration"] = grid_estimate_json(s.mean_duration);
     ordered_json pr;
     pr["target"] = settings.rel_precision;
     pr["relative_error"] = json_number(relative_error(s));
@@ -63,7 +62,7 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
     g["v_upper"] = fine.grid.v_upper;
     g["grids_solved"] = s.levels.size();
     g["tail_mass"] = json_number(fine.tail_mass);
-    g["diffusivity_x"] = solved_json(s.diffusivity_x);
+    g["diffusivity_x"] = grid_estimate_json(s.diffusivity_x);
     j["grid"] = g;
 }
 

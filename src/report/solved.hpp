@@ -13,6 +13,9 @@
 
 namespace stickslip::detail {
 
+/// {value, error}: a value and its estimated discretisation error.
+ordered_json grid_estimate_json(const KolmogorovEstimate& e);
+
 /// The head of a solved report: "quantity" (when given), "engine", "method"
 /// (the solver) and "params" (the model, no step or seed).
 ordered_json solved_head(const char* quantity, const RunSettings& r, const KolmogorovResult& s);

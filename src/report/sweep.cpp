@@ -4,6 +4,7 @@
 
 #include "core/format.hpp"
 #include "report/common.hpp"
+#include "report/solved.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 
@@ -21,9 +22,126 @@ bool dt_per_point(const EngineSettings& s) { return s.dt_auto && has_time_step(s
 /// --scheme auto on the inclusion engine: every point has its own scheme (SweepPoint::scheme).
 bool scheme_per_point(const EngineSettings& s) { return s.scheme == Scheme::Auto && has_time_step(s); }
 
+// The reports of a sweep solved by the Kolmogorov engine: each value with its
+// estimated discretisation error, no samples, stop rules, steps or intervals.
+
+/// The point's model (the sweep's with its noise and tau).
+ModelParams point_params(const SweepResult& r, const SweepPoint& p) {
+    ModelParams mp = r.request.params;
+    mp.noise = p.noise;
+    mp.tau = p.tau;
+    return mp;
+}
+
+std::string solved_json(const SweepResult& r, int indent) {
+    const auto& q = r.request;
+    ordered_json j = report_head("sweep", q.engine, nullptr, nullptr);
+    j["method"] = "kolmogorov";
+    auto params = params_json(q);
+    params.erase("noise");
+    params.erase("tau");
+    params["noises"] = q.noises;
+    params["taus"] = q.taus;
+    params["rel_precision"] = q.rel_precision;
+    j["params"] = params;
+    ordered_json pts = ordered_json::array();
+    for (const auto& p : r.points) {
+        const KolmogorovResult& s = *p.solution;
+        const Scales sc = scales_of(point_params(r, p));
+        ordered_json o;
+        o["noise"] = p.noise;
+        o["tau"] = p.tau;
+        o["diffusivity"] = grid_estimate_json(s.diffusivity);
+        o["mobility"] = grid_estimate_json(s.mobility);
+        o["stuck_probability"] = grid_estimate_json(s.stuck_probability);
+        o["mean_duration"] = grid_estimate_json(s.mean_duration);
+        o["precision_reached"] = s.converged;
+        o["slope"] = {{"value", json_number(p.slope.value)}, {"error", json_number(p.slope.std_error)}};
+        o["nondimensional"] = {{"tau", p.tau / sc.time},
+                               {"diffusivity", s.diffusivity.value / sc.diffusivity},
+                               {"mobility", s.mobility.value / sc.velocity},
+                               {"mean_duration", s.mean_duration.value / sc.time}};
+        o["work"] = {{"states", p.work}, {"seconds", p.seconds}};
+        pts.push_back(o);
+    }
+    j["points"] = pts;
+    ordered_json ex = ordered_json::array();
+    for (const auto& e : r.exponents) {
+        ordered_json o;
+        o["tau"] = e.tau;
+        o["exponent"] = {{"value", json_number(e.exponent.value)}, {"error", json_number(e.exponent.std_error)}};
+        o["chi2_per_dof"] = json_number(e.chi2_per_dof);
+        o["points"] = e.points;
+        ex.push_back(o);
+    }
+    j["exponents"] = ex;
+    ordered_json work = {{"seconds", r.seconds}};
+    add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
+    return dump(j, indent);
+}
+
+/// "value +- error" in a column of the solved sweep table.
+std::string solved_cell(const KolmogorovEstimate& e) {
+    using number_text::pad;
+    return pad(format_number(e.value, 6), 12) + " +- " + pad(format_number(e.error, 2), -8);
+}
+
+std::string solved_table(const SweepResult& r) {
+    const auto& q = r.request;
+    std::ostringstream os = report_stream();
+    const double target = q.rel_precision > 0 ? q.rel_precision : KolmogorovSettings{}.rel_precision;
+    os << engine_line("sweep", q.engine,
+                      ", no sampling: the Kolmogorov equations at every point, target error of D " +
+                          format_number(100 * target, 3) + "%");
+    os << "friction " << format_number(q.params.friction) << " m/s^2, relaxation "
+       << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias) << " m/s^2\n\n";
+    using number_text::fixed;
+    using number_text::pad;
+    os << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -24) << " "
+       << pad("M0 [m/s]", -24) << " " << pad("E[t1] [s]", -24) << " " << pad("P(V = 0)", -10) << " "
+       << pad("dlogD/dlogGamma", -20) << "\n";
+    for (const auto& p : r.points) {
+        const KolmogorovResult& s = *p.solution;
+        const std::string slope = std::isnan(p.slope.value)
+                                      ? std::string("-")
+                                      : pad(fixed(p.slope.value, 4), 7) + " +- " + pad(format_number(p.slope.std_error, 2), -8);
+        os << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10) << "  "
+           << solved_cell(s.diffusivity) << " " << solved_cell(s.mobility) << " " << solved_cell(s.mean_duration) << " "
+           << pad(format_number(s.stuck_probability.value, 4), -10) << " " << slope << "\n";
+    }
+    if (!r.exponents.empty()) {
+        os << "\nfitted D ~ noise^alpha per tau (least squares in log-log, weighted by the discretisation errors):\n";
+        for (const auto& e : r.exponents)
+            os << "  tau " << pad(format_number(e.tau, 4), 10) << " s: alpha = " << fixed(e.exponent.value, 4)
+               << " +- " << format_number(e.exponent.std_error, 2) << " over " << e.points << " points\n";
+    }
+    os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3)
+       << " s (the errors are estimated discretisation errors, not standard errors)\n"
+       << notes(r.warnings);
+    return os.str();
+}
+
+std::string solved_csv(const SweepResult& r) {
+    std::ostringstream os = report_stream();
+    os << "tau,noise,diffusivity,diffusivity_error,mobility,mobility_error,stuck_probability,stuck_probability_error,"
+          "mean_duration,mean_duration_error,slope,slope_error,tau_nondim,diffusivity_nondim,states\n";
+    for (const auto& p : r.points) {
+        const KolmogorovResult& s = *p.solution;
+        const Scales sc = scales_of(point_params(r, p));
+        os << csv_number(p.tau) << "," << csv_number(p.noise);
+        for (const KolmogorovEstimate* e : {&s.diffusivity, &s.mobility, &s.stuck_probability, &s.mean_duration})
+            os << "," << csv_number(e->value) << "," << csv_number(e->error);
+        os << "," << csv_number(p.slope.value) << "," << csv_number(p.slope.std_error) << ","
+           << csv_number(p.tau / sc.time) << "," << csv_number(s.diffusivity.value / sc.diffusivity) << "," << p.work
+           << "\n";
+    }
+    return csv_provenance(r.request) + os.str();
+}
+
 } // namespace
 
 std::string to_json(const SweepResult& r, int indent) {
+    if (r.solved()) return solved_json(r, indent); // the method, chosen once
     const auto& q = r.request;
     const std::string estimator = to_string(q.estimator);
     ordered_json j = report_head("sweep", q.engine, estimator.c_str(), nullptr);
@@ -76,6 +194,7 @@ std::string to_json(const SweepResult& r, int indent) {
 }
 
 std::string to_table(const SweepResult& r) {
+    if (r.solved()) return solved_table(r);
     const auto& q = r.request;
     std::ostringstream os = report_stream();
     os << engine_line("sweep", q.engine,
@@ -114,6 +233,7 @@ std::string to_table(const SweepResult& r) {
 }
 
 std::string to_csv(const SweepResult& r) {
+    if (r.solved()) return solved_csv(r);
     std::ostringstream os = report_stream();
     os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
        << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// --engine kolmogorov: diffusivity and density solved on grids, each value with
+// --engine kolmogorov: diffusivity, density and sweep solved on grids, each value with
 // its estimated discretisation error and no standard error; every command that
 // samples paths, white noise and near-white noise refused in one line.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -53,6 +54,38 @@ TEST(CliKolmogorov, BudgetBeforePrecisionIsANote) {
     EXPECT_TRUE(noted) << j->dump();
 }
 
+// A solved sweep: every point is the diffusivity the solver gives there, bit
+// for bit, with errors and no standard errors; slopes from neighbours.
+TEST(CliKolmogorov, SweepPointsAreTheSolversDiffusivities) {
+    const auto j = run_json({"sweep", "--engine", "kolmogorov", "--noise", "2,4,8", "--tau", "0.5",
+                             "--rel-precision", "0.01", "--format", "json"});
+    ASSERT_TRUE(j);
+    EXPECT_EQ((*j)["method"], "kolmogorov");
+    const json& points = (*j)["points"];
+    ASSERT_EQ(points.size(), 3u);
+    const char* noises[] = {"2", "4", "8"};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const json& p = points[k];
+        const auto one = run_json({"diffusivity", "--engine", "kolmogorov", "--noise", noises[k], "--tau", "0.5",
+                                   "--rel-precision", "0.01", "--format", "json"});
+        ASSERT_TRUE(one);
+        for (const char* key : {"diffusivity", "mobility", "stuck_probability", "mean_duration"}) {
+            EXPECT_EQ(p[key], (*one)[key]) << key << " at noise " << p["noise"];
+            EXPECT_FALSE(p[key].contains("stderr")) << key;
+        }
+    }
+    const double d2 = points[0]["diffusivity"]["value"], d8 = points[2]["diffusivity"]["value"];
+    EXPECT_DOUBLE_EQ(points[1]["slope"]["value"].get<double>(), std::log(d8 / d2) / std::log(4.0));
+    EXPECT_GT(points[1]["slope"]["error"].get<double>(), 0.0);
+    EXPECT_EQ((*j)["exponents"].size(), 1u);
+
+    const Result table = run({"sweep", "--engine", "kolmogorov", "--noise", "2,4", "--tau", "0.5", "--rel-precision",
+                              "0.01"});
+    ASSERT_EQ(table.code, 0) << table.err;
+    EXPECT_NE(table.out.find("discretisation errors, not standard errors"), std::string::npos) << table.out;
+    EXPECT_EQ(table.out.find("excursions"), std::string::npos) << table.out;
+}
+
 TEST(CliKolmogorov, RefusedWhereItCannotServeInOneLine) {
     const std::string checkpoint = temp_file("ckpt");
     const std::vector<std::pair<Args, std::string>> cases{
@@ -60,7 +93,9 @@ TEST(CliKolmogorov, RefusedWhereItCannotServeInOneLine) {
         {{"moments", "--engine", "kolmogorov", "--times", "0.5"}, "--engine inclusion or pdmp"},
         {{"bruteforce", "--engine", "kolmogorov"}, "--engine inclusion or pdmp"},
         {{"trajectory", "--engine", "kolmogorov"}, "--engine inclusion or pdmp"},
-        {{"sweep", "--engine", "kolmogorov", "--noise", "1,2"}, "diffusivity --engine kolmogorov"},
+        {{"sweep", "--engine", "kolmogorov", "--noise", "1,2", "--tau", "0"}, "stickslip analytic"},
+        {{"sweep", "--noise", "1,2", "--rel-precision", "0.01"}, "--engine kolmogorov"},
+        {{"sweep", "--engine", "kolmogorov", "--noise", "1,2", "--checkpoint", checkpoint}, "nothing to checkpoint"},
         {{"diffusivity", "--engine", "kolmogorov", "--tau", "0"}, "stickslip analytic"},
         {{"diffusivity", "--engine", "kolmogorov", "--tau", "0.01"}, "inclusion engine"},
         {{"density", "--engine", "kolmogorov", "--tau", "0"}, "stickslip analytic"},
