@@ -442,8 +442,8 @@ def make_fig4(R, cfg, out, written, summary, seed):
         Dk = np.array([p["diffusivity"]["value"] for p in sk["points"]])
         eDk = np.array([p["diffusivity"]["error"] for p in sk["points"]])
         Tk = np.array([p["mean_duration"]["value"] for p in sk["points"]])
-        axD.plot(gk, Dk, "--", color="k", lw=0.8, label="Kolmogorov engine" if k == 0 else None)
-        axT.plot(gk, Tk, "--", color="k", lw=0.8, label="Kolmogorov engine" if k == 0 else None)
+        axD.plot(gk, Dk, "--", color="k", lw=0.9, zorder=4, label="Kolmogorov engine" if k == 0 else None)
+        axT.plot(gk, Tk, "--", color="k", lw=0.9, zorder=4, label="Kolmogorov engine" if k == 0 else None)
         axD.plot(gi, Di, "-", color=col, lw=1.3, label=f"tau = {tau:g} s, inclusion")
         axD.fill_between(gi, Di - 1.96 * sDi, Di + 1.96 * sDi, color=col, alpha=0.2, lw=0)
         axD.errorbar(gp, Dp, yerr=1.96 * sDp, fmt="o", color=col, ms=4, capsize=2,
