@@ -40,7 +40,8 @@ std::function<bool(const Progress&)> progress_line(bool quiet, const std::string
         }
         std::string line = "\r"; // appended: GCC 12 warns (-Wrestrict, a false positive) on "\r" + std::string
         line += std::to_string(pr.done) + "/" + std::to_string(pr.total) + " " + what + estimate + ", " +
-                (moved ? fixed(rate, 0) + "/s, " : std::string()) + fixed(pr.seconds, 1) + " s elapsed, ";
+                (moved ? (rate >= 10 ? fixed(rate, 0) : general(rate, 2)) + "/s, " : std::string()) +
+                fixed(pr.seconds, 1) + " s elapsed, ";
         if (moved || pr.done == pr.total) {
             line += '~';
             line += fixed(left, 0) + " s left   ";

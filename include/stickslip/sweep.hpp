@@ -35,7 +35,10 @@ inline constexpr std::uint64_t sweep_index_stride = std::uint64_t{1} << 40;
 
 /// A sweep: RunSettings whose params give friction, relaxation and bias (its
 /// noise and tau are replaced by the grid's), and whose control gives the seed
-/// and threads (control.progress is not used; see point_progress).
+/// and threads. control.progress is used by a solved sweep (--engine
+/// kolmogorov) only, with Progress counting points (done of total, before
+/// each point and after the last; returning false cancels: RunCancelled); a
+/// sampled sweep reports each point's excursions through point_progress.
 /// `excursions` is per point.
 struct SweepRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "sweep"; ///< the CLI subcommand, and a checkpoint's name for it

@@ -99,6 +99,16 @@ SweepResult compute_sweep(const SweepRequest& req) {
     const std::size_t total = noises.size() * taus.size();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::size_t k = 0;
+    // A solved sweep reports whole points to control.progress (sweep.hpp):
+    // before each point and after the last.
+    auto solved_progress = [&](std::size_t done) {
+        if (!req.control.progress) return;
+        Progress pr;
+        pr.done = done;
+        pr.total = total;
+        pr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!req.control.progress(pr)) throw RunCancelled();
+    };
     for (double tau : taus) {
         if (out.interrupted) break;
         const std::size_t first = out.points.size();
@@ -113,6 +123,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
                         out.interrupted = true;
                         break;
                     }
+                    solved_progress(k);
                     r = compute_diffusivity(d);
                 } else {
                     r = compute_diffusivity(d, prepared.engines[k]);
@@ -210,6 +221,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             out.exponents.push_back(e);
         }
     }
+    if (out.solved() && !out.interrupted) solved_progress(out.points.size());
     if (out.interrupted)
         out.warnings.push_back("interrupted: " + std::to_string(out.points.size()) + " of " + std::to_string(total) +
                                " points have a result (the last from a prefix of its excursions)");

@@ -77,6 +77,18 @@ std::string stderr_on_terminal(const Args& args, const std::string& want = "") {
     return text;
 }
 
+// A solved sweep (--engine kolmogorov) has no excursions to count: its line
+// counts points, from the first one on, and ends with all of them.
+TEST(HopelessCli, SolvedSweepCountsPoints) {
+    const std::string output = clitest::temp_file("sweep.csv");
+    const std::string err = stderr_on_terminal({"sweep", "--engine", "kolmogorov", "--noise", "2,4", "--tau", "0.5",
+                                                "--rel-precision", "0.05", "--format", "csv", "--output", output});
+    std::remove(output.c_str());
+    EXPECT_NE(err.find("0/2 points solved (kolmogorov engine)"), std::string::npos) << err;
+    EXPECT_NE(err.find("2/2 points solved"), std::string::npos) << err;
+    EXPECT_EQ(err.find("excursions"), std::string::npos) << err;
+}
+
 TEST(HopelessCli, ProgressSaysEstimatingBeforeAnyBlockHasFinished) {
     const std::string err = stderr_on_terminal({"diffusivity", "--excursions", "2000", "--threads", "1"});
     // The first report comes at once, before any block: it must not say "~0 s left".
