@@ -235,8 +235,10 @@ struct Monitor {
         const double rate = s > 0 ? static_cast<double>(d) / s : 0.0;
         const double left = rate > 0 ? static_cast<double>(t - d) / rate : 0.0;
         std::string line = "\r"; // appended: GCC 12 warns (-Wrestrict, a false positive) on "\r" + std::string
+        // Before anything is done the time left is unknown, not "~0 s" (as the CLI's line).
         line += std::to_string(d) + "/" + std::to_string(t) + " " + what + ", " + number_text::fixed(s, 1) +
-                " s elapsed, ~" + number_text::fixed(left, 0) + " s left   " + (final ? "\n" : "");
+                " s elapsed, " + (rate > 0 || d == t ? "~" + number_text::fixed(left, 0) + " s left   " : "estimating...   ") +
+                (final ? "\n" : "");
         try {
             py::object err = py::module_::import("sys").attr("stderr");
             if (err.is_none()) return;
@@ -386,6 +388,9 @@ SweepResult run_sweep(SweepRequest req, bool progress, const std::optional<std::
         return mon.callback("excursions (point " + std::to_string(k + 1) + "/" + std::to_string(n) + ": noise " +
                             number_text::general(noise) + ", tau " + number_text::general(tau) + ")");
     };
+    // A solved sweep (engine='kolmogorov') counts points, and checks for
+    // Ctrl-C between them (SweepRequest).
+    if (!samples(req.engine)) req.control.progress = mon.callback("points solved (kolmogorov engine)");
     req.control.cancel = &mon.cancel; // every point's run stops within one sample
     const auto journal = journal_for(req, checkpoint, checkpoint_every, resume);
     SweepResult r = run_journaled<SweepRequest, SweepResult>(req, [&req] { return compute_sweep(req); }, mon,
