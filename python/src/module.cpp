@@ -211,6 +211,61 @@ py::array_t<double> series_column(const Series& s, Get get) {
     return a;
 }
 
+/// `head` (the class's name and first fields), then the first and last values
+/// and ")": the repr of a series.
+template <class Series>
+std::string series_repr(std::string head, const Series& s) {
+    if (!s.items.empty()) {
+        head += ", value=[" + float_repr(s.items.front().value);
+        if (s.items.size() > 2) head += ", ...";
+        if (s.items.size() > 1) head += ", " + float_repr(s.items.back().value);
+        head += "]";
+    }
+    return head + ")";
+}
+
+/// What EstimateSeries and GridEstimateSeries share: shape, len(s), s[k] and
+/// s[i, j] (a 2-D series: a sweep's (tau, noise), row-major), np.asarray(s)
+/// (the values). `name` is the class's name in the index errors.
+template <class Series>
+void add_series_access(py::class_<Series>& c, const std::string& name) {
+    auto value = [](const auto& e) { return e.value; };
+    c.def_property_readonly(
+         "shape",
+         [](const Series& s) {
+             py::tuple t(s.shape.empty() ? 1 : s.shape.size());
+             if (s.shape.empty()) t[0] = py::int_(s.items.size());
+             for (std::size_t k = 0; k < s.shape.size(); ++k) t[k] = py::int_(s.shape[k]);
+             return t;
+         },
+         "the arrays' shape: (n,), or (n_tau, n_noise) for a sweep")
+        .def("__len__", [](const Series& s) { return s.items.size(); })
+        .def("__getitem__",
+             [name](const Series& s, py::tuple index) {
+                 if (s.shape.size() != 2 || index.size() != 2)
+                     throw py::index_error(name + " takes (i, j) only when 2-D");
+                 const auto i = index[0].cast<py::ssize_t>(), j = index[1].cast<py::ssize_t>();
+                 if (i < 0 || j < 0 || i >= s.shape[0] || j >= s.shape[1])
+                     throw py::index_error(name + " index out of range");
+                 return s.items[static_cast<std::size_t>(i * s.shape[1] + j)];
+             })
+        .def("__getitem__",
+             [name](const Series& s, py::ssize_t k) {
+                 const auto n = static_cast<py::ssize_t>(s.items.size());
+                 if (k < 0) k += n;
+                 if (k < 0 || k >= n) throw py::index_error(name + " index out of range");
+                 return s.items[static_cast<std::size_t>(k)];
+             })
+        .def(
+            "__array__",
+            [value](const Series& s, const py::object& dtype) {
+                py::array a = series_column(s, value);
+                if (!dtype.is_none()) a = a.attr("astype")(dtype);
+                return a;
+            },
+            py::arg("dtype") = py::none());
+}
+
 } // namespace
 
 void bind_core(py::module_& m) {
@@ -388,51 +443,20 @@ void bind_core(py::module_& m) {
                    number_text::general(e.error, 3) + ")";
         });
 
-    py::class_<GridEstimateSeries>(m, "GridEstimateSeries",
+    py::class_<GridEstimateSeries> grid_series(m, "GridEstimateSeries",
                                    "Values of a grid solver (engine='kolmogorov') along an axis, with their "
                                    "estimated discretisation errors, as NumPy arrays: value, error (shape (n,), or "
                                    "(n_tau, n_noise) for a sweep). np.asarray(s) is s.value; s[k] is the k-th "
-                                   "GridEstimate (flat order), s[i, j] that of a 2-D series.")
+                                   "GridEstimate (flat order), s[i, j] that of a 2-D series.");
+    grid_series
         .def_property_readonly("value", [](const GridEstimateSeries& s) {
             return series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
         })
         .def_property_readonly("error", [](const GridEstimateSeries& s) {
             return series_column(s, [](const KolmogorovEstimate& e) { return e.error; });
-        }, "estimated discretisation errors (absolute)")
-        .def_property_readonly(
-            "shape",
-            [](const GridEstimateSeries& s) {
-                py::tuple t(s.shape.empty() ? 1 : s.shape.size());
-                if (s.shape.empty()) t[0] = py::int_(s.items.size());
-                for (std::size_t k = 0; k < s.shape.size(); ++k) t[k] = py::int_(s.shape[k]);
-                return t;
-            },
-            "the arrays' shape: (n,), or (n_tau, n_noise) for a sweep")
-        .def("__len__", [](const GridEstimateSeries& s) { return s.items.size(); })
-        .def("__getitem__",
-             [](const GridEstimateSeries& s, py::tuple index) {
-                 if (s.shape.size() != 2 || index.size() != 2)
-                     throw py::index_error("GridEstimateSeries takes (i, j) only when 2-D");
-                 const auto i = index[0].cast<py::ssize_t>(), j = index[1].cast<py::ssize_t>();
-                 if (i < 0 || j < 0 || i >= s.shape[0] || j >= s.shape[1])
-                     throw py::index_error("GridEstimateSeries index out of range");
-                 return s.items[static_cast<std::size_t>(i * s.shape[1] + j)];
-             })
-        .def("__getitem__",
-             [](const GridEstimateSeries& s, py::ssize_t k) {
-                 const auto n = static_cast<py::ssize_t>(s.items.size());
-                 if (k < 0) k += n;
-                 if (k < 0 || k >= n) throw py::index_error("GridEstimateSeries index out of range");
-                 return s.items[static_cast<std::size_t>(k)];
-             })
-        .def(
-            "__array__",
-            [](const GridEstimateSeries& s, const py::object& dtype) {
-                py::array a = series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
-                if (!dtype.is_none()) a = a.attr("astype")(dtype);
-                return a;
-            },
-            py::arg("dtype") = py::none())
+        }, "estimated discretisation errors (absolute)");
+    add_series_access(grid_series, "GridEstimateSeries");
+    grid_series
         .def("to_dict",
              [](const GridEstimateSeries& s) {
                  py::dict d;
@@ -442,20 +466,14 @@ void bind_core(py::module_& m) {
              },
              "{'value', 'error'} arrays")
         .def("__repr__", [](const GridEstimateSeries& s) {
-            std::string out = "GridEstimateSeries(n=" + std::to_string(s.items.size());
-            if (!s.items.empty()) {
-                out += ", value=[" + float_repr(s.items.front().value);
-                if (s.items.size() > 2) out += ", ...";
-                if (s.items.size() > 1) out += ", " + float_repr(s.items.back().value);
-                out += "]";
-            }
-            return out + ")";
+            return series_repr("GridEstimateSeries(n=" + std::to_string(s.items.size()), s);
         });
 
-    py::class_<EstimateSeries>(m, "EstimateSeries",
+    py::class_<EstimateSeries> series(m, "EstimateSeries",
                                "Estimates along an axis (bins, lags, times, sweep points), as NumPy arrays: "
                                "value, stderr, lo, hi (shape (n,)) and ci (shape (n, 2)). np.asarray(s) is "
-                               "s.value; s[k] is the k-th Estimate (in flat order), s[i, j] that of a 2-D series (a sweep).")
+                               "s.value; s[k] is the k-th Estimate (in flat order), s[i, j] that of a 2-D series (a sweep).");
+    series
         .def_property_readonly("value", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.value; });
         })
@@ -481,43 +499,9 @@ void bind_core(py::module_& m) {
                                    shape.push_back(2);
                                    return py::array_t<double>(a.reshape(shape));
                                },
-                               "shape (n, 2), or the series' shape + (2,): the intervals [lo, hi]")
-        .def_property_readonly(
-            "shape",
-            [](const EstimateSeries& s) {
-                py::tuple t(s.shape.empty() ? 1 : s.shape.size());
-                if (s.shape.empty()) t[0] = py::int_(s.items.size());
-                for (std::size_t k = 0; k < s.shape.size(); ++k) t[k] = py::int_(s.shape[k]);
-                return t;
-            },
-            "the arrays' shape: (n,), or (n_tau, n_noise) for a sweep")
-        .def_readonly("level", &EstimateSeries::level)
-        .def("__len__", [](const EstimateSeries& s) { return s.items.size(); })
-        .def("__getitem__",
-             [](const EstimateSeries& s, py::tuple index) {
-                 // (i, j) of a 2-D series (a sweep's (tau, noise)): row-major
-                 if (s.shape.size() != 2 || index.size() != 2)
-                     throw py::index_error("EstimateSeries takes (i, j) only when 2-D");
-                 const auto i = index[0].cast<py::ssize_t>(), j = index[1].cast<py::ssize_t>();
-                 if (i < 0 || j < 0 || i >= s.shape[0] || j >= s.shape[1])
-                     throw py::index_error("EstimateSeries index out of range");
-                 return s.items[static_cast<std::size_t>(i * s.shape[1] + j)];
-             })
-        .def("__getitem__",
-             [](const EstimateSeries& s, py::ssize_t k) {
-                 const auto n = static_cast<py::ssize_t>(s.items.size());
-                 if (k < 0) k += n;
-                 if (k < 0 || k >= n) throw py::index_error("EstimateSeries index out of range");
-                 return s.items[static_cast<std::size_t>(k)];
-             })
-        .def(
-            "__array__",
-            [](const EstimateSeries& s, const py::object& dtype) {
-                py::array a = series_column(s, [](const Estimate& e) { return e.value; });
-                if (!dtype.is_none()) a = a.attr("astype")(dtype);
-                return a;
-            },
-            py::arg("dtype") = py::none())
+                               "shape (n, 2), or the series' shape + (2,): the intervals [lo, hi]");
+    add_series_access(series, "EstimateSeries");
+    series.def_readonly("level", &EstimateSeries::level)
         .def("to_dict",
              [](const EstimateSeries& s) {
                  py::dict d;
@@ -530,14 +514,7 @@ void bind_core(py::module_& m) {
              },
              "{'value', 'stderr', 'lo', 'hi'} arrays and 'level'")
         .def("__repr__", [](const EstimateSeries& s) {
-            std::string out = "EstimateSeries(n=" + std::to_string(s.items.size()) + ", level=" + float_repr(s.level);
-            if (!s.items.empty()) {
-                out += ", value=[" + float_repr(s.items.front().value);
-                if (s.items.size() > 2) out += ", ...";
-                if (s.items.size() > 1) out += ", " + float_repr(s.items.back().value);
-                out += "]";
-            }
-            return out + ")";
+            return series_repr("EstimateSeries(n=" + std::to_string(s.items.size()) + ", level=" + float_repr(s.level), s);
         });
 
 }

@@ -22,6 +22,22 @@ bool dt_per_point(const EngineSettings& s) { return s.dt_auto && has_time_step(s
 /// --scheme auto on the inclusion engine: every point has its own scheme (SweepPoint::scheme).
 bool scheme_per_point(const EngineSettings& s) { return s.scheme == Scheme::Auto && has_time_step(s); }
 
+/// The fitted exponents: {tau, exponent, chi2_per_dof, points}, the exponent
+/// an estimate with its interval, or for a solved sweep {value, error}.
+ordered_json exponents_json(const SweepResult& r) {
+    ordered_json ex = ordered_json::array();
+    for (const auto& e : r.exponents) {
+        ordered_json o;
+        o["tau"] = e.tau;
+        o["exponent"] = r.solved() ? grid_estimate_json({e.exponent.value, e.exponent.std_error})
+                                   : estimate_json(e.exponent);
+        o["chi2_per_dof"] = json_number(e.chi2_per_dof);
+        o["points"] = e.points;
+        ex.push_back(o);
+    }
+    return ex;
+}
+
 // The reports of a sweep solved by the Kolmogorov engine: each value with its
 // estimated discretisation error, no samples, stop rules, steps or intervals.
 
@@ -65,16 +81,7 @@ std::string solved_json(const SweepResult& r, int indent) {
         pts.push_back(o);
     }
     j["points"] = pts;
-    ordered_json ex = ordered_json::array();
-    for (const auto& e : r.exponents) {
-        ordered_json o;
-        o["tau"] = e.tau;
-        o["exponent"] = {{"value", json_number(e.exponent.value)}, {"error", json_number(e.exponent.std_error)}};
-        o["chi2_per_dof"] = json_number(e.chi2_per_dof);
-        o["points"] = e.points;
-        ex.push_back(o);
-    }
-    j["exponents"] = ex;
+    j["exponents"] = exponents_json(r);
     ordered_json work = {{"seconds", r.seconds}};
     add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
     return dump(j, indent);
@@ -177,16 +184,7 @@ std::string to_json(const SweepResult& r, int indent) {
         pts.push_back(o);
     }
     j["points"] = pts;
-    ordered_json ex = ordered_json::array();
-    for (const auto& e : r.exponents) {
-        ordered_json o;
-        o["tau"] = e.tau;
-        o["exponent"] = estimate_json(e.exponent);
-        o["chi2_per_dof"] = json_number(e.chi2_per_dof);
-        o["points"] = e.points;
-        ex.push_back(o);
-    }
-    j["exponents"] = ex;
+    j["exponents"] = exponents_json(r);
     ordered_json work = {{"seconds", r.seconds}};
     if (r.resumed) work["resumed_samples"] = r.resumed;
     add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
