@@ -118,11 +118,8 @@ SweepResult compute_sweep(const SweepRequest& req) {
             DiffusivityResult r;
             try {
                 if (out.solved()) {
-                    if (req.control.stop && req.control.stop->load()) {
-                        if (out.points.empty()) throw RunInterrupted();
-                        out.interrupted = true;
-                        break;
-                    }
+                    // A stop ends a solved sweep between points, as below.
+                    if (req.control.stop && req.control.stop->load()) throw RunInterrupted();
                     solved_progress(k);
                     r = compute_diffusivity(d);
                 } else {

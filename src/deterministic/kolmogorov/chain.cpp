@@ -321,14 +321,15 @@ ChainSolution solve_chain(const Chain& chain) {
     for (const Chain::End& e : chain.plus_ends) flux_plus += sol.stationary[e.from] * e.rate;
     for (const Chain::End& e : chain.minus_ends) flux_minus += sol.stationary[e.from] * e.rate;
     if (flux_plus > 0 && flux_minus > 0) {
-        Eigen::VectorXd source = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
-        for (const Chain::End& e : chain.plus_ends) source[static_cast<Eigen::Index>(e.from)] += e.rate / flux_plus;
-        for (const Chain::End& e : chain.minus_ends) source[static_cast<Eigen::Index>(e.from)] -= e.rate / flux_minus;
-        Eigen::VectorXd w_rhs(static_cast<Eigen::Index>(n - 1));
-        for (std::size_t s = 0, r = 0; s < n; ++s)
-            if (s != k) w_rhs[static_cast<Eigen::Index>(r++)] = source[static_cast<Eigen::Index>(s)];
+        // The pinned state's equation is dropped (implied), as for chi.
+        Eigen::VectorXd w_rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n - 1));
+        auto add = [&](std::size_t s, double v) {
+            if (s != k) w_rhs[shrink(static_cast<Eigen::Index>(s))] += v;
+        };
+        for (const Chain::End& e : chain.plus_ends) add(e.from, e.rate / flux_plus);
+        for (const Chain::End& e : chain.minus_ends) add(e.from, -e.rate / flux_minus);
         const Eigen::VectorXd w_rest = lu.solve(w_rhs);
-        auto w = [&](std::size_t s) { return s == k ? 0.0 : w_rest[static_cast<Eigen::Index>(shrink(static_cast<Eigen::Index>(s)))]; };
+        auto w = [&](std::size_t s) { return s == k ? 0.0 : w_rest[shrink(static_cast<Eigen::Index>(s))]; };
         sol.mean_duration = 1.0 / flux_plus + 1.0 / flux_minus + w(chain.plus_start) - w(chain.minus_start);
     } else {
         sol.mean_duration = std::numeric_limits<double>::infinity(); // no way out of a half: never ends
