@@ -71,9 +71,9 @@
 // of D with the same limit and a different error (the v moves' numerical
 // diffusion is absent from it); it is extrapolated the same way as a check.
 // Measured (docs/kolmogorov_measurements.md): the Fig. 2 case to an estimated
-// 0.05% in about 10 s on 2 cores, within 0.3% of the Monte Carlo reference
-// (0.8 standard errors); pure dry friction at tau' = 1 to 0.26%, at tau' =
-// 0.1 to 0.55% in 13 s.
+// 0.05% in about 10 s on 2 cores, within 0.02% of the control-variate Monte
+// Carlo reference (z = -0.2); pure dry friction at tau' = 1 to 0.26% (and
+// within 0.04% of its reference), at tau' = 0.1 to 0.55% in 13 s.
 //
 // E[t1], the mean duration of a long excursion, needs no sampling either:
 // the mean time to a transition that ends a half excursion solves a Poisson
