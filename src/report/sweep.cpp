@@ -41,6 +41,17 @@ ordered_json exponents_json(const SweepResult& r) {
 // The reports of a sweep solved by the Kolmogorov engine: each value with its
 // estimated discretisation error, no samples, stop rules, steps or intervals.
 
+/// The sweep's "params": the model's, its noise and tau replaced by the
+/// grid's "noises" and "taus" (appended last).
+ordered_json sweep_params_json(const SweepRequest& q) {
+    auto params = params_json(q);
+    params.erase("noise");
+    params.erase("tau");
+    params["noises"] = q.noises;
+    params["taus"] = q.taus;
+    return params;
+}
+
 /// The point's model (the sweep's with its noise and tau).
 ModelParams point_params(const SweepResult& r, const SweepPoint& p) {
     ModelParams mp = r.request.params;
@@ -53,11 +64,7 @@ std::string solved_json(const SweepResult& r, int indent) {
     const auto& q = r.request;
     ordered_json j = report_head("sweep", q.engine, nullptr, nullptr);
     j["method"] = "kolmogorov";
-    auto params = params_json(q);
-    params.erase("noise");
-    params.erase("tau");
-    params["noises"] = q.noises;
-    params["taus"] = q.taus;
+    auto params = sweep_params_json(q);
     params["rel_precision"] = q.rel_precision;
     j["params"] = params;
     ordered_json pts = ordered_json::array();
@@ -152,22 +159,15 @@ std::string to_json(const SweepResult& r, int indent) {
     const auto& q = r.request;
     const std::string estimator = to_string(q.estimator);
     ordered_json j = report_head("sweep", q.engine, estimator.c_str(), nullptr);
-    auto params = params_json(q);
-    params.erase("noise");
-    params.erase("tau");
+    auto params = sweep_params_json(q);
     const bool own_dt = dt_per_point(q.engine), own_scheme = scheme_per_point(q.engine);
     if (own_dt) params.erase("dt"); // each point's own: points[k].dt
-    params["noises"] = q.noises;
-    params["taus"] = q.taus;
     params["excursions"] = q.excursions;
     params["level"] = q.level;
     j["params"] = params;
     ordered_json pts = ordered_json::array();
     for (const auto& p : r.points) {
-        ModelParams mp = q.params;
-        mp.noise = p.noise;
-        mp.tau = p.tau;
-        const Scales sc = scales_of(mp);
+        const Scales sc = scales_of(point_params(r, p));
         ordered_json o;
         o["noise"] = p.noise;
         o["tau"] = p.tau;
@@ -238,10 +238,7 @@ std::string to_csv(const SweepResult& r) {
        << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
        << "\n";
     for (const auto& p : r.points) {
-        ModelParams mp = r.request.params;
-        mp.noise = p.noise;
-        mp.tau = p.tau;
-        const Scales sc = scales_of(mp);
+        const Scales sc = scales_of(point_params(r, p));
         os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << csv_estimate(p.estimates.diffusivity) << ","
            << csv_estimate(p.estimates.mobility) << "," << csv_number(p.estimates.mean_duration.value) << ","
            << csv_number(p.estimates.mean_duration.std_error) << "," << csv_number(p.slope.value) << ","
