@@ -57,23 +57,31 @@
 //
 // Accuracy. Upwind transport is first order in the v cells (Godunov: a chain,
 // i.e. a monotone linear scheme, cannot do better) and its numerical
-// diffusion adds to D; in x the scheme is close to second order. So each round
-// of solve_kolmogorov solves a finest grid, the same x spacing with 1/2, 1/4
-// and 1/8 of the v cells, and the same v cells with 2 and 4 times the x
-// spacing, and extrapolates each direction separately: R0 + C1 h + C2 h^2
-// (+ C3 h^3 in v) fitted exactly, the error estimate being the size of the
-// last correction (the difference from the extrapolation of one order less).
-// The two corrections are added and so are their error estimates. Rounds
-// refine v (and x while its error exceeds a quarter of v's) until the
-// estimated relative error of D is below rel_precision or the next round would
-// exceed the time or memory budget (a note then says so). The carre du champ
-// of chi over the x moves alone, E[(2/tau^2) chi_x^2], is a second estimator
-// of D with the same limit and a different error (the v moves' numerical
-// diffusion is absent from it); it is extrapolated the same way as a check.
-// Measured (docs/kolmogorov_measurements.md): the Fig. 2 case to an estimated
-// 0.05% in about 10 s on 2 cores, within 0.02% of the control-variate Monte
-// Carlo reference (z = -0.2); pure dry friction at tau' = 1 to 0.26% (and
-// within 0.04% of its reference), at tau' = 0.1 to 0.55% in 13 s.
+// diffusion adds to D; in x the scheme is close to second order. The two
+// directions are extrapolated separately, each on a sequence of grids that is
+// coarse in the other direction (the combination technique): four v levels
+// at a coarse x spacing (R0 + C1 h + C2 h^2 + C3 h^3 fitted exactly), three x
+// levels at coarse v cells (R0 + C1 h + C2 h^2), each error estimate being the
+// size of the last correction (the difference from the extrapolation of one
+// order less). Their sum less the corner grid, where the sequences meet, is
+// the limit but for a mixed term c ~ hx^2 hv (measured: it fell 4-fold when
+// the corner's x spacing was halved and 2-fold when its v cells were), which
+// four grids around the corner give and remove; its error is taken as the
+// difference from a first-order model of it. The estimates are added. So no
+// grid is fine in both directions, and a round costs a fraction of one whose
+// finest grid is (the earlier scheme: 6 s for the Fig. 2 case, now under
+// 1 s). Rounds refine what is above a third of the target (one level of x, of
+// v, or the corner where the mixed term's error is cheapest to remove) until
+// the estimated relative error of D is below rel_precision or the next round
+// would exceed the time or memory budget (a note then says so). The carre du
+// champ of chi over the x moves alone, E[(2/tau^2) chi_x^2], is a second
+// estimator of D with the same limit and a different error (the v moves'
+// numerical diffusion is absent from it); it is extrapolated the same way as
+// a check. Measured (docs/kolmogorov_measurements.md): the Fig. 2 and driven
+// cases to an estimated 0.06% and 0.05% in about 1 s on 2 cores, within 0.03%
+// and 0.04% of the control-variate Monte Carlo references; pure dry friction
+// at tau' = 1 to 0.08% in 5 s (within 0.02% of its reference), at tau' = 0.1
+// to 0.3% in 10 s (more with a longer budget).
 //
 // E[t1], the mean duration of a long excursion, needs no sampling either:
 // the mean time to a transition that ends a half excursion solves a Poisson
@@ -168,13 +176,13 @@ struct KolmogorovGridSolution {
 /// Resolution and budget of solve_kolmogorov. Zero means automatic where said.
 /// Invalid values throw InvalidParameter named after the field.
 struct KolmogorovSettings {
-    /// x intervals across the static band on the finest grid of the first
-    /// round (a multiple of 4; 0: automatic, the spacing a quarter of the
+    /// x intervals across the static band at refinement level 2 (a multiple
+    /// of 4: level 0 has a quarter; 0: automatic, the spacing a quarter of the
     /// smaller of the band and X's standard deviation 1/sqrt(tau), at least 2
-    /// intervals on the coarsest grid).
+    /// intervals at level 0).
     std::size_t band_intervals = 0;
-    /// Velocity cells per half line on the finest grid of the first round (a
-    /// multiple of 8, >= 32; 0: automatic, 128).
+    /// Velocity cells per half line at refinement level 3 (a multiple of 8,
+    /// >= 32: level 0 has an eighth; 0: automatic, 128).
     std::size_t v_cells = 0;
     double x_range = 7.0;           ///< x nodes cover +-x_range standard deviations of X (1/sqrt(tau))
     double v_lower = 0;             ///< lower end of the velocity range [m/s] (< 0; 0: auto)
@@ -188,7 +196,7 @@ struct KolmogorovSettings {
     /// Seconds the whole solve may take [s]: no round is started whose
     /// predicted end is later (a prediction: the end may be ~10% later).
     double time_budget = 10.0;
-    int threads = 2;                ///< threads (1 or 2: the finest grid of a round beside the others)
+    int threads = 2;                ///< threads (1 or 2: two grids of a round solved at once)
     /// > 0: keep the PDMP engine's own chain in x, its lattice of step
     /// pdmp_grid [s^-1/2] (`--grid`), and refine only v: the result is then the
     /// PDMP's D, M0 and P(V = 0) at that grid, to compare with its Monte Carlo
@@ -206,8 +214,8 @@ struct KolmogorovEstimate {
 };
 
 /// What solve_kolmogorov returns. details holds GridDetails (solver
-/// "kolmogorov", the finest grid's states, its velocity range and the relative
-/// error estimate of D).
+/// "kolmogorov", the largest grid's states, the velocity range and the
+/// relative error estimate of D).
 struct KolmogorovResult : MethodResult {
     ModelParams params;                  ///< the model, SI units
     KolmogorovEstimate diffusivity;      ///< D [m^2/s]
@@ -221,9 +229,10 @@ struct KolmogorovResult : MethodResult {
     /// like D: the same continuum limit with a different discretisation error,
     /// a check on the extrapolation [m^2/s].
     KolmogorovEstimate diffusivity_x;
-    /// The grids solved, six per round in the order: x spacing 4 and 2 times
-    /// the finest, v cells 1/8, 1/4, 1/2 of the finest, the finest. The last
-    /// one is the finest grid; its velocity_density is the stationary density.
+    /// The grids solved, each once: those of the last round's x sequence, v
+    /// sequence and mixed term, and those of earlier rounds. The last one is
+    /// the v sequence's finest (the finest velocity cells, coarse in x): its
+    /// velocity_density is the stationary density reported.
     std::vector<KolmogorovGridSolution> levels;
     bool converged = false;              ///< whether D's estimated error is below rel_precision
     std::string note;                    ///< why not, or other remarks; empty when none
@@ -237,6 +246,17 @@ inline constexpr double kolmogorov_bytes_per_lu_nonzero = 16.0;
 /// The smallest nondimensional tau' = tau friction^2/noise the solver takes.
 inline constexpr double kolmogorov_min_tau_prime = 0.05;
 
+/// What the grids of a solve spanned (no one grid is fine in both directions).
+struct KolmogorovGridSpan {
+    std::size_t largest_states = 0; ///< states of the largest grid solved
+    std::size_t x_nodes = 0;        ///< x nodes of the finest x spacing solved
+    std::size_t v_cells = 0;        ///< velocity cells (both half lines) of the finest v cells solved
+    double tail_mass = 0;           ///< the largest KolmogorovGridSolution::tail_mass of the grids
+};
+
+/// The span of r.levels (not empty).
+KolmogorovGridSpan grid_span(const KolmogorovResult& r);
+
 /// Solves the chain on one given grid, without extrapolation: D, M0,
 /// P(V = 0) and E[t1] exact for the chain, the stationary velocity density. SI units;
 /// p must be valid with tau > 0 (validate_kolmogorov), the grid as
@@ -248,8 +268,9 @@ KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const Kolmogo
 /// both directions: level 0 has a quarter of settings.band_intervals and an
 /// eighth of settings.v_cells (or of their automatic values), and each level
 /// doubles both. The x domain and the velocity range are the same at every
-/// level. A round's finest grid takes its x spacing from one level and its v
-/// cells from another (solve_kolmogorov starts at levels 2 and 3).
+/// level. solve_kolmogorov combines the x spacing of one level with the v
+/// cells of another (its first round: x levels 1-3 at v level 2, v levels 1-4
+/// at x level 1).
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& settings, int level);
 
 /// Throws InvalidParameter for what solve_kolmogorov refuses: an invalid

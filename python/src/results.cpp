@@ -281,7 +281,7 @@ void bind_results(py::module_& m) {
         add_totals<R>(c);
         add_request_params<R>(c);
         add_renderings<R>(c);
-        // A solved result (engine='kolmogorov'): the finest grid's cells as
+        // A solved result (engine='kolmogorov'): the finest velocity cells as
         // the bins, its density values without error bars, P(V = 0), D and M0
         // as GridEstimates (value, error).
         auto edges_of = [](const R& r) -> const std::vector<double>& {

@@ -194,15 +194,15 @@ DensityResult density_of(const Engine& engine, const DensityRequest& req, const 
 
 namespace {
 
-/// The stationary density from the Kolmogorov solver's finest grid: the
-/// method chosen at the top of compute_density.
+/// The stationary density from the Kolmogorov solver's grid with the finest
+/// velocity cells: the method chosen at the top of compute_density.
 DensityResult solve_density(const DensityRequest& req) {
     DensityResult out;
     out.request = req;
     out.solution = detail::solve(req, 0.0, out.warnings);
     out.details = out.solution->details;
     const KolmogorovGridSolution& fine = out.solution->levels.back();
-    out.warnings.push_back("the density is the solver's finest grid's, one value per velocity cell (" +
+    out.warnings.push_back("the density is that of the solver's grid with the finest velocity cells, one value per cell (" +
                            std::to_string(fine.velocity_density.size()) +
                            " cells, graded towards v = 0; --bins and --range do not apply): a grid value has no "
                            "standard error, and its discretisation error is estimated only for D, M0, P(V = 0) and E[t1]. "

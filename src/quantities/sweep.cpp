@@ -139,7 +139,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             p.tau = tau;
             p.warnings = r.warnings;
             if (r.solution) {
-                p.work = r.solution->levels.back().states;
+                p.work = grid_span(*r.solution).largest_states;
                 p.seconds = r.solution->seconds;
                 p.solution = std::move(r.solution);
                 out.points.push_back(std::move(p));

@@ -41,8 +41,8 @@ ordered_json histogram_json(const VelocityHistogram& h) {
 
 namespace {
 
-// The reports of a density solved by the Kolmogorov engine: the finest grid's
-// cells and values, no standard errors.
+// The reports of a density solved by the Kolmogorov engine: the cells and
+// values of the grid with the finest velocity cells, no standard errors.
 
 std::string solved_json(const DensityResult& r, int indent) {
     const auto& q = r.request;
@@ -68,7 +68,7 @@ std::string solved_table(const DensityResult& r) {
     const KolmogorovResult& s = *r.solution;
     const KolmogorovGridSolution& fine = s.levels.back();
     std::ostringstream os = report_stream();
-    os << engine_line("density", q.engine, ", no sampling: the finest grid of the Kolmogorov equations of (X, V)");
+    os << engine_line("density", q.engine, ", no sampling: the Kolmogorov equations of (X, V) on the grid with the finest velocity cells");
     os << param_line(q.params, q.engine) << "\n";
     using number_text::pad;
     os << pad("v_lo [m/s]", 13) << " " << pad("v_hi [m/s]", 13) << "  " << pad("density [s/m] (grid)", 20) << "\n";

@@ -51,17 +51,18 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
     pr["relative_error"] = json_number(relative_error(s));
     pr["reached"] = s.converged;
     j["precision"] = pr;
-    const KolmogorovGridSolution& fine = s.levels.back();
+    const KolmogorovGridSpan span = grid_span(s);
+    const KolmogorovGrid& fine = s.levels.back().grid;
     ordered_json g;
-    g["states"] = fine.states;
-    g["x_nodes"] = fine.grid.x_nodes;
-    g["x_lower"] = fine.grid.x_lower();
-    g["x_upper"] = fine.grid.x_upper();
-    g["v_cells"] = fine.grid.v_cells_neg + fine.grid.v_cells_pos;
-    g["v_lower"] = fine.grid.v_lower;
-    g["v_upper"] = fine.grid.v_upper;
+    g["states"] = span.largest_states;
+    g["x_nodes"] = span.x_nodes;
+    g["x_lower"] = fine.x_lower();
+    g["x_upper"] = fine.x_upper();
+    g["v_cells"] = span.v_cells;
+    g["v_lower"] = fine.v_lower;
+    g["v_upper"] = fine.v_upper;
     g["grids_solved"] = s.levels.size();
-    g["tail_mass"] = json_number(fine.tail_mass);
+    g["tail_mass"] = json_number(span.tail_mass);
     g["diffusivity_x"] = grid_estimate_json(s.diffusivity_x);
     j["grid"] = g;
 }
@@ -87,11 +88,12 @@ void solved_table_rows(std::ostringstream& os, const KolmogorovResult& s, const 
 }
 
 std::string solved_work_line(const KolmogorovResult& s, const KolmogorovSettings& settings) {
-    const KolmogorovGridSolution& fine = s.levels.back();
+    const KolmogorovGridSpan span = grid_span(s);
+    const KolmogorovGrid& fine = s.levels.back().grid;
     std::ostringstream os = report_stream();
-    os << "finest grid " << fine.states << " states (" << fine.grid.x_nodes << " x nodes, "
-       << fine.grid.v_cells_neg + fine.grid.v_cells_pos << " velocity cells on [" << format_number(fine.grid.v_lower)
-       << ", " << format_number(fine.grid.v_upper) << "] m/s), " << s.levels.size() << " grids solved, "
+    os << s.levels.size() << " grids solved, the finest " << span.x_nodes << " x nodes and " << span.v_cells
+       << " velocity cells on [" << format_number(fine.v_lower) << ", " << format_number(fine.v_upper)
+       << "] m/s, the largest " << span.largest_states << " states; "
        << format_number(s.seconds, 3) << " s on " << settings.threads << " thread" << (settings.threads > 1 ? "s" : "")
        << "; estimated relative error of D: " << format_number(100 * relative_error(s), 3) << "% (target "
        << format_number(100 * settings.rel_precision, 3) << "%)\n";

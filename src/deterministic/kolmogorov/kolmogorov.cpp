@@ -4,12 +4,16 @@
 #include "stickslip/kolmogorov.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <future>
 #include <limits>
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/format.hpp"
 #include "deterministic/kolmogorov/chain.hpp"
@@ -42,6 +46,17 @@ double stopping_velocity(const KolmogorovDrift& drift, double force, double dir,
 
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s, int level) {
     return detail::kolmogorov::make_kolmogorov_grid(p, s, level, KolmogorovDrift{p});
+}
+
+KolmogorovGridSpan grid_span(const KolmogorovResult& r) {
+    KolmogorovGridSpan span;
+    for (const KolmogorovGridSolution& s : r.levels) {
+        span.largest_states = std::max(span.largest_states, s.states);
+        span.x_nodes = std::max(span.x_nodes, s.grid.x_nodes);
+        span.v_cells = std::max(span.v_cells, s.grid.v_cells_neg + s.grid.v_cells_pos);
+        span.tail_mass = std::max(span.tail_mass, s.tail_mass);
+    }
+    return span;
 }
 
 KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const KolmogorovGrid& grid) {
@@ -174,6 +189,35 @@ Extrapolated richardson(double coarsest, double coarse, double middle, double fi
     return {value, std::abs(value - second_order(coarse, middle, fine))};
 }
 
+/// Where a solve stands: the x levels kx - 2 .. kx are solved at the v level
+/// av (the x sequence), the v levels kv - 3 .. kv at the x level ax (the v
+/// sequence), and the four grids (ax or ax + 1, av or av + 1) for the mixed
+/// term. On the PDMP lattice only the v sequence exists (x is not refined).
+struct Levels {
+    int ax = 1, av = 2, kx = 3, kv = 4;
+};
+
+/// The grid with the x spacing of level lx and the velocity cells of level lv.
+using GridKey = std::pair<int, int>;
+
+std::vector<GridKey> grids_needed(const Levels& l, bool lattice) {
+    std::vector<GridKey> keys;
+    for (int v = l.kv - 3; v <= l.kv; ++v) keys.push_back({lattice ? 0 : l.ax, v});
+    if (lattice) return keys;
+    for (int x = l.kx - 2; x <= l.kx; ++x) keys.push_back({x, l.av});
+    for (auto key : {GridKey{l.ax, l.av}, {l.ax + 1, l.av}, {l.ax, l.av + 1}, {l.ax + 1, l.av + 1}}) keys.push_back(key);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    return keys;
+}
+
+/// Predicted cost of a grid of n states from the largest grid solved so far
+/// (n_ref states, t_ref seconds, z_ref LU nonzeros). Measured on the Fig. 2
+/// and Fig. 4 cases: the LU's nonzeros grow like n^1-1.3 and its time like
+/// n^1.4-2 (memory traffic); the larger exponents are taken.
+double predicted_seconds(double n, double n_ref, double t_ref) { return t_ref * std::pow(n / n_ref, 1.6); }
+double predicted_nonzeros(double n, double n_ref, double z_ref) { return z_ref * std::pow(n / n_ref, 1.3); }
+
 void validate_settings(const KolmogorovSettings& s) {
     auto require = [](bool ok, const char* name, const std::string& what) {
         if (!ok) throw InvalidParameter(name, std::string(name) + " must be " + what);
@@ -229,88 +273,158 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
 
     KolmogorovResult result;
     result.params = p;
-    // Refinement levels of x and v (kolmogorov_grid); each round solves its
-    // finest grid and, for the extrapolation, v cells halved once, twice and
-    // three times at its x spacing and x spacing doubled once and twice at its
-    // v cells.
-    int level_x = 2, level_v = 3;
-    for (int round = 0;; ++round) {
-        const KolmogorovGrid finest_x = k::make_kolmogorov_grid(p, settings, level_x, drift);
-        const KolmogorovGrid finest_v = k::make_kolmogorov_grid(p, settings, level_v, drift);
-        auto grid = [&](int x_coarsening, int v_coarsening) {
-            KolmogorovGrid g = finest_x;
-            const std::size_t fx = std::size_t{1} << x_coarsening, fv = std::size_t{1} << v_coarsening;
-            if (fx > 1 && g.lattice_step > 0) throw std::logic_error("kolmogorov: the PDMP lattice is not coarsened");
-            g.band_intervals /= fx;
-            g.band_first /= fx;
-            g.x_nodes = (g.x_nodes - 1) / fx + 1;
-            g.x_spacing = (g.upper_threshold - g.lower_threshold) / static_cast<double>(g.band_intervals);
-            g.v_cells_pos = finest_v.v_cells_pos / fv;
-            g.v_cells_neg = finest_v.v_cells_neg / fv;
-            return g;
+    const bool lattice = settings.pdmp_grid > 0;
+    auto make_grid = [&](GridKey key) {
+        KolmogorovGrid g = k::make_kolmogorov_grid(p, settings, key.first, drift);
+        const KolmogorovGrid v = k::make_kolmogorov_grid(p, settings, key.second, drift);
+        g.v_cells_pos = v.v_cells_pos;
+        g.v_cells_neg = v.v_cells_neg;
+        return g;
+    };
+    auto states_of = [&](GridKey key) {
+        const KolmogorovGrid g = make_grid(key);
+        return static_cast<double>(g.x_nodes) * static_cast<double>(g.v_cells_pos + g.v_cells_neg);
+    };
+    std::map<GridKey, KolmogorovGridSolution> solved;
+    // The largest grid solved: the reference of the cost predictions.
+    auto largest = [&]() -> const KolmogorovGridSolution& {
+        const KolmogorovGridSolution* best = &solved.begin()->second;
+        for (const auto& [key, s] : solved)
+            if (s.states > best->states) best = &s;
+        return *best;
+    };
+    // Solves the grids not solved yet, largest first, on settings.threads
+    // threads (each grid is one sequential factorisation).
+    auto solve_missing = [&](const std::vector<GridKey>& keys) {
+        std::vector<GridKey> todo;
+        for (GridKey key : keys)
+            if (!solved.count(key)) todo.push_back(key);
+        std::sort(todo.begin(), todo.end(), [&](GridKey a, GridKey b) { return states_of(a) > states_of(b); });
+        std::vector<KolmogorovGridSolution> out(todo.size());
+        std::atomic<std::size_t> next{0};
+        auto work = [&] {
+            for (std::size_t i; (i = next++) < todo.size();) out[i] = k::solve_grid(p, make_grid(todo[i]), drift);
         };
-        const double round_start = elapsed();
-        // The finest grid costs about as much as the four others together: it
-        // runs on a second thread while they run on this one.
-        std::future<KolmogorovGridSolution> finest_solution;
-        if (settings.threads > 1)
-            finest_solution = std::async(std::launch::async, [&] { return k::solve_grid(p, grid(0, 0), drift); });
-        // On the PDMP lattice x is not refined: no x levels.
-        const bool lattice = settings.pdmp_grid > 0;
-        std::vector<KolmogorovGridSolution> solved;
-        for (auto [cx, cv] : {std::pair{2, 0}, {1, 0}, {0, 3}, {0, 2}, {0, 1}})
-            if (!lattice || cx == 0) solved.push_back(k::solve_grid(p, grid(cx, cv), drift));
-        solved.push_back(settings.threads > 1 ? finest_solution.get() : k::solve_grid(p, grid(0, 0), drift));
-        const double round_seconds = elapsed() - round_start;
-        // Peak memory: the finest grid's factors beside the largest other's.
-        std::size_t other = 0;
-        for (std::size_t i = 0; i + 1 < solved.size(); ++i) other = std::max(other, solved[i].lu_nonzeros);
-        const double round_bytes =
-            kolmogorov_bytes_per_lu_nonzero * static_cast<double>(solved.back().lu_nonzeros + other);
+        if (settings.threads > 1 && todo.size() > 1) {
+            std::future<void> second = std::async(std::launch::async, work);
+            work();
+            second.get();
+        } else {
+            work();
+        }
+        for (std::size_t i = 0; i < todo.size(); ++i) solved.emplace(todo[i], std::move(out[i]));
+    };
 
-        // Independent corrections in the two directions, from the finest grid.
-        const KolmogorovGridSolution& fine = solved.back();
-        const std::size_t v0 = lattice ? 0 : 2; // the first v level in `solved`
-        double x_error = 0, v_error = 0;
+    // The two directions are extrapolated separately, each on a sequence of
+    // grids that is coarse in the other direction (the combination technique):
+    //   D0 = D_v(ax) + D_x(av) - D(ax, av) - c(ax, av),
+    // D_v(ax) the v extrapolation at the x level ax, D_x(av) the x
+    // extrapolation at the v level av, and c the mixed term that the errors'
+    // sum misses. Measured, c goes like hx^2 hv (it fell 4-fold when ax rose
+    // and 2-fold when av rose: Fig. 4 at tau = 1 s, pure dry friction), so the
+    // mixed difference m = D(ax, av) - D(ax+1, av) - D(ax, av+1) + D(ax+1, av+1)
+    // = 3c/8 gives c, and the error of that correction is taken as its
+    // difference from the first-order model's (c = 4m): 4|m|/3 (an
+    // overestimate: the corrected values moved 6-10 times less when refined).
+    // So the grids that cost most, fine in one direction, are coarse in the
+    // other: a round costs about a third of one whose finest grid is fine in
+    // both (kolmogorov_measurements.md).
+    Levels at;
+    if (lattice) at.ax = 0, at.kv = 3; // v levels 0-3: the lattice is fine in x already
+    // A loose target starts a level coarser in both sequences (the Fig. 4 plane
+    // at 1%: 19 s instead of 33 s, every estimate still covering the 0.1%
+    // run's value; coarser still, with 32 v cells at the corner, did not).
+    else if (settings.rel_precision >= 3e-3) at.kx = 2, at.kv = 3;
+    for (;;) {
+        solve_missing(grids_needed(at, lattice));
+
+        auto value = [&](GridKey key, auto field) { return field(solved.at(key)); };
+        double x_error = 0, v_error = 0, mixed_error = 0;
         auto estimate = [&](auto field, bool record) {
-            const Extrapolated in_x = lattice ? Extrapolated{field(fine), 0.0}
-                                              : richardson(field(solved[0]), field(solved[1]), field(fine));
-            const Extrapolated in_v =
-                richardson(field(solved[v0]), field(solved[v0 + 1]), field(solved[v0 + 2]), field(fine));
-            if (record) x_error = in_x.error, v_error = in_v.error;
-            return KolmogorovEstimate{in_x.value + in_v.value - field(fine), in_x.error + in_v.error};
+            const int vx = lattice ? 0 : at.ax;
+            const Extrapolated in_v = richardson(value({vx, at.kv - 3}, field), value({vx, at.kv - 2}, field),
+                                                 value({vx, at.kv - 1}, field), value({vx, at.kv}, field));
+            if (lattice) {
+                if (record) v_error = in_v.error;
+                return KolmogorovEstimate{in_v.value, in_v.error};
+            }
+            const Extrapolated in_x = richardson(value({at.kx - 2, at.av}, field), value({at.kx - 1, at.av}, field),
+                                                 value({at.kx, at.av}, field));
+            const double corner = value({at.ax, at.av}, field);
+            const double mixed = corner - value({at.ax + 1, at.av}, field) - value({at.ax, at.av + 1}, field) +
+                                 value({at.ax + 1, at.av + 1}, field);
+            if (record) x_error = in_x.error, v_error = in_v.error, mixed_error = 4.0 * std::abs(mixed) / 3.0;
+            return KolmogorovEstimate{in_x.value + in_v.value - corner + 8.0 * mixed / 3.0,
+                                      in_x.error + in_v.error + 4.0 * std::abs(mixed) / 3.0};
         };
         result.diffusivity = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity; }, true);
         result.diffusivity_x = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity_x; }, false);
         result.mobility = estimate([](const KolmogorovGridSolution& s) { return s.mobility; }, false);
         result.stuck_probability = estimate([](const KolmogorovGridSolution& s) { return s.stuck_probability; }, false);
         result.mean_duration = estimate([](const KolmogorovGridSolution& s) { return s.mean_duration; }, false);
-        for (auto& s : solved) result.levels.push_back(std::move(s));
 
         const double relative = result.diffusivity.error / std::abs(result.diffusivity.value);
         result.converged = relative <= settings.rel_precision;
         if (result.converged) break;
-        // Refine v always (first-order transport: its error dominates), x only
-        // while its error is more than a quarter of v's. Doubling one direction
-        // doubles the states, both quadruples them; time grows faster than the
-        // states (measured: up to 3 and 7 times a round's time).
-        const bool refine_x = x_error > 0.25 * v_error;
-        const double growth = refine_x ? 7.0 : 3.2;
-        const bool over_memory = growth * round_bytes > settings.memory_budget;
-        if (elapsed() + growth * round_seconds > settings.time_budget || over_memory) {
+        // Refine every part whose error is above a third of the target, and
+        // the largest in any case: one level finer in x (the x extrapolation's
+        // error fell about 4-fold per level), in v (8- to 10-fold), or for the
+        // mixed term the cheaper per error removed of ax + 1 (the v sequence at
+        // half the x spacing: c / 4) and av + 1 (the x sequence at twice the
+        // v cells: c / 2).
+        const double share = settings.rel_precision * std::abs(result.diffusivity.value) / 3.0;
+        const double top = std::max({x_error, v_error, mixed_error});
+        Levels next = at;
+        if (v_error > share || v_error == top) ++next.kv;
+        if (!lattice && (x_error > share || x_error == top)) ++next.kx;
+        if (!lattice && (mixed_error > share || mixed_error == top)) {
+            auto cost = [&](const Levels& l) {
+                double sum = 0;
+                for (GridKey key : grids_needed(l, lattice))
+                    if (!solved.count(key)) sum += std::pow(states_of(key), 2.0);
+                return sum;
+            };
+            Levels finer_x = next, finer_v = next;
+            ++finer_x.ax;
+            ++finer_v.av;
+            next = cost(finer_x) / 0.75 <= cost(finer_v) / 0.5 ? finer_x : finer_v;
+        }
+        // The budgets, predicted from the largest grid solved so far.
+        const KolmogorovGridSolution& ref = largest();
+        const double n_ref = static_cast<double>(ref.states);
+        double seconds = 0, longest = 0, largest_nonzeros = 0, second_nonzeros = 0;
+        for (GridKey key : grids_needed(next, lattice)) {
+            if (solved.count(key)) continue;
+            const double n = states_of(key), t = predicted_seconds(n, n_ref, ref.seconds);
+            seconds += t;
+            longest = std::max(longest, t);
+            const double z = predicted_nonzeros(n, n_ref, static_cast<double>(ref.lu_nonzeros));
+            if (z > largest_nonzeros) second_nonzeros = largest_nonzeros, largest_nonzeros = z;
+            else second_nonzeros = std::max(second_nonzeros, z);
+        }
+        const double round_bytes =
+            kolmogorov_bytes_per_lu_nonzero * (largest_nonzeros + (settings.threads > 1 ? second_nonzeros : 0.0));
+        const bool over_memory = round_bytes > settings.memory_budget;
+        const double round_prediction = settings.threads > 1 ? std::max(longest, seconds / 2.0) : seconds;
+        if (elapsed() + round_prediction > settings.time_budget || over_memory) {
             result.note = "the estimated error of D, " + detail::format_number(relative, 3) +
                           " relative, is above rel_precision " + detail::format_number(settings.rel_precision, 3) +
                           ": the next refinement would exceed the " + (over_memory ? "memory" : "time") + " budget";
             break;
         }
-        ++level_v;
-        if (refine_x) ++level_x;
+        at = next;
     }
+    // The grids solved, the v sequence's finest last (its velocity density
+    // is the one reported).
+    const GridKey finest_v{lattice ? 0 : at.ax, at.kv};
+    for (auto& [key, s] : solved)
+        if (key != finest_v) result.levels.push_back(std::move(s));
+    result.levels.push_back(std::move(solved.at(finest_v)));
     const KolmogorovGridSolution& fine = result.levels.back();
     result.seconds = elapsed();
     GridDetails details;
     details.solver = settings.pdmp_grid > 0 ? "kolmogorov (pdmp lattice in x)" : "kolmogorov";
-    details.cells = fine.states;
+    details.cells = grid_span(result).largest_states;
     details.lower = fine.grid.v_lower;
     details.upper = fine.grid.v_upper;
     details.discretisation_error = result.diffusivity.error / std::abs(result.diffusivity.value);
