@@ -133,9 +133,13 @@ def main():
     if os.path.exists(p2):
         s2 = load(p2)
         thread_speedup = ss_sec / s2["work"]["seconds"]
-        # Everything but the timings and the thread count must be identical.
-        same = ({k: v for k, v in s2.items() if k != "work"} == {k: v for k, v in ss.items() if k != "work"}
-                and s2["work"]["steps"] == ss["work"]["steps"])
+        # Everything but the timings and the thread count must be identical (the thread count
+        # is also in the command line and the settings that the JSON records).
+        def results(j):
+            out = {k: v for k, v in j.items() if k not in ("work", "command", "settings")}
+            out["settings"] = {k: v for k, v in j.get("settings", {}).items() if k != "threads"}
+            return out
+        same = results(s2) == results(ss) and s2["work"]["steps"] == ss["work"]["steps"]
         failed |= not same
         print("  %-40s %7d %10s %9.2f %7.2f %24s %14s" % (
             "stickslip diffusivity --threads 2", a.excursions, fmt_rate(ss_steps / s2["work"]["seconds"]),
@@ -211,6 +215,13 @@ def main():
         print("  %-68s %7s   target %-7s %s" % (name, "-" if value is None else "%.2f" % value,
                                                "-" if minimum is None else ">= %g" % minimum, verdict))
     print()
+    equal_error = engines_at_equal_error(d)
+    if equal_error:
+        for name, value, minimum in equal_error:
+            verdict = "reported" if minimum is None else "met" if value >= minimum else "MISSED"
+            print("  %-68s %7.1f   target %-7s %s" % (name, value, "-" if minimum is None else ">= %g" % minimum,
+                                                     verdict))
+        print()
     print("overall: %s" % ("FAIL" if failed else "PASS"))
     return 1 if failed else 0
 
@@ -265,6 +276,49 @@ def time_to_total_error(kernel, bm, ss):
         rows.append(("headline (%s biases): resolvent at its auto step / event" % key, t[res] / t[ev], 10))
         rows.append(("headline (%s biases): resolvent at dt 1e-4 s / event" % key, t[old] / t[ev], 100))
     return rows
+
+
+# Issue 26's target: D within 0.3% on the Fig. 2 case at least 30 times sooner with the
+# Kolmogorov engine than with the Monte Carlo default. Both whole commands on one thread, timed
+# by run.sh one after the other. The Monte Carlo run's time is scaled to the excursions at which
+# its 95% half-width is 0.3% (noise only), and 0.3% less the automatic step's bias allowance,
+# +0.17% (docs/efficiency.md: measured 0.142% +- 0.079%); its corrector's one-off cost is
+# scaled with it (a small overestimate). The Kolmogorov engine's estimated error must be below
+# 0.3% for its row to count.
+STEP_BIAS_ALLOWANCE = 0.0017
+TARGET_KOLMOGOROV = 30.0
+
+
+def engines_at_equal_error(d):
+    paths = [os.path.join(d, f) for f in ("default.json", "kolmogorov.json", "time_to_error.txt")]
+    if not all(os.path.exists(p) for p in paths):
+        return None
+    mc, kg = load(paths[0]), load(paths[1])
+    with open(paths[2]) as f:
+        t0, t1, t2 = (float(x) for x in f.read().split())
+    D, se, n = mc["diffusivity"]["value"], mc["diffusivity"]["stderr"], mc["completed"]
+    t_mc, t_kg = t1 - t0, t2 - t1
+    half_width = 1.96 * se / D
+    kg_error = kg["diffusivity"]["error"] / kg["diffusivity"]["value"]
+    print("D. D within %.1f%% on the Fig. 2 case, one thread: Monte Carlo default against the Kolmogorov engine"
+          % (100 * TOTAL_ERROR))
+    print("  %-52s %12s %10s %9s %10s" % ("", "D [m^2/s]", "error", "wall [s]", "s to 0.3%"))
+    rows = []
+    for label, bias in (("Monte Carlo default, noise only", 0.0),
+                        ("Monte Carlo default, step bias +%.2f%%" % (100 * STEP_BIAS_ALLOWANCE), STEP_BIAS_ALLOWANCE)):
+        scaled = t_mc * (half_width / (TOTAL_ERROR - bias)) ** 2
+        rows.append((label, scaled))
+        print("  %-52s %12.5e %9.3f%% %9.2f %10.1f" % ("%s (%d exc.)" % (label, n), D, 100 * half_width, t_mc, scaled))
+    print("  %-52s %12.5e %9.3f%% %9.2f %10s" % ("Kolmogorov engine (--rel-precision 0.003)",
+                                                 kg["diffusivity"]["value"], 100 * kg_error, t_kg,
+                                                 "%.1f" % t_kg if kg_error <= TOTAL_ERROR else "not reached"))
+    print("  (Monte Carlo: 95% half-width scaled as 1/sqrt(N); Kolmogorov: estimated discretisation error;")
+    print("   the target counts the total error, bias and noise: the noise-only ratio is reported)")
+    print()
+    targets = (None, TARGET_KOLMOGOROV)  # noise only: reported; total error: the target
+    return [("time to D within 0.3%%, Fig. 2: %s / Kolmogorov" % label.replace("Monte Carlo default", "MC default"),
+             scaled / t_kg if kg_error <= TOTAL_ERROR else 0.0, minimum)
+            for (label, scaled), minimum in zip(rows, targets)]
 
 
 if __name__ == "__main__":
