@@ -57,31 +57,34 @@
 //
 // Accuracy. Upwind transport is first order in the v cells (Godunov: a chain,
 // i.e. a monotone linear scheme, cannot do better) and its numerical
-// diffusion adds to D; in x the scheme is close to second order. The two
-// directions are extrapolated separately, each on a sequence of grids that is
-// coarse in the other direction (the combination technique): four v levels
-// at a coarse x spacing (R0 + C1 h + C2 h^2 + C3 h^3 fitted exactly), three x
-// levels at coarse v cells (R0 + C1 h + C2 h^2), each error estimate being the
-// size of the last correction (the difference from the extrapolation of one
-// order less). Their sum less the corner grid, where the sequences meet, is
-// the limit but for a mixed term c ~ hx^2 hv (measured: it fell 4-fold when
-// the corner's x spacing was halved and 2-fold when its v cells were), which
-// four grids around the corner give and remove; its error is taken as the
-// difference from a first-order model of it. The estimates are added. So no
-// grid is fine in both directions, and a round costs a fraction of one whose
-// finest grid is (the earlier scheme: 6 s for the Fig. 2 case, now under
-// 1 s). Rounds refine what is above a third of the target (one level of x, of
-// v, or the corner where the mixed term's error is cheapest to remove) until
-// the estimated relative error of D is below rel_precision or the next round
-// would exceed the time or memory budget (a note then says so). The carre du
-// champ of chi over the x moves alone, E[(2/tau^2) chi_x^2], is a second
-// estimator of D with the same limit and a different error (the v moves'
-// numerical diffusion is absent from it); it is extrapolated the same way as
-// a check. Measured (docs/kolmogorov_measurements.md): the Fig. 2 and driven
-// cases to an estimated 0.06% and 0.05% in about 1 s on 2 cores, within 0.03%
-// and 0.04% of the control-variate Monte Carlo references; pure dry friction
-// at tau' = 1 to 0.08% in 5 s (within 0.02% of its reference), at tau' = 0.1
-// to 0.3% in 10 s (more with a longer budget).
+// diffusion adds to D; in x the scheme is second order. The two directions
+// are extrapolated separately, each over four levels on a sequence of grids
+// that is coarse in the other direction (the combination technique): v at a
+// coarse x spacing, x at 64 velocity cells per half line; R0 + C1 h + C2 h^2 +
+// C3 h^3 is fitted exactly and the error estimate is the size of the last
+// correction (the difference from the fit of one order less). Their sum less
+// the corner grid, where the sequences meet, is the limit but for a mixed term
+// c that the errors' sum misses: for D, M0 and E[t1] it goes like hx^2 hv
+// (measured: it fell 4-fold when the corner's x spacing was halved and 2-fold
+// when its v cells were), so four grids around the corner give and remove it,
+// and its error is charged as the difference from a first-order model of it.
+// Two more coarse grids check that model per quantity: P(V = 0)'s mixed term
+// barely shrinks with x at these levels (the stuck states need x and v fine
+// together), so its charge is larger and its estimate is the loosest. The
+// estimates are added. No grid is fine in both directions, so a round costs a
+// fraction of one whose finest grid is (the first version's: 9 s for the Fig.
+// 2 case, now 1 s). Rounds refine what is above a third of the target (one
+// level of x, of v, or the corner where the mixed term is cheapest to reduce)
+// until the estimated relative error of D is below rel_precision or the next
+// round would exceed the time or memory budget (a note then says so). The
+// carre du champ of chi over the x moves alone, E[(2/tau^2) chi_x^2], is a
+// second estimator of D with the same limit and a different error (the v
+// moves' numerical diffusion is absent from it); it is extrapolated the same
+// way as a check. Measured (docs/kolmogorov_measurements.md): the Fig. 2 and
+// driven cases to an estimated 0.03% and 0.003% in about 1 s on 2 cores, within
+// 0.02% and 0.04% of the control-variate Monte Carlo references; pure dry
+// friction at tau' = 1 to 0.07% in 4 s (within 0.02% of its reference), at
+// tau' = 0.1 to 0.3% in 4 s, where the next round would exceed the budget.
 //
 // E[t1], the mean duration of a long excursion, needs no sampling either:
 // the mean time to a transition that ends a half excursion solves a Poisson
@@ -269,7 +272,7 @@ KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const Kolmogo
 /// eighth of settings.v_cells (or of their automatic values), and each level
 /// doubles both. The x domain and the velocity range are the same at every
 /// level. solve_kolmogorov combines the x spacing of one level with the v
-/// cells of another (its first round: x levels 1-3 at v level 2, v levels 1-4
+/// cells of another (its first round: x levels 0-3 at v level 2, v levels 1-4
 /// at x level 1).
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& settings, int level);
 

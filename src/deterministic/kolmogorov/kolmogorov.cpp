@@ -168,31 +168,29 @@ KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& gr
 
 namespace {
 
-/// R0 from values at steps h, h/2, h/4 (, h/8) under R = R0 + C1 h + C2 h^2
-/// (+ C3 h^3): first-order upwind transport has C1 != 0, the x moves often
-/// C1 ~ 0. The error is the size of the last correction: the difference from
-/// the extrapolation of one order less over the finer values. With four v
-/// levels that estimate was sharp where three were not (pure dry friction,
-/// tau' = 1: the three-level estimate 1.5% for an actual 0.1%, the four-level
-/// one 0.12% for an actual 0.02%; kolmogorov_measurements.md).
+/// R0 from values at steps h, h/2, h/4, h/8 under R = R0 + C1 h + C2 h^2 +
+/// C3 h^3, fitted exactly. The error is the size of the last correction: the
+/// difference from the fit of one order less through the three finer values.
+/// In v (first-order upwind transport, C1 != 0) three levels' estimate was
+/// 9 times the actual error and four levels' about 7 times (pure dry friction,
+/// tau' = 1: 0.93% for 0.10%, 0.12% for 0.017%); in x the scheme is second
+/// order (successive differences shrink 3.4, 3.7, 4.0-fold), where three
+/// levels' estimate, blind to that, was 10-100 times the actual error and four
+/// levels' 1.3-2.5 times (kolmogorov_measurements.md).
 struct Extrapolated {
     double value = 0, error = 0;
 };
-double first_order(double middle, double fine) { return 2.0 * fine - middle; }
 double second_order(double coarse, double middle, double fine) { return (8.0 * fine - 6.0 * middle + coarse) / 3.0; }
-Extrapolated richardson(double coarse, double middle, double fine) {
-    const double value = second_order(coarse, middle, fine);
-    return {value, std::abs(value - first_order(middle, fine))};
-}
 Extrapolated richardson(double coarsest, double coarse, double middle, double fine) {
     const double value = (64.0 * fine - 56.0 * middle + 14.0 * coarse - coarsest) / 21.0;
     return {value, std::abs(value - second_order(coarse, middle, fine))};
 }
 
-/// Where a solve stands: the x levels kx - 2 .. kx are solved at the v level
+/// Where a solve stands: the x levels kx - 3 .. kx are solved at the v level
 /// av (the x sequence), the v levels kv - 3 .. kv at the x level ax (the v
-/// sequence), and the four grids (ax or ax + 1, av or av + 1) for the mixed
-/// term. On the PDMP lattice only the v sequence exists (x is not refined).
+/// sequence), and the six grids (ax - 1 .. ax + 1, av or av + 1) for the mixed
+/// term and the check of its model. On the PDMP lattice only the v sequence
+/// exists (x is not refined).
 struct Levels {
     int ax = 1, av = 2, kx = 3, kv = 4;
 };
@@ -204,8 +202,9 @@ std::vector<GridKey> grids_needed(const Levels& l, bool lattice) {
     std::vector<GridKey> keys;
     for (int v = l.kv - 3; v <= l.kv; ++v) keys.push_back({lattice ? 0 : l.ax, v});
     if (lattice) return keys;
-    for (int x = l.kx - 2; x <= l.kx; ++x) keys.push_back({x, l.av});
-    for (auto key : {GridKey{l.ax, l.av}, {l.ax + 1, l.av}, {l.ax, l.av + 1}, {l.ax + 1, l.av + 1}}) keys.push_back(key);
+    for (int x = l.kx - 3; x <= l.kx; ++x) keys.push_back({x, l.av});
+    for (int x = l.ax - 1; x <= l.ax + 1; ++x)
+        for (int v = l.av; v <= l.av + 1; ++v) keys.push_back({x, v});
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     return keys;
@@ -214,8 +213,10 @@ std::vector<GridKey> grids_needed(const Levels& l, bool lattice) {
 /// Predicted cost of a grid of n states from the largest grid solved so far
 /// (n_ref states, t_ref seconds, z_ref LU nonzeros). Measured on the Fig. 2
 /// and Fig. 4 cases: the LU's nonzeros grow like n^1-1.3 and its time like
-/// n^1.4-2 (memory traffic); the larger exponents are taken.
-double predicted_seconds(double n, double n_ref, double t_ref) { return t_ref * std::pow(n / n_ref, 1.6); }
+/// n^1.6-1.75 whichever direction is refined, more with two solves sharing
+/// the memory bandwidth (1.6 let pure dry friction at tau' = 0.3 end at 12 s
+/// on a 10 s budget).
+double predicted_seconds(double n, double n_ref, double t_ref) { return t_ref * std::pow(n / n_ref, 1.8); }
 double predicted_nonzeros(double n, double n_ref, double z_ref) { return z_ref * std::pow(n / n_ref, 1.3); }
 
 void validate_settings(const KolmogorovSettings& s) {
@@ -320,21 +321,22 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
     //   D0 = D_v(ax) + D_x(av) - D(ax, av) - c(ax, av),
     // D_v(ax) the v extrapolation at the x level ax, D_x(av) the x
     // extrapolation at the v level av, and c the mixed term that the errors'
-    // sum misses. Measured, c goes like hx^2 hv (it fell 4-fold when ax rose
-    // and 2-fold when av rose: Fig. 4 at tau = 1 s, pure dry friction), so the
-    // mixed difference m = D(ax, av) - D(ax+1, av) - D(ax, av+1) + D(ax+1, av+1)
-    // = 3c/8 gives c, and the error of that correction is taken as its
-    // difference from the first-order model's (c = 4m): 4|m|/3 (an
-    // overestimate: the corrected values moved 6-10 times less when refined).
-    // So the grids that cost most, fine in one direction, are coarse in the
-    // other: a round costs about a third of one whose finest grid is fine in
-    // both (kolmogorov_measurements.md).
+    // sum misses. Measured, c goes like hx^2 hv for D, M0 and E[t1] (it fell
+    // 4-fold when ax rose and 2-fold when av rose: Fig. 4 at tau = 1 s, pure dry
+    // friction), so the mixed difference m = D(ax, av) - D(ax+1, av) -
+    // D(ax, av+1) + D(ax+1, av+1) = 3c/8 gives c, and the error of that
+    // correction is taken as its difference from the first-order model's
+    // (c = 4m): 4|m|/3, an overestimate (the corrected values moved 6-10 times
+    // less when refined). The same difference one x level coarser checks the
+    // model per quantity (below). So the grids that cost most, fine in one
+    // direction, are coarse in the other (kolmogorov_measurements.md).
     Levels at;
+    // One first round for every target: the Fig. 4 plane at 1% with the v
+    // sequence a level coarser took 30 s instead of 48 s, but M0's estimate
+    // fell short of its distance to the 0.1% value at one point in 40 (1.1
+    // times); 32 velocity cells at the corner, 14 s, fell short for D, M0
+    // and E[t1] (up to 3 times).
     if (lattice) at.ax = 0, at.kv = 3; // v levels 0-3: the lattice is fine in x already
-    // A loose target starts a level coarser in both sequences (the Fig. 4 plane
-    // at 1%: 19 s instead of 33 s, every estimate still covering the 0.1%
-    // run's value; coarser still, with 32 v cells at the corner, did not).
-    else if (settings.rel_precision >= 3e-3) at.kx = 2, at.kv = 3;
     for (;;) {
         solve_missing(grids_needed(at, lattice));
 
@@ -348,14 +350,23 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
                 if (record) v_error = in_v.error;
                 return KolmogorovEstimate{in_v.value, in_v.error};
             }
-            const Extrapolated in_x = richardson(value({at.kx - 2, at.av}, field), value({at.kx - 1, at.av}, field),
-                                                 value({at.kx, at.av}, field));
+            const Extrapolated in_x = richardson(value({at.kx - 3, at.av}, field), value({at.kx - 2, at.av}, field),
+                                                 value({at.kx - 1, at.av}, field), value({at.kx, at.av}, field));
             const double corner = value({at.ax, at.av}, field);
-            const double mixed = corner - value({at.ax + 1, at.av}, field) - value({at.ax, at.av + 1}, field) +
-                                 value({at.ax + 1, at.av + 1}, field);
-            if (record) x_error = in_x.error, v_error = in_v.error, mixed_error = 4.0 * std::abs(mixed) / 3.0;
+            auto mixed_at = [&](int x) {
+                return value({x, at.av}, field) - value({x + 1, at.av}, field) - value({x, at.av + 1}, field) +
+                       value({x + 1, at.av + 1}, field);
+            };
+            const double mixed = mixed_at(at.ax);
+            // The model c ~ hx^2 hv is checked per quantity one x level
+            // coarser: where m did not shrink at least 3-fold there (P(V = 0):
+            // 1.2-fold on the Fig. 2 case, where D, M0 and E[t1] shrank 3.3-
+            // 6.6-fold), the charge is 8|m|, covering an x order down to 1/4.
+            const bool model_holds = std::abs(mixed_at(at.ax - 1)) >= 3.0 * std::abs(mixed);
+            const double mixed_charge = (model_holds ? 4.0 / 3.0 : 8.0) * std::abs(mixed);
+            if (record) x_error = in_x.error, v_error = in_v.error, mixed_error = mixed_charge;
             return KolmogorovEstimate{in_x.value + in_v.value - corner + 8.0 * mixed / 3.0,
-                                      in_x.error + in_v.error + 4.0 * std::abs(mixed) / 3.0};
+                                      in_x.error + in_v.error + mixed_charge};
         };
         result.diffusivity = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity; }, true);
         result.diffusivity_x = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity_x; }, false);
