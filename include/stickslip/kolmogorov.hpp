@@ -197,7 +197,8 @@ struct KolmogorovSettings {
     /// started whose predicted peak exceeds it.
     double memory_budget = 2e9;
     /// Seconds the whole solve may take [s]: no round is started whose
-    /// predicted end is later (a prediction: the end may be ~10% later).
+    /// predicted end is later (a prediction: ends up to 25% later were seen
+    /// with other work on the machine).
     double time_budget = 10.0;
     int threads = 2;                ///< threads (1 or 2: two grids of a round solved at once)
     /// > 0: keep the PDMP engine's own chain in x, its lattice of step
