@@ -61,6 +61,8 @@ Examples:
   stickslip moments --friction 1 --noise 1 --tau 5e-6 --relaxation inf --bias 0 --dt 1e-3
   stickslip density --format csv --output density.csv
   stickslip sweep --noise 1:10:5 --tau 0.125,0.5 --excursions 4000 --format csv
+  stickslip sweep --drift "a*v - c*v^3" --drift-params a=0.8 --vary c \
+      --vary-values 0.2:1:5 --tau 0.25 --noise 5 --engine kolmogorov   # D against c
   stickslip diffusivity --excursions 1e5 --print-config > run.toml
   stickslip diffusivity --config run.toml --seed 2
   stickslip diffusivity --excursions 1e8 --checkpoint run.ckpt --resume run.ckpt)";

@@ -49,6 +49,11 @@ struct DriftLawReport {
 /// was made.
 DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report = nullptr);
 
+/// The named constants of a drift expression (every name but v that it uses,
+/// sorted), e.g. {"a", "c"} for "a*v - c*v^3". Throws InvalidParameter("drift",
+/// ...) when the text does not parse.
+std::vector<std::string> drift_expression_constants(const std::string& text);
+
 /// The note a run gives on its law: "drift law (SOURCE) TEXT: interpolated on N
 /// knots over [lower, upper] m/s, off by at most E m s^-2".
 std::string drift_law_note(const DriftLawReport& law);

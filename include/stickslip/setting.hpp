@@ -77,6 +77,8 @@ struct NumberList {
     /// lo:hi:n spaces the values evenly (true) or evenly in log (false: the
     /// default, for scale quantities such as noise intensities and times).
     bool linear = false;
+    /// An empty text is the empty list (an optional axis, unset), not an error.
+    bool may_be_empty = false;
 };
 
 /// A text: an expression, a path. Text: itself ("" when unset).

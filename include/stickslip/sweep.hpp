@@ -3,6 +3,12 @@
 // correlation times (the paper's Figs. 4 and 9), with the local log-log slope
 // d log D / d log Gamma and, per tau, the fitted exponent of D ~ Gamma^alpha.
 //
+// A third axis, --vary NAME with --vary-values LIST, sweeps a named constant
+// of the --drift expression (given as NAME=value in each point's
+// drift_params, replacing a value given there): the points are then value-major, each value a whole
+// (tau, noise) grid, and the exponents are fitted per (value, tau). Without
+// it nothing changes, point numbers included.
+//
 // Independence: point number k uses the sample indices
 // [k * 2^40, k * 2^40 + excursions) of the run's seed, so every point has its
 // own streams, the points' errors are independent and the slope errors below
@@ -23,6 +29,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -44,8 +51,11 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     static constexpr const char* command = "sweep"; ///< the CLI subcommand, and a checkpoint's name for it
     static constexpr bool resumable = true; ///< runs through the block driver: checkpoints, graceful stop
     /// Gamma values [m^2 s^-3], > 0 (sorted increasing in the result); the
-    /// default, 1:10:5, is five log-spaced values from 1 to 10.
-    std::vector<double> noises = spaced_values(1.0, 10.0, 5);
+    /// default, 3:10:5, is five log-spaced values from 3 to 10: with the
+    /// default taus every point runs (about 8 s on 2 cores); below 3 at
+    /// tau = 1 s E[t1] grows past 1000 s and the runaway guard refuses the
+    /// default sweep.
+    std::vector<double> noises = spaced_values(3.0, 10.0, 5);
     std::vector<double> taus = {0.125, 0.25, 0.5, 1.0}; ///< tau values [s], >= 0
     /// The estimator of D at every point (as DiffusivityRequest::estimator).
     Estimator estimator = Estimator::RenewalReward;
@@ -54,6 +64,13 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     /// the solver's default, 1e-3). A Monte Carlo sweep has no precision mode
     /// and refuses a value > 0.
     double rel_precision = 0.0;
+    /// A named constant of the --drift expression to sweep over ("" for none):
+    /// every point's drift_params gains NAME=value for each of vary_values
+    /// (replacing a value drift_params gives it, as a placeholder).
+    std::string vary;
+    /// The values of `vary` (in the constant's own units; sorted increasing
+    /// in the result). Empty without --vary.
+    std::vector<double> vary_values;
     /// Optional: the progress callback for point k of n at (noise, tau).
     std::function<std::function<bool(const Progress&)>(std::size_t k, std::size_t n, double noise, double tau)>
         point_progress;
@@ -68,6 +85,12 @@ void visit_settings(SweepRequest& r, Visitor&& v) {
     v(NumberList{r.taus}, SettingInfo{"tau", "s", "correlation times: comma-separated or lo:hi:n (n log-spaced)"});
     visit_settings(static_cast<ExcursionSettings&>(r), v);
     v(r.estimator, SettingInfo{"estimator", "", "renewal (default) or paper (eq. 12)"});
+    v(TextValue{r.vary}, SettingInfo{"vary", "",
+                                     "a named constant of --drift to sweep over as a third axis, its values in "
+                                     "--vary-values: --drift \"a*v - c*v^3\" --drift-params a=0.8 --vary c",
+                                     "NAME"});
+    v(NumberList{r.vary_values, true, true},
+      SettingInfo{"vary-values", "", "values of the --vary constant: comma-separated or lo:hi:n (n evenly spaced)"});
     v(r.rel_precision, SettingInfo{"rel-precision", "",
                                    "with --engine kolmogorov: the target estimated relative error of D at every "
                                    "point (0: the solver's default, 1e-3; 0.01 is about 10 times faster)"});
@@ -79,6 +102,9 @@ struct SweepPoint {
     /// The point: noise intensity Gamma [m^2 s^-3] and correlation time tau [s].
     double noise = 0, tau = 0;
     /// @}
+    /// The value of the swept drift constant (SweepRequest::vary) at the
+    /// point; NaN without --vary.
+    double varied = std::numeric_limits<double>::quiet_NaN();
     /// D [m^2/s], M0 [m/s] and E[t1] [s] at the point (sampled; unset when
     /// `solution` holds the point).
     LongExcursionEstimates estimates;
@@ -112,6 +138,8 @@ struct SweepPoint {
 struct SweepExponent {
     /// The correlation time [s] of the fit.
     double tau = 0;
+    /// The value of the swept drift constant of the fit; NaN without --vary.
+    double varied = std::numeric_limits<double>::quiet_NaN();
     /// alpha of D ~ Gamma^alpha, weighted least squares in log-log (solved
     /// points: weights and std_error from D's discretisation errors, the
     /// interval NaN)
@@ -127,8 +155,10 @@ struct SweepExponent {
 struct SweepResult {
     /// The request, with its noises and taus sorted and duplicates removed.
     SweepRequest request;
-    std::vector<SweepPoint> points; ///< tau-major: for each tau, noises increasing
-    std::vector<SweepExponent> exponents; ///< one per tau (when >= 2 noises)
+    /// tau-major: for each tau, noises increasing (with --vary, all that
+    /// for each value in turn)
+    std::vector<SweepPoint> points;
+    std::vector<SweepExponent> exponents; ///< one per tau and value (when >= 2 noises)
     /// Wall time of the whole sweep [s].
     double seconds = 0;
     bool interrupted = false;  ///< stopped early (RunControl::stop): the points run so far
@@ -137,12 +167,16 @@ struct SweepResult {
     /// excursions per point.
     std::vector<std::string> warnings;
 
+    /// Whether a drift constant is swept (--vary): a third axis.
+    bool varies() const { return !request.vary.empty(); }
     /// Whether the points were solved (--engine kolmogorov), not sampled.
     bool solved() const { return !samples(request.engine); }
 };
 
 /// Every check of the sweep (InvalidParameter on the first problem): at least
-/// one noise and one tau, no NaN, at most 65536 points, at most 2^40
+/// one noise and one tau, no NaN, --vary naming a constant of the --drift
+/// expression with at least one value, and
+/// --vary-values only with --vary, at most 65536 points, at most 2^40
 /// excursions per point, first_index 0, rel_precision only with the
 /// Kolmogorov engine, then every point as a diffusivity request (the message
 /// names the first bad point).

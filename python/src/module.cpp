@@ -225,7 +225,8 @@ std::string series_repr(std::string head, const Series& s) {
 }
 
 /// What EstimateSeries and GridEstimateSeries share: shape, len(s), s[k] and
-/// s[i, j] (a 2-D series: a sweep's (tau, noise), row-major), np.asarray(s)
+/// s[i, j] (a 2-D series: a sweep's (tau, noise), row-major; s[h, i, j] when
+/// it sweeps a drift constant too), np.asarray(s)
 /// (the values). `name` is the class's name in the index errors.
 template <class Series>
 void add_series_access(py::class_<Series>& c, const std::string& name) {
@@ -238,16 +239,21 @@ void add_series_access(py::class_<Series>& c, const std::string& name) {
              for (std::size_t k = 0; k < s.shape.size(); ++k) t[k] = py::int_(s.shape[k]);
              return t;
          },
-         "the arrays' shape: (n,), or (n_tau, n_noise) for a sweep")
+         "the arrays' shape: (n,), or (n_tau, n_noise) for a sweep ((n_vary, n_tau, n_noise) with vary=)")
         .def("__len__", [](const Series& s) { return s.items.size(); })
         .def("__getitem__",
              [name](const Series& s, py::tuple index) {
-                 if (s.shape.size() != 2 || index.size() != 2)
-                     throw py::index_error(name + " takes (i, j) only when 2-D");
-                 const auto i = index[0].cast<py::ssize_t>(), j = index[1].cast<py::ssize_t>();
-                 if (i < 0 || j < 0 || i >= s.shape[0] || j >= s.shape[1])
-                     throw py::index_error(name + " index out of range");
-                 return s.items[static_cast<std::size_t>(i * s.shape[1] + j)];
+                 if (s.shape.size() < 2 || index.size() != s.shape.size())
+                     throw py::index_error(name + " takes one index per axis, (i, j) or (h, i, j), only when "
+                                                  "2-D or 3-D (its shape is " +
+                                           std::to_string(s.shape.size()) + "-D)");
+                 py::ssize_t flat = 0;
+                 for (std::size_t a = 0; a < s.shape.size(); ++a) {
+                     const auto i = index[a].cast<py::ssize_t>();
+                     if (i < 0 || i >= s.shape[a]) throw py::index_error(name + " index out of range");
+                     flat = flat * s.shape[a] + i;
+                 }
+                 return s.items[static_cast<std::size_t>(flat)];
              })
         .def("__getitem__",
              [name](const Series& s, py::ssize_t k) {

@@ -90,9 +90,10 @@ template <class F> void fields(F& f, ExcursionOutcome& x) {
     f(x.displacement, x.duration, x.work, x.capped, x.first_half, x.martingale, x.martingale_qv);
 }
 template <class F> void fields(F& f, SweepPoint& x) {
-    f(x.noise, x.tau, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope, x.warnings);
+    f(x.noise, x.tau, x.varied, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope,
+      x.warnings);
 }
-template <class F> void fields(F& f, SweepExponent& x) { f(x.tau, x.exponent, x.chi2_per_dof, x.points); }
+template <class F> void fields(F& f, SweepExponent& x) { f(x.tau, x.varied, x.exponent, x.chi2_per_dof, x.points); }
 template <class F> void fields(F& f, WhiteNoiseReference& x) { f(x.mobility, x.diffusivity, x.variance); }
 
 /// The model: its settings, and the law's knots given as arrays (a callable

@@ -67,6 +67,7 @@ py::object python_value(const Field& f) {
     else if constexpr (std::is_same_v<T, NumberOrAuto>)
         return f.automatic ? py::object(py::str("auto")) : py::object(py::float_(f.value));
     else if constexpr (std::is_enum_v<T>) return py::str(format_setting(f));
+    else if constexpr (std::is_same_v<T, TextValue>) return py::str(f.value);
     else return py::none(); // OptionalNumber, NumberList, NumberRange
 }
 
@@ -77,7 +78,7 @@ const char* python_type(const Field&) {
     if constexpr (std::is_same_v<T, bool>) return "bool";
     else if constexpr (std::is_same_v<T, double>) return "float";
     else if constexpr (std::is_integral_v<T> || std::is_same_v<T, SeedValue>) return "int";
-    else if constexpr (std::is_enum_v<T>) return "str";
+    else if constexpr (std::is_enum_v<T> || std::is_same_v<T, TextValue>) return "str";
     else if constexpr (std::is_same_v<T, OptionalNumber>) return "float or None";
     else if constexpr (std::is_same_v<T, NumberOrAuto>) return "float or 'auto'";
     else if constexpr (std::is_same_v<T, NumberList>) return "sequence of float or None";

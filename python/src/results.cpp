@@ -460,31 +460,42 @@ void bind_results(py::module_& m) {
                                   "Fitted exponent alpha of D ~ noise^alpha at one tau (weighted least squares in "
                                   "log-log), with chi^2/dof of the fit (>> 1: no single power law).")
             .def_readonly("tau", &SweepExponent::tau, "[s]")
+            .def_readonly("varied", &SweepExponent::varied, "the swept drift constant's value (NaN without vary=)")
             .def_readonly("exponent", &SweepExponent::exponent, "alpha (Estimate)")
             .def_readonly("chi2_per_dof", &SweepExponent::chi2_per_dof)
             .def_readonly("points", &SweepExponent::points)
             .def("__repr__", [](const SweepExponent& e) {
-                return "SweepExponent(tau=" + g4(e.tau) + ", exponent=" + estimate_short(e.exponent) +
+                return "SweepExponent(" + (std::isnan(e.varied) ? std::string() : "varied=" + g4(e.varied) + ", ") +
+                       "tau=" + g4(e.tau) + ", exponent=" + estimate_short(e.exponent) +
                        ", chi2_per_dof=" + g4(e.chi2_per_dof) + ", points=" + std::to_string(e.points) + ")";
             });
         py::class_<R> c(m, "SweepResult",
                         "D, M0 and E[t1] over a grid of noise and tau (stickslip.sweep). Points are tau-major "
                         "(for each tau in `taus`, the noises in `noises`, both sorted and deduplicated), and every "
-                        "array has shape (len(taus), len(noises)): axis 0 is `taus`, axis 1 `noises`. "
+                        "array has shape (len(taus), len(noises)): axis 0 is `taus`, axis 1 `noises`; with vary= "
+                        "(a swept constant of the drift expression) a first axis, `vary_values`, comes before them. "
                         "to_dict() is the CLI's JSON.");
         add_renderings<R>(c);
         // (n_tau, n_noise), tau-major as the points are run; the points an
         // interrupted sweep did not reach are NaN.
+        // With vary= (a swept drift constant) (n_vary, n_tau, n_noise).
         auto grid_shape = [](const R& r) {
-            return std::vector<py::ssize_t>{static_cast<py::ssize_t>(r.request.taus.size()),
-                                            static_cast<py::ssize_t>(r.request.noises.size())};
+            std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(r.request.taus.size()),
+                                           static_cast<py::ssize_t>(r.request.noises.size())};
+            if (r.varies()) shape.insert(shape.begin(), static_cast<py::ssize_t>(r.request.vary_values.size()));
+            return shape;
+        };
+        auto grid_size = [grid_shape](const R& r) {
+            std::size_t n = 1;
+            for (auto d : grid_shape(r)) n *= static_cast<std::size_t>(d);
+            return n;
         };
         // A solved sweep's (engine='kolmogorov'): values with their
         // discretisation errors, NaN where an interrupted sweep did not reach.
-        auto solved_column = [grid_shape](const R& r, auto get) {
+        auto solved_column = [grid_shape, grid_size](const R& r, auto get) {
             const double nan = std::numeric_limits<double>::quiet_NaN();
             GridEstimateSeries out;
-            out.items.assign(r.request.taus.size() * r.request.noises.size(), KolmogorovEstimate{nan, nan});
+            out.items.assign(grid_size(r), KolmogorovEstimate{nan, nan});
             for (std::size_t k = 0; k < r.points.size() && k < out.items.size(); ++k) out.items[k] = get(r.points[k]);
             out.shape = grid_shape(r);
             return out;
@@ -498,23 +509,24 @@ void bind_results(py::module_& m) {
                 return py::cast(column(r, sampled));
             };
         };
-        auto column = [grid_shape](const R& r, auto get) {
+        auto column = [grid_shape, grid_size](const R& r, auto get) {
             const double nan = std::numeric_limits<double>::quiet_NaN();
-            std::vector<Estimate> v(r.request.taus.size() * r.request.noises.size(),
-                                    Estimate{nan, nan, nan, nan, r.request.level});
+            std::vector<Estimate> v(grid_size(r), Estimate{nan, nan, nan, nan, r.request.level});
             for (std::size_t k = 0; k < r.points.size() && k < v.size(); ++k) v[k] = get(r.points[k]);
             EstimateSeries out = series(v, r.request.level);
             out.shape = grid_shape(r);
             return out;
         };
-        auto grid_axis = [grid_shape](const R& r, bool tau) {
-            py::array_t<double> a(grid_shape(r));
-            auto g = a.mutable_unchecked<2>();
-            for (py::ssize_t i = 0; i < g.shape(0); ++i)
-                for (py::ssize_t j = 0; j < g.shape(1); ++j)
-                    g(i, j) = tau ? r.request.taus[static_cast<std::size_t>(i)]
-                                  : r.request.noises[static_cast<std::size_t>(j)];
-            return a;
+        // One axis's value at every point ('v': the swept constant, 't': tau,
+        // 'n': noise), in the points' shape.
+        auto grid_axis = [grid_shape, grid_size](const R& r, char axis) {
+            const std::size_t nn = r.request.noises.size(), nt = r.request.taus.size();
+            std::vector<double> v(grid_size(r));
+            for (std::size_t k = 0; k < v.size(); ++k)
+                v[k] = axis == 'n'   ? r.request.noises[k % nn]
+                       : axis == 't' ? r.request.taus[(k / nn) % nt]
+                                     : r.request.vary_values[k / (nn * nt)];
+            return py::array_t<double>(to_array(v).attr("reshape")(grid_shape(r)));
         };
         c.def_property_readonly(
              "params", [](const R& r) { return r.request.params; },
@@ -524,13 +536,26 @@ void bind_results(py::module_& m) {
             .def_property_readonly(
                 "taus", [](const R& r) { return to_array(r.request.taus); }, "the tau grid [s], sorted")
             .def_property_readonly(
-                "shape", [](const R& r) { return py::make_tuple(r.request.taus.size(), r.request.noises.size()); },
-                "(len(taus), len(noises))")
+                "vary", [](const R& r) { return r.request.vary; },
+                "the swept constant of the drift expression (vary=), '' when none")
             .def_property_readonly(
-                "noise", [grid_axis](const R& r) { return grid_axis(r, false); },
+                "vary_values", [](const R& r) { return to_array(r.request.vary_values); },
+                "the swept constant's values, sorted (empty without vary=)")
+            .def_property_readonly(
+                "shape", [grid_shape](const R& r) { return py::tuple(py::cast(grid_shape(r))); },
+                "(len(taus), len(noises)), or (len(vary_values), len(taus), len(noises)) with vary=")
+            .def_property_readonly(
+                "varied",
+                [grid_axis](const R& r) -> py::object {
+                    if (!r.varies()) return py::none();
+                    return grid_axis(r, 'v');
+                },
+                "the swept constant's value at every point (shape as `shape`), None without vary=")
+            .def_property_readonly(
+                "noise", [grid_axis](const R& r) { return grid_axis(r, 'n'); },
                 "noise of every point [m^2 s^-3], shape (len(taus), len(noises)) (noises along axis 1)")
             .def_property_readonly(
-                "tau", [grid_axis](const R& r) { return grid_axis(r, true); },
+                "tau", [grid_axis](const R& r) { return grid_axis(r, 't'); },
                 "tau of every point [s], shape (len(taus), len(noises)) (taus along axis 0)")
             .def_property_readonly(
                 "diffusivity",
@@ -574,7 +599,7 @@ void bind_results(py::module_& m) {
                     return v;
                 },
                 "stop rule used at every point (list of str)")
-            .def_readonly("exponents", &R::exponents, "one SweepExponent per tau (with >= 2 noises)")
+            .def_readonly("exponents", &R::exponents, "one SweepExponent per tau (with >= 2 noises), per value and tau with vary=")
             .def_readonly("seconds", &R::seconds, "wall time [s]")
             .def_readonly("interrupted", &R::interrupted,
                           "True when the sweep was stopped early (Ctrl-C): only the points run so far are here")

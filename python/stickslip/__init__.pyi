@@ -217,6 +217,8 @@ def sweep(
     excursions: int = ...,
     allow_capped: bool = ...,
     estimator: Literal['renewal', 'paper'] = ...,
+    vary: str = ...,
+    vary_values: Optional[_Numbers] = ...,
     rel_precision: float = ...,
     progress: bool = False,
     checkpoint: Optional[str] = None,

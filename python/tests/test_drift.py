@@ -34,6 +34,26 @@ class DriftLawTest(unittest.TestCase):
         dens = analytic.hayakawa_density(white, np.linspace(-3, 3, 601))
         self.assertAlmostEqual(float(np.sum(dens[1:] + dens[:-1]) * 0.005), 1.0, delta=1e-4)
 
+    def test_a_sweep_varies_a_named_constant_on_a_first_axis(self):
+        # Params needs a value for c to make the law: a placeholder, replaced per point.
+        p = stickslip.Params(friction=1, noise=1, tau=1, drift="a*v - c*v^3", drift_params="a=0.5,c=1")
+        r = stickslip.sweep(p, vary="c", vary_values=[0.5, 0.25], noise=[1, 2], tau=[1],
+                            engine="kolmogorov", rel_precision=0.01, progress=False)
+        self.assertEqual(r.shape, (2, 1, 2))
+        self.assertEqual(r.vary, "c")
+        np.testing.assert_array_equal(r.vary_values, [0.25, 0.5])
+        np.testing.assert_array_equal(r.varied[:, 0, 0], [0.25, 0.5])
+        np.testing.assert_array_equal(r.noise[1, 0], [1, 2])
+        self.assertEqual(np.asarray(r.diffusivity).shape, (2, 1, 2))
+        # Point (1, 0, 1) is the diffusivity run at c = 0.5, noise 2.
+        one = stickslip.diffusivity(stickslip.Params(friction=1, noise=2, tau=1, drift="a*v - c*v^3",
+                                                     drift_params="a=0.5,c=0.5"),
+                                    engine="kolmogorov", rel_precision=0.01)
+        self.assertEqual(r.diffusivity[1, 0, 1].value, one.diffusivity.value)
+        self.assertEqual([e.varied for e in r.exponents], [0.25, 0.5])
+        with self.assertRaisesRegex(ValueError, "--vary: .*not a constant"):
+            stickslip.sweep(p, vary="b", vary_values=[1], noise=[1], tau=[1], engine="kolmogorov")
+
     def test_bad_laws_are_refused(self):
         with self.assertRaisesRegex(ValueError, "--drift: .*does not confine"):
             stickslip.Params(drift="v")

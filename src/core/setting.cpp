@@ -270,6 +270,10 @@ void parse_setting(const SettingInfo& info, const std::string& text, const SeedV
 void parse_setting(const SettingInfo& info, const std::string& text, const NumberList& out) {
     const std::string name = info.name;
     std::vector<double> values;
+    if (text.empty() && out.may_be_empty) {
+        out.values.clear();
+        return;
+    }
     if (text.empty()) throw InvalidParameter(name, name + " must list at least one number");
     const auto colon = text.find(':');
     if (colon != std::string::npos) {

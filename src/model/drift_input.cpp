@@ -89,6 +89,14 @@ private:
     std::vector<std::unique_ptr<double>> spare_;
 };
 
+/// muParser's variable factory for drift_expression_constants: a fresh
+/// double for each name, kept in the vector passed as user data.
+double* spare_variable(const char*, void* spares) {
+    auto* v = static_cast<std::vector<std::unique_ptr<double>>*>(spares);
+    v->push_back(std::make_unique<double>(0.0));
+    return v->back().get();
+}
+
 /// The piecewise-linear interpolant of sorted rows, continued by the outer rows' lines.
 struct TableLaw {
     std::vector<double> v, b;
@@ -295,6 +303,23 @@ DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report) {
         }
     }
     return law;
+}
+
+std::vector<std::string> drift_expression_constants(const std::string& text) {
+    mu::Parser parser;
+    double v = 0.0;
+    std::vector<std::unique_ptr<double>> spares;
+    std::vector<std::string> names;
+    try {
+        parser.DefineVar("v", &v);
+        parser.SetVarFactory(&spare_variable, &spares);
+        parser.SetExpr(text);
+        for (const auto& [name, where] : parser.GetUsedVar())
+            if (name != "v") names.push_back(name);
+    } catch (const mu::Parser::exception_type& e) {
+        fail("drift", "cannot read \"" + text + "\": " + e.GetMsg());
+    }
+    return names;
 }
 
 std::string drift_law_note(const DriftLawReport& law) {

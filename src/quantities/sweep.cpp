@@ -6,26 +6,66 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <sstream>
 
 #include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip {
 
 namespace {
 
+/// --drift-params (comma-separated NAME=NUM items) without `name`'s item.
+std::string without_drift_param(const std::string& params, const std::string& name) {
+    std::stringstream in(params);
+    std::string item, out;
+    while (std::getline(in, item, ',')) {
+        item.erase(0, item.find_first_not_of(" \t"));
+        std::string key = item.substr(0, item.find('='));
+        key.erase(key.find_last_not_of(" \t") + 1);
+        if (key != name) out += (out.empty() ? "" : ",") + item;
+    }
+    return out;
+}
+
+/// --drift-params with `name` set to `value`: its item replaced (a
+/// placeholder, e.g. what Python's Params needed to make the law), or
+/// appended. The value's text is the shortest that reads back to the same
+/// double.
+std::string with_drift_param(const std::string& params, const std::string& name, double value) {
+    const std::string others = without_drift_param(params, name);
+    return others + (others.empty() ? "" : ",") + name + "=" + format_setting(value);
+}
+
+/// "a, b, c".
+std::string join(const std::vector<std::string>& items, const char* separator) {
+    std::string s;
+    for (const auto& x : items) s += (s.empty() ? "" : separator) + x;
+    return s;
+}
+
+/// "NAME = X, ": the swept drift constant's value in a point's name ("" without --vary).
+std::string varied_text(const SweepRequest& req, double varied) {
+    return req.vary.empty() ? std::string() : req.vary + " " + detail::format_number(varied) + ", ";
+}
+
 /// " [at noise N, tau T]": where in a sweep a point failed.
-std::string at_point(double noise, double tau) {
-    return " [at noise " + detail::format_number(noise) + ", tau " + detail::format_number(tau) + "]";
+std::string at_point(const SweepRequest& req, double varied, double noise, double tau) {
+    return " [at " + varied_text(req, varied) + "noise " + detail::format_number(noise) + ", tau " +
+           detail::format_number(tau) + "]";
 }
 
 constexpr std::size_t kMaxPoints = 1u << 16; // sweep_index_stride * kMaxPoints = 2^56 sample indices
 
-DiffusivityRequest point_request(const SweepRequest& req, double noise, double tau, std::size_t k) {
+DiffusivityRequest point_request(const SweepRequest& req, double varied, double noise, double tau, std::size_t k) {
     DiffusivityRequest d;
     static_cast<RunSettings&>(d) = req;
     static_cast<ExcursionSettings&>(d) = req;
     d.params.noise = noise;
     d.params.tau = tau;
+    if (!req.vary.empty()) d.params.drift_params = with_drift_param(d.params.drift_params, req.vary, varied);
     d.estimator = req.estimator;
     d.rel_precision = req.rel_precision;
     d.control.first_index = req.control.first_index + k * sweep_index_stride;
@@ -41,6 +81,8 @@ std::vector<double> sorted_unique(std::vector<double> v) {
 /// The sorted grid of a sweep and its points' prepared engines (tau-major).
 struct PreparedSweep {
     std::vector<double> noises, taus;
+    /// The swept drift constant's values, or one NaN without --vary.
+    std::vector<double> varied;
     std::vector<PreparedEngine> engines;
 };
 
@@ -54,7 +96,26 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
                                                 "--excursions per point instead");
     if (req.noises.empty()) throw InvalidParameter("noise", "the sweep needs at least one noise value");
     if (req.taus.empty()) throw InvalidParameter("tau", "the sweep needs at least one tau value");
-    if (req.noises.size() * req.taus.size() > kMaxPoints)
+    if (req.vary.empty() && !req.vary_values.empty())
+        throw InvalidParameter("vary-values", "--vary-values needs --vary NAME, the constant of --drift they are for");
+    if (!req.vary.empty()) {
+        if (req.params.drift.empty())
+            throw InvalidParameter("vary", "--vary sweeps a named constant of a --drift expression; there is none");
+        const auto names = drift_expression_constants(req.params.drift);
+        if (std::find(names.begin(), names.end(), req.vary) == names.end())
+            throw InvalidParameter("vary", "\"" + req.vary + "\" is not a constant of the --drift expression \"" +
+                                               req.params.drift + "\"" +
+                                               (names.empty() ? std::string(", which has none")
+                                                              : " (its constants: " + join(names, ", ") + ")"));
+        if (req.vary_values.empty())
+            throw InvalidParameter("vary-values", "--vary " + req.vary + " needs at least one value in --vary-values");
+        for (double x : req.vary_values)
+            if (!std::isfinite(x))
+                throw InvalidParameter("vary-values", "the values of " + req.vary + " must be finite, got " +
+                                                          detail::format_number(x));
+    }
+    const std::size_t values = req.vary_values.empty() ? 1 : req.vary_values.size();
+    if (req.noises.size() * req.taus.size() * values > kMaxPoints)
         throw InvalidParameter("noise", "at most 65536 sweep points");
     if (req.excursions > sweep_index_stride) throw InvalidParameter("excursions", "at most 2^40 excursions per point");
     if (req.control.first_index != 0) throw InvalidParameter("first-index", "a sweep starts at sample index 0");
@@ -62,21 +123,25 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
         if (std::isnan(g)) throw InvalidParameter("noise", "noise must be a number, got NaN");
     for (double t : req.taus)
         if (std::isnan(t)) throw InvalidParameter("tau", "tau must be a number, got NaN");
-    PreparedSweep out{sorted_unique(req.noises), sorted_unique(req.taus), {}};
+    PreparedSweep out{sorted_unique(req.noises), sorted_unique(req.taus),
+                      req.vary.empty() ? std::vector<double>{std::numeric_limits<double>::quiet_NaN()}
+                                       : sorted_unique(req.vary_values),
+                      {}};
     std::size_t k = 0;
-    for (double t : out.taus)
-        for (double g : out.noises) {
-            try {
-                // A solved point has no engine to prepare: its checks are the solver's.
-                const DiffusivityRequest point = point_request(req, g, t, k++);
-                if (solved) validate(point);
-                else out.engines.push_back(prepare(point));
-            } catch (const InvalidParameter& e) {
-                const std::string where =
-                    " (at noise " + detail::format_number(g) + ", tau " + detail::format_number(t) + ")";
-                throw InvalidParameter(e.parameter(), e.what() + where);
+    for (double c : out.varied)
+        for (double t : out.taus)
+            for (double g : out.noises) {
+                try {
+                    // A solved point has no engine to prepare: its checks are the solver's.
+                    const DiffusivityRequest point = point_request(req, c, g, t, k++);
+                    if (solved) validate(point);
+                    else out.engines.push_back(prepare(point));
+                } catch (const InvalidParameter& e) {
+                    const std::string where = " (at " + varied_text(req, c) + "noise " + detail::format_number(g) +
+                                              ", tau " + detail::format_number(t) + ")";
+                    throw InvalidParameter(e.parameter(), e.what() + where);
+                }
             }
-        }
     return out;
 }
 
@@ -90,13 +155,17 @@ SweepResult compute_sweep(const SweepRequest& req) {
     out.request = req;
     out.request.noises = prepared.noises;
     out.request.taus = prepared.taus;
+    if (!req.vary.empty()) { // the swept constant's placeholder value, if any, is not the sweep's
+        out.request.vary_values = prepared.varied;
+        out.request.params.drift_params = without_drift_param(req.params.drift_params, req.vary);
+    }
     // With --dt auto each point has its own step (SweepPoint::dt), none the sweep's.
     if (out.request.engine.dt_auto && has_time_step(out.request.engine))
         out.request.engine.dt = std::numeric_limits<double>::quiet_NaN();
     const auto& noises = out.request.noises;
     const auto& taus = out.request.taus;
     const auto start = std::chrono::steady_clock::now();
-    const std::size_t total = noises.size() * taus.size();
+    const std::size_t total = noises.size() * taus.size() * prepared.varied.size();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::size_t k = 0;
     // A solved sweep reports whole points to control.progress (sweep.hpp):
@@ -109,123 +178,152 @@ SweepResult compute_sweep(const SweepRequest& req) {
         pr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!req.control.progress(pr)) throw RunCancelled();
     };
-    for (double tau : taus) {
-        if (out.interrupted) break;
-        const std::size_t first = out.points.size();
-        for (double noise : noises) {
-            DiffusivityRequest d = point_request(out.request, noise, tau, k);
-            d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
-            DiffusivityResult r;
-            try {
-                if (out.solved()) {
-                    // A stop ends a solved sweep between points, as below.
-                    if (req.control.stop && req.control.stop->load()) throw RunInterrupted();
-                    solved_progress(k);
-                    r = compute_diffusivity(d);
-                } else {
-                    r = compute_diffusivity(d, prepared.engines[k]);
+    for (double varied : prepared.varied) {
+        for (double tau : taus) {
+            if (out.interrupted) break;
+            const std::size_t first = out.points.size();
+            for (double noise : noises) {
+                DiffusivityRequest d = point_request(out.request, varied, noise, tau, k);
+                d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
+                DiffusivityResult r;
+                try {
+                    if (out.solved()) {
+                        // A stop ends a solved sweep between points, as below.
+                        if (req.control.stop && req.control.stop->load()) throw RunInterrupted();
+                        solved_progress(k);
+                        r = compute_diffusivity(d);
+                    } else {
+                        r = compute_diffusivity(d, prepared.engines[k]);
+                    }
+                } catch (const CappedExcursions& e) {
+                    throw CappedExcursions(std::string(e.what()) + at_point(req, varied, noise, tau));
+                } catch (const UntrustworthyResult& e) {
+                    throw UntrustworthyResult(std::string(e.what()) + at_point(req, varied, noise, tau));
+                } catch (const RunInterrupted&) {
+                    if (out.points.empty()) throw;
+                    out.interrupted = true; // stopped before this point had a result
+                    break;
                 }
-            } catch (const CappedExcursions& e) {
-                throw CappedExcursions(std::string(e.what()) + at_point(noise, tau));
-            } catch (const UntrustworthyResult& e) {
-                throw UntrustworthyResult(std::string(e.what()) + at_point(noise, tau));
-            } catch (const RunInterrupted&) {
-                if (out.points.empty()) throw;
-                out.interrupted = true; // stopped before this point had a result
-                break;
-            }
-            SweepPoint p;
-            p.noise = noise;
-            p.tau = tau;
-            p.warnings = r.warnings;
-            if (r.solution) {
-                p.work = grid_span(*r.solution).largest_states;
-                p.seconds = r.solution->seconds;
-                p.solution = std::move(r.solution);
-                out.points.push_back(std::move(p));
+                SweepPoint p;
+                p.noise = noise;
+                p.tau = tau;
+                p.varied = varied;
+                p.warnings = r.warnings;
+                if (r.solution) {
+                    p.work = grid_span(*r.solution).largest_states;
+                    p.seconds = r.solution->seconds;
+                    p.solution = std::move(r.solution);
+                    out.points.push_back(std::move(p));
+                    ++k;
+                    continue;
+                }
+                out.resumed += r.monte_carlo().totals.resumed;
+                p.estimates = r.estimates;
+                p.stop_rule = r.monte_carlo().engine.stop_rule;
+                p.dt = r.request.engine.dt;
+                p.scheme = r.request.engine.scheme;
+                p.work = r.monte_carlo().totals.work;
+                p.seconds = r.monte_carlo().totals.seconds;
+                out.points.push_back(p);
                 ++k;
-                continue;
+                if (r.monte_carlo().totals.interrupted) {
+                    out.interrupted = true;
+                    break;
+                }
             }
-            out.resumed += r.monte_carlo().totals.resumed;
-            p.estimates = r.estimates;
-            p.stop_rule = r.monte_carlo().engine.stop_rule;
-            p.dt = r.request.engine.dt;
-            p.scheme = r.request.engine.scheme;
-            p.work = r.monte_carlo().totals.work;
-            p.seconds = r.monte_carlo().totals.seconds;
-            out.points.push_back(p);
-            ++k;
-            if (r.monte_carlo().totals.interrupted) {
-                out.interrupted = true;
-                break;
-            }
-        }
-        // Local slopes from the neighbours; errors from the independent
-        // standard errors, or for solved points from the discretisation
-        // errors (propagated alike, though they are not random: a bound's
-        // scale, not a sampling distribution, so no interval).
-        const std::size_t n = out.points.size() - first; // all the noises, unless interrupted
-        auto d_value = [&](std::size_t i) {
-            const SweepPoint& p = out.points[first + i];
-            return p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
-        };
-        auto logd = [&](std::size_t i) { return std::log(d_value(i)); };
-        auto sig = [&](std::size_t i) {
-            const SweepPoint& p = out.points[first + i];
-            return (p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.std_error) / d_value(i);
-        };
-        auto spread = [&](double value, double error) {
-            return out.solved() ? Estimate{value, error, nan, nan, req.level} : make_interval(value, error, req.level);
-        };
-        for (std::size_t i = 0; i < n; ++i) {
-            if (n < 2) {
-                out.points[first + i].slope = make_interval(nan, nan, req.level);
-                continue;
-            }
-            const std::size_t a = i == 0 ? 0 : i - 1, b = i + 1 == n ? n - 1 : i + 1;
-            const double dx = std::log(noises[b]) - std::log(noises[a]);
-            const double s = (logd(b) - logd(a)) / dx;
-            const double se = std::hypot(sig(a), sig(b)) / dx;
-            out.points[first + i].slope = spread(s, se);
-        }
-        if (n >= 2) {
-            // Weighted least squares of log D on log Gamma.
-            double sw = 0, sx = 0, sy = 0;
+            // Local slopes from the neighbours; errors from the independent
+            // standard errors, or for solved points from the discretisation
+            // errors (propagated alike, though they are not random: a bound's
+            // scale, not a sampling distribution, so no interval).
+            const std::size_t n = out.points.size() - first; // all the noises, unless interrupted
+            auto d_value = [&](std::size_t i) {
+                const SweepPoint& p = out.points[first + i];
+                return p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
+            };
+            auto logd = [&](std::size_t i) { return std::log(d_value(i)); };
+            auto sig = [&](std::size_t i) {
+                const SweepPoint& p = out.points[first + i];
+                return (p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.std_error) / d_value(i);
+            };
+            auto spread = [&](double value, double error) {
+                return out.solved() ? Estimate{value, error, nan, nan, req.level} : make_interval(value, error, req.level);
+            };
             for (std::size_t i = 0; i < n; ++i) {
-                const double w = 1 / (sig(i) * sig(i));
-                sw += w;
-                sx += w * std::log(noises[i]);
-                sy += w * logd(i);
+                if (n < 2) {
+                    out.points[first + i].slope = make_interval(nan, nan, req.level);
+                    continue;
+                }
+                const std::size_t a = i == 0 ? 0 : i - 1, b = i + 1 == n ? n - 1 : i + 1;
+                const double dx = std::log(noises[b]) - std::log(noises[a]);
+                const double s = (logd(b) - logd(a)) / dx;
+                const double se = std::hypot(sig(a), sig(b)) / dx;
+                out.points[first + i].slope = spread(s, se);
             }
-            const double xb = sx / sw, yb = sy / sw;
-            double sxx = 0, sxy = 0;
-            for (std::size_t i = 0; i < n; ++i) {
-                const double w = 1 / (sig(i) * sig(i)), x = std::log(noises[i]) - xb;
-                sxx += w * x * x;
-                sxy += w * x * (logd(i) - yb);
+            if (n >= 2) {
+                // Weighted least squares of log D on log Gamma.
+                double sw = 0, sx = 0, sy = 0;
+                for (std::size_t i = 0; i < n; ++i) {
+                    const double w = 1 / (sig(i) * sig(i));
+                    sw += w;
+                    sx += w * std::log(noises[i]);
+                    sy += w * logd(i);
+                }
+                const double xb = sx / sw, yb = sy / sw;
+                double sxx = 0, sxy = 0;
+                for (std::size_t i = 0; i < n; ++i) {
+                    const double w = 1 / (sig(i) * sig(i)), x = std::log(noises[i]) - xb;
+                    sxx += w * x * x;
+                    sxy += w * x * (logd(i) - yb);
+                }
+                const double alpha = sxy / sxx;
+                double chi2 = 0;
+                for (std::size_t i = 0; i < n; ++i) {
+                    const double r = (logd(i) - yb - alpha * (std::log(noises[i]) - xb)) / sig(i);
+                    chi2 += r * r;
+                }
+                SweepExponent e;
+                e.tau = tau;
+                e.varied = varied;
+                e.exponent = spread(alpha, std::sqrt(1 / sxx));
+                e.points = static_cast<int>(n);
+                e.chi2_per_dof = n > 2 ? chi2 / static_cast<double>(n - 2) : nan;
+                out.exponents.push_back(e);
             }
-            const double alpha = sxy / sxx;
-            double chi2 = 0;
-            for (std::size_t i = 0; i < n; ++i) {
-                const double r = (logd(i) - yb - alpha * (std::log(noises[i]) - xb)) / sig(i);
-                chi2 += r * r;
-            }
-            SweepExponent e;
-            e.tau = tau;
-            e.exponent = spread(alpha, std::sqrt(1 / sxx));
-            e.points = static_cast<int>(n);
-            e.chi2_per_dof = n > 2 ? chi2 / static_cast<double>(n - 2) : nan;
-            out.exponents.push_back(e);
         }
     }
     if (out.solved() && !out.interrupted) solved_progress(out.points.size());
     if (out.interrupted)
         out.warnings.push_back("interrupted: " + std::to_string(out.points.size()) + " of " + std::to_string(total) +
                                " points have a result (the last from a prefix of its excursions)");
+    // Every point has its own knots (the range follows noise and the law):
+    // one note for all of them instead of one per point.
+    std::optional<DriftLawReport> laws;
+    std::string law_suffix;
+    for (std::size_t i = 0; i < out.points.size(); ++i) {
+        const SweepPoint& p = out.points[i];
+        if (!req.params.has_drift_law()) break;
+        DriftLawReport law;
+        make_drift_law(point_request(out.request, p.varied, p.noise, p.tau, i).params, &law);
+        if (!laws) {
+            laws = law;
+            const std::string head = drift_law_note(law);
+            for (const auto& w : p.warnings)
+                if (w.rfind(head, 0) == 0) law_suffix = w.substr(head.size());
+        }
+        laws->lower = std::min(laws->lower, law.lower);
+        laws->upper = std::max(laws->upper, law.upper);
+        laws->interpolation_error = std::max(laws->interpolation_error, law.interpolation_error);
+    }
+    if (laws)
+        out.warnings.push_back("drift law (" + laws->source + ") " + laws->text + ": interpolated on " +
+                               std::to_string(laws->knots) + " knots over each point's own range (within [" +
+                               detail::format_number(laws->lower, 4) + ", " + detail::format_number(laws->upper, 4) +
+                               "] m/s), off by at most " + detail::format_number(laws->interpolation_error, 2) +
+                               " m s^-2" + law_suffix);
     for (const auto& p : out.points)
         for (const auto& w : p.warnings)
             if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
-                w.rfind("only ", 0) != 0)
+                w.rfind("only ", 0) != 0 && w.rfind("drift law (", 0) != 0)
                 out.warnings.push_back(w);
     if (req.excursions < 5000 && !out.solved())
         out.warnings.push_back("fewer than 5000 excursions per point: the standard errors (and so the slope errors) "

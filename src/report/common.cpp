@@ -232,12 +232,16 @@ std::string drift_law_text(const ModelParams& p) {
     return "drift b(v) from a table of " + std::to_string(p.drift_table_v.size()) + " rows";
 }
 
+std::string drift_text(const ModelParams& p) {
+    if (p.has_drift_law()) return drift_law_text(p);
+    return "relaxation " + relaxation_text(p.relaxation) + ", bias " + format_number(p.bias) + " m/s^2";
+}
+
 std::string param_line(const ModelParams& p, const EngineSettings& s) {
     std::ostringstream os = report_stream();
     os << "friction " << format_number(p.friction) << " m/s^2, noise " << format_number(p.noise) << " m^2/s^3, tau "
        << format_number(p.tau) << " s, ";
-    if (p.has_drift_law()) os << drift_law_text(p) << "\n";
-    else os << "relaxation " << relaxation_text(p.relaxation) << ", bias " << format_number(p.bias) << " m/s^2\n";
+    os << drift_text(p) << "\n";
     const ModelParams nd = to_nondimensional(p);
     const Scales sc = scales_of(p);
     os << "nondimensional: tau' " << format_number(nd.tau);

@@ -81,6 +81,9 @@ std::string engine_line(const char* what, const EngineSettings& s, const std::st
 void add_drift_law_json(ordered_json& j, const ModelParams& p);
 /// The drift law as the reports name it: "drift b(v) = EXPR m/s^2", or its table.
 std::string drift_law_text(const ModelParams& p);
+/// The drift as the reports' model lines give it: drift_law_text, or
+/// "relaxation R, bias B m/s^2" for the affine law of those settings.
+std::string drift_text(const ModelParams& p);
 /// The physical and nondimensional parameter lines.
 std::string param_line(const ModelParams& p, const EngineSettings& s);
 /// "N WHAT (seed S), W steps, T s on K threads" + extra + "\n".

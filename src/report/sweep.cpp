@@ -22,12 +22,40 @@ bool dt_per_point(const EngineSettings& s) { return s.dt_auto && has_time_step(s
 /// --scheme auto on the inclusion engine: every point has its own scheme (SweepPoint::scheme).
 bool scheme_per_point(const EngineSettings& s) { return s.scheme == Scheme::Auto && has_time_step(s); }
 
+/// "friction F m/s^2, DRIFT\n\n", with the swept constant when there is one.
+std::string model_line(const SweepResult& r) {
+    const auto& q = r.request;
+    std::string vary;
+    if (r.varies()) {
+        vary = ", " + q.vary + " swept over ";
+        for (std::size_t k = 0; k < q.vary_values.size(); ++k)
+            vary += (k ? ", " : "") + format_number(q.vary_values[k]);
+    }
+    return "friction " + format_number(q.params.friction) + " m/s^2, " + drift_text(q.params) + vary + "\n\n";
+}
+
+/// The swept constant's column of a table (name, then the point's value), or "".
+std::string varied_head(const SweepResult& r) {
+    return r.varies() ? number_text::pad(r.request.vary, 10) + " " : std::string();
+}
+std::string varied_cell(const SweepResult& r, double varied) {
+    return r.varies() ? number_text::pad(format_number(varied, 4), 10) + " " : std::string();
+}
+
+/// An exponent's line head: "  [NAME X, ]tau T s: ".
+std::string exponent_head(const SweepResult& r, const SweepExponent& e) {
+    using number_text::pad;
+    return "  " + (r.varies() ? r.request.vary + " " + pad(format_number(e.varied, 4), -10) + " " : std::string()) +
+           "tau " + pad(format_number(e.tau, 4), 10) + " s: ";
+}
+
 /// The fitted exponents: {tau, exponent, chi2_per_dof, points}, the exponent
 /// an estimate with its interval, or for a solved sweep {value, error}.
 ordered_json exponents_json(const SweepResult& r) {
     ordered_json ex = ordered_json::array();
     for (const auto& e : r.exponents) {
         ordered_json o;
+        if (r.varies()) o["varied"] = e.varied;
         o["tau"] = e.tau;
         o["exponent"] = r.solved() ? grid_estimate_json({e.exponent.value, e.exponent.std_error})
                                    : estimate_json(e.exponent);
@@ -42,17 +70,23 @@ ordered_json exponents_json(const SweepResult& r) {
 // estimated discretisation error, no samples, stop rules, steps or intervals.
 
 /// The sweep's "params": the model's, its noise and tau replaced by the
-/// grid's "noises" and "taus" (appended last).
+/// grid's "noises" and "taus" (appended last), then with --vary the swept
+/// constant's name "vary" and its "vary_values".
 ordered_json sweep_params_json(const SweepRequest& q) {
     auto params = params_json(q);
     params.erase("noise");
     params.erase("tau");
     params["noises"] = q.noises;
     params["taus"] = q.taus;
+    if (!q.vary.empty()) {
+        params["vary"] = q.vary;
+        params["vary_values"] = q.vary_values;
+    }
     return params;
 }
 
-/// The point's model (the sweep's with its noise and tau).
+/// The point's model (the sweep's with its noise and tau; the swept drift
+/// constant does not enter the scales).
 ModelParams point_params(const SweepResult& r, const SweepPoint& p) {
     ModelParams mp = r.request.params;
     mp.noise = p.noise;
@@ -72,6 +106,7 @@ std::string solved_json(const SweepResult& r, int indent) {
         const KolmogorovResult& s = *p.solution;
         const Scales sc = scales_of(point_params(r, p));
         ordered_json o;
+        if (r.varies()) o["varied"] = p.varied;
         o["noise"] = p.noise;
         o["tau"] = p.tau;
         o["diffusivity"] = grid_estimate_json(s.diffusivity);
@@ -107,11 +142,10 @@ std::string solved_table(const SweepResult& r) {
     os << engine_line("sweep", q.engine,
                       ", no sampling: the Kolmogorov equations at every point, target error of D " +
                           format_number(100 * target, 3) + "%");
-    os << "friction " << format_number(q.params.friction) << " m/s^2, relaxation "
-       << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias) << " m/s^2\n\n";
+    os << model_line(r);
     using number_text::fixed;
     using number_text::pad;
-    os << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -24) << " "
+    os << varied_head(r) << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -24) << " "
        << pad("M0 [m/s]", -24) << " " << pad("E[t1] [s]", -24) << " " << pad("P(V = 0)", -10) << " "
        << pad("dlogD/dlogGamma", -20) << "\n";
     for (const auto& p : r.points) {
@@ -119,14 +153,15 @@ std::string solved_table(const SweepResult& r) {
         const std::string slope = std::isnan(p.slope.value)
                                       ? std::string("-")
                                       : pad(fixed(p.slope.value, 4), 7) + " +- " + pad(format_number(p.slope.std_error, 2), -8);
-        os << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10) << "  "
+        os << varied_cell(r, p.varied) << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10)
+           << "  "
            << solved_cell(s.diffusivity) << " " << solved_cell(s.mobility) << " " << solved_cell(s.mean_duration) << " "
            << pad(format_number(s.stuck_probability.value, 4), -10) << " " << slope << "\n";
     }
     if (!r.exponents.empty()) {
-        os << "\nfitted D ~ noise^alpha per tau (least squares in log-log, weighted by the discretisation errors):\n";
+        os << "\nfitted D ~ noise^alpha per " << (r.varies() ? r.request.vary + " and " : "") << "tau (least squares in log-log, weighted by the discretisation errors):\n";
         for (const auto& e : r.exponents)
-            os << "  tau " << pad(format_number(e.tau, 4), 10) << " s: alpha = " << fixed(e.exponent.value, 4)
+            os << exponent_head(r, e) << "alpha = " << fixed(e.exponent.value, 4)
                << " +- " << format_number(e.exponent.std_error, 2) << " over " << e.points << " points\n";
     }
     os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3)
@@ -137,11 +172,12 @@ std::string solved_table(const SweepResult& r) {
 
 std::string solved_csv(const SweepResult& r) {
     std::ostringstream os = report_stream();
-    os << "tau,noise,diffusivity,diffusivity_error,mobility,mobility_error,stuck_probability,stuck_probability_error,"
+    os << (r.varies() ? "varied," : "") << "tau,noise,diffusivity,diffusivity_error,mobility,mobility_error,stuck_probability,stuck_probability_error,"
           "mean_duration,mean_duration_error,slope,slope_error,tau_nondim,diffusivity_nondim,states\n";
     for (const auto& p : r.points) {
         const KolmogorovResult& s = *p.solution;
         const Scales sc = scales_of(point_params(r, p));
+        if (r.varies()) os << csv_number(p.varied) << ",";
         os << csv_number(p.tau) << "," << csv_number(p.noise);
         for (const KolmogorovEstimate* e : {&s.diffusivity, &s.mobility, &s.stuck_probability, &s.mean_duration})
             os << "," << csv_number(e->value) << "," << csv_number(e->error);
@@ -169,6 +205,7 @@ std::string to_json(const SweepResult& r, int indent) {
     for (const auto& p : r.points) {
         const Scales sc = scales_of(point_params(r, p));
         ordered_json o;
+        if (r.varies()) o["varied"] = p.varied;
         o["noise"] = p.noise;
         o["tau"] = p.tau;
         o["stop_rule"] = p.stop_rule;
@@ -198,17 +235,17 @@ std::string to_table(const SweepResult& r) {
     os << engine_line("sweep", q.engine,
                       ", " + std::to_string(q.excursions) + " excursions per point, estimator " +
                           to_string(q.estimator));
-    os << "friction " << format_number(q.params.friction) << " m/s^2, relaxation "
-       << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias) << " m/s^2\n\n";
+    os << model_line(r);
     using number_text::fixed;
     using number_text::pad;
-    os << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -25) << " " << pad("M0 [m/s]", -25)
+    os << varied_head(r) << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -25) << " " << pad("M0 [m/s]", -25)
        << " " << pad("E[t1] [s]", -20) << " " << pad("dlogD/dlogGamma", -20) << "\n";
     for (const auto& p : r.points) {
         const std::string slope = std::isnan(p.slope.value)
                                       ? std::string("-")
                                       : pad(fixed(p.slope.value, 3), 7) + " +- " + pad(fixed(p.slope.std_error, 3), -7);
-        os << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10) << "  "
+        os << varied_cell(r, p.varied) << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10)
+           << "  "
            << estimate_cell(p.estimates.diffusivity) << " " << estimate_cell(p.estimates.mobility) << " "
            << pad(format_number(p.estimates.mean_duration.value, 4), 10) << " +- "
            << pad(format_number(p.estimates.mean_duration.std_error, 2), -7) << " " << slope;
@@ -217,10 +254,10 @@ std::string to_table(const SweepResult& r) {
         os << "\n";
     }
     if (!r.exponents.empty()) {
-        os << "\nfitted D ~ noise^alpha per tau (weighted least squares in log-log):\n";
+        os << "\nfitted D ~ noise^alpha per " << (r.varies() ? r.request.vary + " and " : "") << "tau (weighted least squares in log-log):\n";
         for (const auto& e : r.exponents) {
             const std::string chi2 = std::isnan(e.chi2_per_dof) ? "-" : format_number(e.chi2_per_dof, 2);
-            os << "  tau " << pad(format_number(e.tau, 4), 10) << " s: alpha = " << fixed(e.exponent.value, 3)
+            os << exponent_head(r, e) << "alpha = " << fixed(e.exponent.value, 3)
                << " +- " << fixed(e.exponent.std_error, 3) << " (chi2/dof " << chi2 << " over " << e.points
                << " points)\n";
         }
@@ -233,12 +270,13 @@ std::string to_table(const SweepResult& r) {
 std::string to_csv(const SweepResult& r) {
     if (r.solved()) return solved_csv(r);
     std::ostringstream os = report_stream();
-    os << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
+    os << (r.varies() ? "varied," : "") << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
        << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"
        << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
        << "\n";
     for (const auto& p : r.points) {
         const Scales sc = scales_of(point_params(r, p));
+        if (r.varies()) os << csv_number(p.varied) << ",";
         os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << csv_estimate(p.estimates.diffusivity) << ","
            << csv_estimate(p.estimates.mobility) << "," << csv_number(p.estimates.mean_duration.value) << ","
            << csv_number(p.estimates.mean_duration.std_error) << "," << csv_number(p.slope.value) << ","

@@ -76,9 +76,7 @@ std::string to_table(const WhiteNoiseResult& r) {
     os << "stickslip analytic: exact white-noise references\n";
     os << "friction " << format_number(q.params.friction) << " m/s^2, noise " << format_number(q.params.noise)
        << " m^2/s^3, ";
-    if (q.params.has_drift_law()) os << drift_law_text(q.params) << "\n\n";
-    else os << "relaxation " << relaxation_text(q.params.relaxation) << ", bias " << format_number(q.params.bias)
-            << " m/s^2\n\n";
+    os << drift_text(q.params) << "\n\n";
     using number_text::pad;
     const auto row = [&os](const char* name, double value, const char* unit, double nondim) {
         os << pad(name, -16) << " " << pad(format_number(value, 10), 15) << " " << pad(unit, -8) << " "

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A sweep over a named constant of the drift expression (--vary): its points
+// are value-major, each one bit for bit the diffusivity run with that value in
+// --drift-params on the point's own sample indices, the exponents are fitted
+// per value and tau, and every misuse is refused by the setting's name.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "stickslip/drift_input.hpp"
+#include "stickslip/errors.hpp"
+#include "stickslip/report.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace ss = stickslip;
+
+namespace {
+
+ss::SweepRequest varied_sweep() {
+    ss::SweepRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-3);
+    r.params.drift = "-v/0.067 + c";
+    r.params.drift_params = "c=9"; // a placeholder, replaced at every point
+    r.vary = "c";
+    r.vary_values = {0.342, 0.1};
+    r.noises = {4, 2};
+    r.taus = {0.5};
+    r.excursions = 64;
+    r.control.seed = 3;
+    return r;
+}
+
+void expect_refused(const ss::SweepRequest& r, const std::string& setting, const std::string& words) {
+    try {
+        ss::validate(r);
+        ADD_FAILURE() << "expected InvalidParameter(" << setting << ")";
+    } catch (const ss::InvalidParameter& e) {
+        EXPECT_EQ(e.parameter(), setting) << e.what();
+        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+}
+
+TEST(SweepVary, PointsAreValueMajorAndEachIsItsDiffusivityRun) {
+    const ss::SweepRequest r = varied_sweep();
+    const ss::SweepResult res = ss::compute_sweep(r);
+    ASSERT_TRUE(res.varies());
+    ASSERT_EQ(res.points.size(), 4u);
+    EXPECT_EQ(res.request.vary_values, (std::vector<double>{0.1, 0.342})); // sorted
+    EXPECT_EQ(res.request.params.drift_params, ""); // the placeholder is not the sweep's
+    const double expected_varied[] = {0.1, 0.1, 0.342, 0.342};
+    const double expected_noise[] = {2, 4, 2, 4};
+    for (std::size_t k = 0; k < 4; ++k) {
+        const ss::SweepPoint& p = res.points[k];
+        EXPECT_EQ(p.varied, expected_varied[k]) << k;
+        EXPECT_EQ(p.noise, expected_noise[k]) << k;
+        ss::DiffusivityRequest d;
+        d.engine = r.engine;
+        d.params.drift = r.params.drift;
+        d.params.drift_params = "c=" + std::string(k < 2 ? "0.1" : "0.342");
+        d.params.noise = p.noise;
+        d.params.tau = p.tau;
+        d.excursions = r.excursions;
+        d.control.seed = r.control.seed;
+        d.control.first_index = k * ss::sweep_index_stride;
+        const ss::DiffusivityResult one = ss::compute_diffusivity(d);
+        EXPECT_EQ(p.estimates.diffusivity.value, one.estimates.diffusivity.value) << k;
+        EXPECT_EQ(p.estimates.mobility.value, one.estimates.mobility.value) << k;
+    }
+    // The bias c moves M0 with it: the two values are different models.
+    EXPECT_GT(res.points[2].estimates.mobility.value, res.points[0].estimates.mobility.value);
+    ASSERT_EQ(res.exponents.size(), 2u);
+    EXPECT_EQ(res.exponents[0].varied, 0.1);
+    EXPECT_EQ(res.exponents[1].varied, 0.342);
+    EXPECT_NEAR(res.exponents[1].exponent.value, res.points[3].slope.value, 1e-9); // two noises: the secant
+    // The reports name the constant and give every point's value.
+    const std::string table = ss::to_table(res), csv = ss::to_csv(res), json = ss::to_json(res);
+    EXPECT_NE(table.find("c swept over 0.1, 0.342"), std::string::npos) << table;
+    EXPECT_NE(csv.find("\nvaried,tau,noise,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\n0.342,0.5,4,"), std::string::npos) << csv;
+    EXPECT_NE(json.find("\"vary\": \"c\""), std::string::npos);
+    EXPECT_NE(json.find("\"varied\": 0.342"), std::string::npos);
+}
+
+TEST(SweepVary, WithoutItNothingChanges) {
+    ss::SweepRequest r = varied_sweep();
+    r.params.drift = "-v/0.067 + 0.342";
+    r.params.drift_params.clear();
+    r.vary.clear();
+    r.vary_values.clear();
+    const ss::SweepResult res = ss::compute_sweep(r);
+    ASSERT_FALSE(res.varies());
+    ASSERT_EQ(res.points.size(), 2u);
+    EXPECT_TRUE(std::isnan(res.points[0].varied));
+    EXPECT_EQ(ss::to_csv(res).find("varied"), std::string::npos);
+}
+
+TEST(SweepVary, MisuseIsRefusedByName) {
+    ss::SweepRequest r = varied_sweep();
+    r.params.drift.clear();
+    expect_refused(r, "vary", "there is none");
+    r = varied_sweep();
+    r.vary = "d";
+    expect_refused(r, "vary", "\"d\" is not a constant of the --drift expression");
+    r = varied_sweep();
+    r.vary_values.clear();
+    expect_refused(r, "vary-values", "needs at least one value");
+    r = varied_sweep();
+    r.vary.clear();
+    expect_refused(r, "vary-values", "needs --vary NAME");
+    r = varied_sweep();
+    r.vary_values = {0.2, std::nan("")};
+    expect_refused(r, "vary-values", "finite");
+    // A value at which the law no longer confines: named with its point.
+    r = varied_sweep();
+    r.params.drift = "c*v";
+    r.vary_values = {-1, 1};
+    expect_refused(r, "drift", "at c 1,");
+}
+
+TEST(DriftExpressionConstants, NamesButV) {
+    EXPECT_EQ(ss::drift_expression_constants("a*v - c*v^3"), (std::vector<std::string>{"a", "c"}));
+    EXPECT_TRUE(ss::drift_expression_constants("-v/0.067 + 0.342").empty());
+    EXPECT_THROW(ss::drift_expression_constants("-v/"), ss::InvalidParameter);
+}
+
+} // namespace
