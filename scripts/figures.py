@@ -37,6 +37,23 @@ GBAR = 0.342
 # The paper's b(v) = -v/tauL + gbar with Delta = 3.84 (noise and tau given per call).
 PAPER_B = ["--friction", str(DELTA), "--relaxation", str(TAUL), "--bias", str(GBAR)]
 ZERO_B = ["--friction", str(DELTA), "--relaxation", "inf", "--bias", "0"]
+# How the plots name the drift of PAPER_B.
+B_TEXT = "b(v) = -v/tauL + gbar, tauL = 0.067 s, gbar = 0.342 m/s$^2$"
+# The inclusion engine's scheme at its defaults (--scheme auto): event for the
+# affine law, resolvent for any other (the event scheme takes the affine law only).
+INCLUSION_SCHEME = "event"
+# The figures built on the paper's b(v): `--drift` replaces it in these; the
+# others are pure dry friction (b = 0), where a law does not enter.
+DRIFT_FIGURES = ["fig2", "fig3", "fig4", "fig5", "fig6", "fig9"]
+
+
+def use_drift_law(expr, params=""):
+    """Every figure built on the paper's b(v) runs the law `expr` (stickslip's
+    --drift, with --drift-params `params`) instead, Delta kept."""
+    global PAPER_B, B_TEXT, INCLUSION_SCHEME
+    INCLUSION_SCHEME = "resolvent"
+    PAPER_B = ["--friction", str(DELTA), "--drift", expr] + (["--drift-params", params] if params else [])
+    B_TEXT = f"b(v) = {expr}" + (f" ({params})" if params else "")
 
 TABLE1_TIMES = [0.05, 0.125, 0.25, 0.5, 1.0, 2.5]
 TABLE1_PAPER_MC = [0.950, 0.876, 0.757, 0.569, 0.337, 0.091]
@@ -392,7 +409,7 @@ def make_fig23(R, cfg, out, written, summary, seed, only):
         for a in axes:
             a.grid(alpha=0.3)
 
-    params = "tau = 0.5 s, tauL = 0.067 s, Delta = 3.84 m/s$^2$, Gamma = 5 m$^2$/s$^3$, gbar = 0.342 m/s$^2$"
+    params = f"tau = 0.5 s, Delta = 3.84 m/s$^2$, Gamma = 5 m$^2$/s$^3$, {B_TEXT}"
     if "fig2" in only:
         fig, ax = plt.subplots(2, 2, figsize=(10, 7))
         panels([ax[0, 0], ax[0, 1], ax[1, 0], ax[1, 1]], trajs["pdmp"],
@@ -404,7 +421,7 @@ def make_fig23(R, cfg, out, written, summary, seed, only):
         fig, ax = plt.subplots(4, 2, figsize=(10, 13))
         panels(ax[:, 0], trajs["pdmp"], f"PDMP, delta = 0.125 s$^{{-1/2}}$ (excursion {info['pdmp']['index']})")
         panels(ax[:, 1], trajs["inclusion"],
-               f"differential inclusion, event scheme, dt auto (excursion {info['inclusion']['index']})")
+               f"differential inclusion, {INCLUSION_SCHEME} scheme, dt auto (excursion {info['inclusion']['index']})")
         fig.suptitle("Fig. 3: a long excursion, PDMP (left) and differential inclusion (right)\n" + params,
                      fontsize=10)
         fig.tight_layout()
@@ -481,16 +498,16 @@ def make_fig4(R, cfg, out, written, summary, seed):
         a.grid(alpha=0.3, which="both")
     axD.set_ylabel("diffusivity D [m$^2$/s]")
     axT.set_ylabel("mean long-excursion duration E[t1] [s]")
-    axD.set_title("D vs Gamma (dots: PDMP, delta = 0.125; lines: inclusion, event scheme, dt auto;\n"
+    axD.set_title(f"D vs Gamma (dots: PDMP, delta = 0.125; lines: inclusion, {INCLUSION_SCHEME} scheme, dt auto;\n"
                   "dashed: Kolmogorov engine, no sampling)", fontsize=9)
     axT.set_title("E[t1] vs Gamma (bands and bars: 95% CI)", fontsize=9)
     axD.legend(fontsize=7, ncol=2)
     axT.legend(fontsize=7, ncol=2)
-    fig.suptitle("Fig. 4: b(v) = -v/tauL + gbar, tauL = 0.067 s, gbar = 0.342 m/s$^2$, Delta = 3.84 m/s$^2$",
+    fig.suptitle(f"Fig. 4: {B_TEXT}, Delta = 3.84 m/s$^2$",
                  fontsize=10)
     fig.tight_layout()
     savefig(fig, os.path.join(out, "fig4.png"), written)
-    summary["fig4"] = {"dt_inclusion": "auto", "scheme_inclusion": "event", "grid_pdmp": c["grid"], "per_tau": res}
+    summary["fig4"] = {"dt_inclusion": "auto", "scheme_inclusion": INCLUSION_SCHEME, "grid_pdmp": c["grid"], "per_tau": res}
 
 
 # Fig. 5 ------------------------------------------------------------------------------
@@ -537,15 +554,15 @@ def make_fig5(R, cfg, out, written, summary, seed):
     ax.set_xlim(0, c["max_lag"])
     ax.set_xlabel("lag r [s]")
     ax.set_ylabel("h(r)/h(0),  h(r) = cov(V(t), V(t+r))")
-    ax.set_title("Fig. 5: normalised velocity covariance, Gamma = 5 m$^2$/s$^3$, tauL = 0.067 s, "
-                 "gbar = 0.342 m/s$^2$\nsolid: PDMP (delta = 0.125), dotted: inclusion; bands: 95% CI",
+    ax.set_title(f"Fig. 5: normalised velocity covariance, Gamma = 5 m$^2$/s$^3$, {B_TEXT}"
+                 "\nsolid: PDMP (delta = 0.125), dotted: inclusion; bands: 95% CI",
                  fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
     fig.tight_layout()
     savefig(fig, os.path.join(out, "fig5.png"), written)
     summary["fig5"] = {"noise": c["noise"], "max_lag": c["max_lag"], "sample_dt": c["sample_dt"],
-                       "scheme_inclusion": "event", "per_tau": res}
+                       "scheme_inclusion": INCLUSION_SCHEME, "per_tau": res}
 
 
 # Fig. 6 ------------------------------------------------------------------------------
@@ -603,8 +620,8 @@ def make_fig6(R, cfg, out, written, summary, seed):
     ax2.set_title(f"Fig. 6 right: {len(paths['paths'])} paths of U(t) from (X, V) = (x*, 0), dt = {c['path_dt']:g} s;\n"
                   f"white-noise mean drift M0 = {ref['mobility']:.2e} m/s", fontsize=9)
     ax2.grid(alpha=0.3)
-    fig.suptitle("Fig. 6: tau = 1e-5 s, Gamma = 0.16 m$^2$/s$^3$, Delta = 3.84 m/s$^2$, tauL = 0.067 s, "
-                 "gbar = 0.342 m/s$^2$ (tau' = %.2g)" % (c["tau"] * DELTA ** 2 / c["noise"]), fontsize=10)
+    fig.suptitle("Fig. 6: tau = 1e-5 s, Gamma = 0.16 m$^2$/s$^3$, Delta = 3.84 m/s$^2$, %s (tau' = %.2g)"
+                 % (B_TEXT, c["tau"] * DELTA ** 2 / c["noise"]), fontsize=10)
     fig.tight_layout()
     savefig(fig, os.path.join(out, "fig6.png"), written)
     u_end = np.array([p["u"][-1] for p in paths["paths"]])
@@ -732,7 +749,7 @@ def make_fig9(R, cfg, out, written, summary, seed):
     gw = np.exp(np.linspace(np.log(min(c["gammas"])), np.log(max(c["gammas"])), c["white_points"]))
     for bi, (bname, bargs, title) in enumerate((
             ("b=0", ZERO_B, "b(v) = 0"),
-            ("paper_b", PAPER_B, "b(v) = -v/tauL + gbar, tauL = 0.067 s, gbar = 0.342 m/s$^2$"))):
+            ("paper_b", PAPER_B, B_TEXT))):
         ax, axr = axes[0, bi], axes[1, bi]
         white = np.array([R("analytic", bargs + ["--noise", g], threads=False, label=None, fig="fig9")["diffusivity"]
                           for g in gw])
@@ -870,18 +887,36 @@ def main():
     ap.add_argument("--threads", type=int, default=2, help="worker threads per stickslip call (default 2)")
     ap.add_argument("--seed", type=int, default=1, help="base random seed (default 1)")
     ap.add_argument("--cache", help="reuse/store raw stickslip JSON results in this folder (development)")
+    ap.add_argument("--drift", metavar="EXPR",
+                    help="a drift law b(v) (stickslip's --drift, SI units) in place of the paper's -v/tauL + gbar "
+                         "in the figures built on it (" + ",".join(DRIFT_FIGURES) + "; the default with --drift); "
+                         "written to build/figures-drift unless --out says otherwise")
+    ap.add_argument("--drift-params", metavar="NAME=NUM,...", default="",
+                    help="values of the named constants of --drift")
     a = ap.parse_args()
 
     only = FIGURES if not a.only else [s.strip() for s in a.only.split(",") if s.strip()]
     bad = [s for s in only if s not in FIGURES]
     if bad:
         ap.error(f"unknown figure(s) {bad}; choose from {FIGURES}")
+    if a.drift_params and not a.drift:
+        ap.error("--drift-params needs --drift")
+    if a.drift:
+        if not a.only:
+            only = DRIFT_FIGURES
+        dry = [s for s in only if s not in DRIFT_FIGURES]
+        if dry:
+            ap.error(f"{','.join(dry)} are pure dry friction (b = 0): --drift does not enter them; "
+                     f"choose from {','.join(DRIFT_FIGURES)}")
+        use_drift_law(a.drift, a.drift_params)
     if a.threads < 1:
         ap.error("--threads must be >= 1")
     if a.out:
         out = a.out
     elif a.quick:  # CI smoke runs never touch docs/
         out = os.path.join(a.root, "build", "figures-quick")
+    elif a.drift:  # the paper's figures in docs/ keep the paper's law
+        out = os.path.join(a.root, "build", "figures-drift")
     else:
         out = os.path.join(a.root, "docs", "figures")
     out = os.path.abspath(out)
@@ -926,7 +961,8 @@ def main():
     summary["timing_seconds"] = timing
     summary["meta"] = {
         "command": " ".join(["bash", "scripts/figures"] + [shlex.quote(x) for x in user_args()]),
-        "mode": "quick" if a.quick else "default", "only": only if a.only else "all",
+        "mode": "quick" if a.quick else "default", "only": only if (a.only or a.drift) else "all",
+        "drift": a.drift or "-v/tauL + gbar (the paper's)", "drift_params": a.drift_params,
         "threads": a.threads, "seed": a.seed, "stickslip_version": version,
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "cpus": os.cpu_count(), "seconds_this_run": round(total, 1),
