@@ -16,11 +16,6 @@ namespace stickslip::detail {
 namespace {
 
 constexpr double kNoteSeconds = 60.0; ///< a run predicted to last longer says so before it starts
-/// Steps or events per second on one core, measured on the CLI (docs/validation.md,
-/// reliability): the resolvent scheme 5e7 to 1e8 (64 excursions at tau 1e-6: 1.0e8), the
-/// event scheme 5e6 steps, the PDMP 1.4e7 events. A sample every sample_dt
-/// costs about a step.
-constexpr double kResolventPerSecond = 5e7, kEventPerSecond = 5e6, kPdmpPerSecond = 1.4e7;
 /// Predicted E[t1] over the OU first-passage bound: measured 1.2 to 2.6 for
 /// coloured noise (the bound is 2-3x short).
 constexpr double kBoundFactor = 3.0;
@@ -146,25 +141,25 @@ RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const 
     const double every_interval = sampling.interval > 0 ? t / sampling.interval : 0.0;
     const double sampled = every_interval + sampling.per_sample * (sampling.interval > 0 ? every_interval : steps);
     r.work = steps + sampled;
-    const double rate = s.engine == Engine::Pdmp ? kPdmpPerSecond
-                        : s.scheme == Scheme::Event ? kEventPerSecond
-                                                    : kResolventPerSecond;
+    // The engine's own rate (a sample every sample_dt costs about a step).
+    const double rate = visit_engine(e, [](const auto& engine) { return engine.work_per_second; });
     const unsigned wanted = ctl.threads ? ctl.threads : default_threads().threads;
     const std::uint64_t blocks = (samples + block_size - 1) / block_size;
     r.threads = static_cast<unsigned>(std::clamp<std::uint64_t>(blocks, 1, std::max(wanted, 1u)));
     r.seconds = r.work * static_cast<double>(samples) / rate / r.threads;
     // What makes it long: the samples, a single excursion's cost, or their number.
     const ModelParams model_defaults;
-    const EngineSettings engine_defaults;
+    const char* resolution = visit_engine(e, [](const auto& engine) { return engine.resolution_setting; });
+    const bool resolution_chosen = visit_engine(e, [&s](const auto& engine) { return engine.resolution_chosen(s); });
     // The samples are to blame only when the steps alone would not be long.
     const bool long_without_samples = steps * static_cast<double>(samples) / rate / r.threads > hopeless_seconds;
     if (sampled > steps && !long_without_samples) r.cause = sampling.interval > 0 ? "sample-dt" : "lags";
     else if (r.work / rate < 1.0 && samples > 1000) r.cause = "excursions";
-    else if (s.engine == Engine::Pdmp && s.grid != engine_defaults.grid) r.cause = "grid";
+    else if (resolution_chosen) r.cause = resolution;
     else if (p.tau != model_defaults.tau) r.cause = "tau";
     else if (p.friction != model_defaults.friction) r.cause = "friction";
     else if (p.noise != model_defaults.noise) r.cause = "noise";
-    else r.cause = s.engine == Engine::Pdmp ? "grid" : "dt";
+    else r.cause = resolution;
     return r;
 }
 

@@ -47,6 +47,9 @@ concept EngineAdapter = requires(const E& e, std::uint64_t n, double t, Excursio
                                  const std::atomic<bool>* cancel, const ModelParams& p,
                                  std::vector<std::string>& warnings) {
     { E::work_unit } -> std::convertible_to<const char*>;
+    { E::work_per_second } -> std::convertible_to<double>;
+    { E::resolution_setting } -> std::convertible_to<const char*>;
+    { E::resolution_chosen(EngineSettings{}) } -> std::same_as<bool>;
     { e.clock() } -> std::same_as<double>;
     { e.default_start_noise(p) } -> std::same_as<double>;
     { E::sampling_note(t) } -> std::same_as<std::string>;

@@ -30,6 +30,13 @@ public:
     const EventConstants& constants() const { return c_; }
 
     static constexpr const char* work_unit = "steps";
+    /// Work units per second on one core, for predicting a run's length only
+    /// (measured on the CLI, docs/validation.md, reliability): the event scheme 5e6 steps per second (its refinements included).
+    static constexpr double work_per_second = 5e6;
+    /// The setting that sets its resolution, which a long run may be blamed on.
+    static constexpr const char* resolution_setting = "dt";
+    /// Whether the user chose the resolution (the automatic step is not a choice).
+    static bool resolution_chosen(const EngineSettings&) { return false; }
     /// The time quantum of its paths [s]: a leaf.
     double clock() const { return c_.leaf; }
 

@@ -29,6 +29,13 @@ public:
 
     /// What the work of a run counts.
     static constexpr const char* work_unit = "events";
+    /// Work units per second on one core, for predicting a run's length only
+    /// (measured on the CLI, docs/validation.md, reliability): the PDMP 1.4e7 events per second.
+    static constexpr double work_per_second = 1.4e7;
+    /// The setting that sets its resolution, which a long run may be blamed on.
+    static constexpr const char* resolution_setting = "grid";
+    /// Whether the user chose the resolution: a lattice step other than the default.
+    static bool resolution_chosen(const EngineSettings& s) { return s.grid != EngineSettings{}.grid; }
     /// The time quantum of its paths [s]: none, the PDMP runs in continuous time.
     double clock() const { return 0.0; }
 

@@ -31,6 +31,13 @@ public:
     const ResolventConstants& constants() const { return c_; }
 
     static constexpr const char* work_unit = "steps";
+    /// Work units per second on one core, for predicting a run's length only
+    /// (measured on the CLI, docs/validation.md, reliability): the resolvent scheme 5e7 to 1e8 steps per second (64 excursions at tau 1e-6: 1.0e8).
+    static constexpr double work_per_second = 5e7;
+    /// The setting that sets its resolution, which a long run may be blamed on.
+    static constexpr const char* resolution_setting = "dt";
+    /// Whether the user chose the resolution (the automatic step is not a choice).
+    static bool resolution_chosen(const EngineSettings&) { return false; }
     /// The time quantum of its paths [s]: the step.
     double clock() const { return c_.h; }
 
