@@ -77,6 +77,9 @@
 // level of x, of v, or the corner where the mixed term is cheapest to reduce)
 // until the estimated relative error of D is below rel_precision or the next
 // round would exceed the time or memory budget (a note then says so). The
+// time budget counts modelled seconds, a function of the grids' sizes alone
+// (kolmogorov.cpp), so where a solve stops, and so its result, is the same on
+// every machine, load and thread count. The
 // carre du champ of chi over the x moves alone, E[(2/tau^2) chi_x^2], is a
 // second estimator of D with the same limit and a different error (the v
 // moves' numerical diffusion is absent from it); it is extrapolated the same
@@ -196,11 +199,16 @@ struct KolmogorovSettings {
     /// Bytes the factorisations of a round may take at once [bytes]: no round is
     /// started whose predicted peak exceeds it.
     double memory_budget = 2e9;
-    /// Seconds the whole solve may take [s]: no round is started whose
-    /// predicted end is later (a prediction: ends up to 25% later were seen
-    /// with other work on the machine).
+    /// Seconds the whole solve may take [s], in modelled seconds: a grid of n
+    /// states counts 1.6e-9 n^1.8 s and a round's grids two at a time, which is
+    /// about the wall time on 2 cores (measured: 0.4 to 1.3 times it), and no
+    /// round is started whose modelled end is later. Modelled, not measured,
+    /// so that the result does not depend on the machine, its load or the
+    /// thread count (a slower machine takes longer instead).
     double time_budget = 10.0;
-    int threads = 2;                ///< threads (1 or 2: two grids of a round solved at once)
+    /// threads (1 or 2: two grids of a round solved at once); the result is
+    /// the same for both
+    int threads = 2;
     /// > 0: keep the PDMP engine's own chain in x, its lattice of step
     /// pdmp_grid [s^-1/2] (`--grid`), and refine only v: the result is then the
     /// PDMP's D, M0 and P(V = 0) at that grid, to compare with its Monte Carlo

@@ -407,6 +407,26 @@ TEST(KolmogorovReferences, PdmpLatticeModeMatchesPdmpMonteCarloAtItsGrid) {
     EXPECT_NEAR(r.mean_duration.value, t_ref, t_tol) << z_message("E[t1]", r.mean_duration.value, t_ref, t_tol, t_se);
 }
 
+// Where the time budget stops a solve is decided on modelled seconds, a
+// function of the grids alone: one thread or two, on any machine or load, the
+// same rounds and so the same numbers, bit for bit.
+TEST(KolmogorovBudget, StopsWhereTheGridsSayWhateverTheThreads) {
+    ss::KolmogorovSettings s;
+    s.rel_precision = 1e-6; // out of reach: the budget ends the solve
+    s.time_budget = 2.0;    // one round (about 1 s on 2 cores)
+    s.threads = 1;
+    const ss::KolmogorovResult one = ss::solve_kolmogorov(fig2(), s);
+    s.threads = 2;
+    const ss::KolmogorovResult two = ss::solve_kolmogorov(fig2(), s);
+    EXPECT_FALSE(one.converged);
+    EXPECT_NE(one.note.find("time budget"), std::string::npos) << one.note;
+    EXPECT_EQ(one.levels.size(), two.levels.size());
+    EXPECT_EQ(one.diffusivity.value, two.diffusivity.value);
+    EXPECT_EQ(one.diffusivity.error, two.diffusivity.error);
+    EXPECT_EQ(one.stuck_probability.value, two.stuck_probability.value);
+    EXPECT_EQ(one.note, two.note);
+}
+
 TEST(KolmogorovRefusals, WhiteNoiseSmallTauAndBadSettings) {
     auto parameter_of = [](auto&& call) {
         try {

@@ -20,9 +20,11 @@ namespace {
 ss::SweepRequest varied_sweep() {
     ss::SweepRequest r;
     r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-3);
-    r.params.drift = "-v/0.067 + c";
-    r.params.drift_params = "c=9"; // a placeholder, replaced at every point
-    r.vary = "c";
+    // std::string temporaries: assigning the literals directly trips a GCC 12
+    // -Wrestrict false positive when this function is inlined.
+    r.params.drift = std::string("-v/0.067 + c");
+    r.params.drift_params = std::string("c=9"); // a placeholder, replaced at every point
+    r.vary = std::string("c");
     r.vary_values = {0.342, 0.1};
     r.noises = {4, 2};
     r.taus = {0.5};

@@ -210,13 +210,32 @@ std::vector<GridKey> grids_needed(const Levels& l, bool lattice) {
     return keys;
 }
 
-/// Predicted cost of a grid of n states from the largest grid solved so far
-/// (n_ref states, t_ref seconds, z_ref LU nonzeros). Measured on the Fig. 2
-/// and Fig. 4 cases: the LU's nonzeros grow like n^1-1.3 and its time like
-/// n^1.6-1.75 whichever direction is refined, more with two solves sharing
-/// the memory bandwidth (1.6 let pure dry friction at tau' = 0.3 end at 12 s
-/// on a 10 s budget).
-double predicted_seconds(double n, double n_ref, double t_ref) { return t_ref * std::pow(n / n_ref, 1.8); }
+/// The time budget's clock: modelled seconds, a function of the grids alone,
+/// so that where a solve stops, and so its result, is the same on every
+/// machine, load and thread count (measured seconds made the last round
+/// depend on them). A grid of n states is modelled as taking
+/// kSecondsPerState18 n^1.8 s: its time grows like n^1.6-1.75 whichever
+/// direction is refined, more with two solves sharing the memory bandwidth;
+/// measured on 2 cores with two grids at once (Fig. 2 and pure dry friction,
+/// tau' = 0.1 to 1, 3e4 to 1.3e5 states), seconds / n^1.8 was 0.7e-9 to
+/// 2.1e-9, so 1.6e-9 puts most solves' wall time below the modelled one.
+constexpr double kSecondsPerState18 = 1.6e-9;
+double modelled_seconds(double n) { return kSecondsPerState18 * std::pow(n, 1.8); }
+/// A round's modelled duration: its grids two at a time (whatever the thread
+/// count, which must not change the result), so the longest grid or half
+/// their sum.
+double modelled_round(const std::vector<double>& states) {
+    double sum = 0, longest = 0;
+    for (double n : states) {
+        const double t = modelled_seconds(n);
+        sum += t;
+        longest = std::max(longest, t);
+    }
+    return std::max(longest, sum / 2.0);
+}
+/// Predicted LU nonzeros of a grid of n states from the largest grid solved
+/// so far (n_ref states, z_ref nonzeros; both a function of the grids alone):
+/// they grow like n^1-1.3.
 double predicted_nonzeros(double n, double n_ref, double z_ref) { return z_ref * std::pow(n / n_ref, 1.3); }
 
 void validate_settings(const KolmogorovSettings& s) {
@@ -287,6 +306,7 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         return static_cast<double>(g.x_nodes) * static_cast<double>(g.v_cells_pos + g.v_cells_neg);
     };
     std::map<GridKey, KolmogorovGridSolution> solved;
+    double modelled = 0; // the budget's clock: modelled seconds of the rounds solved
     // The largest grid solved: the reference of the cost predictions.
     auto largest = [&]() -> const KolmogorovGridSolution& {
         const KolmogorovGridSolution* best = &solved.begin()->second;
@@ -313,7 +333,12 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         } else {
             work();
         }
-        for (std::size_t i = 0; i < todo.size(); ++i) solved.emplace(todo[i], std::move(out[i]));
+        std::vector<double> sizes;
+        for (std::size_t i = 0; i < todo.size(); ++i) {
+            sizes.push_back(static_cast<double>(out[i].states));
+            solved.emplace(todo[i], std::move(out[i]));
+        }
+        modelled += modelled_round(sizes);
     };
 
     // The two directions are extrapolated separately, each on a sequence of
@@ -400,24 +425,24 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
             ++finer_v.av;
             next = cost(finer_x) / 0.75 <= cost(finer_v) / 0.5 ? finer_x : finer_v;
         }
-        // The budgets, predicted from the largest grid solved so far.
+        // The budgets: the round's modelled time, and its memory predicted
+        // from the largest grid solved so far (two grids at once, whatever
+        // the thread count, so that the result does not depend on it).
         const KolmogorovGridSolution& ref = largest();
         const double n_ref = static_cast<double>(ref.states);
-        double seconds = 0, longest = 0, largest_nonzeros = 0, second_nonzeros = 0;
+        std::vector<double> sizes;
+        double largest_nonzeros = 0, second_nonzeros = 0;
         for (GridKey key : grids_needed(next, lattice)) {
             if (solved.count(key)) continue;
-            const double n = states_of(key), t = predicted_seconds(n, n_ref, ref.seconds);
-            seconds += t;
-            longest = std::max(longest, t);
+            const double n = states_of(key);
+            sizes.push_back(n);
             const double z = predicted_nonzeros(n, n_ref, static_cast<double>(ref.lu_nonzeros));
             if (z > largest_nonzeros) second_nonzeros = largest_nonzeros, largest_nonzeros = z;
             else second_nonzeros = std::max(second_nonzeros, z);
         }
-        const double round_bytes =
-            kolmogorov_bytes_per_lu_nonzero * (largest_nonzeros + (settings.threads > 1 ? second_nonzeros : 0.0));
+        const double round_bytes = kolmogorov_bytes_per_lu_nonzero * (largest_nonzeros + second_nonzeros);
         const bool over_memory = round_bytes > settings.memory_budget;
-        const double round_prediction = settings.threads > 1 ? std::max(longest, seconds / 2.0) : seconds;
-        if (elapsed() + round_prediction > settings.time_budget || over_memory) {
+        if (modelled + modelled_round(sizes) > settings.time_budget || over_memory) {
             result.note = "the estimated error of D, " + detail::format_number(relative, 3) +
                           " relative, is above rel_precision " + detail::format_number(settings.rel_precision, 3) +
                           ": the next refinement would exceed the " + (over_memory ? "memory" : "time") + " budget";
