@@ -42,6 +42,8 @@ B_TEXT = "b(v) = -v/tauL + gbar, tauL = 0.067 s, gbar = 0.342 m/s$^2$"
 # The inclusion engine's scheme at its defaults (--scheme auto): event for the
 # affine law, resolvent for any other (the event scheme takes the affine law only).
 INCLUSION_SCHEME = "event"
+# summary.json's name for the paper's law.
+PAPER_DRIFT = "-v/tauL + gbar (the paper's)"
 # The figures built on the paper's b(v): `--drift` replaces it in these; the
 # others are pure dry friction (b = 0), where a law does not enter.
 DRIFT_FIGURES = ["fig2", "fig3", "fig4", "fig5", "fig6", "fig9"]
@@ -913,10 +915,10 @@ def main():
         ap.error("--threads must be >= 1")
     if a.out:
         out = a.out
+    elif a.drift:  # the paper's figures (docs/, build/figures-quick/) keep the paper's law
+        out = os.path.join(a.root, "build", "figures-drift-quick" if a.quick else "figures-drift")
     elif a.quick:  # CI smoke runs never touch docs/
         out = os.path.join(a.root, "build", "figures-quick")
-    elif a.drift:  # the paper's figures in docs/ keep the paper's law
-        out = os.path.join(a.root, "build", "figures-drift")
     else:
         out = os.path.join(a.root, "docs", "figures")
     out = os.path.abspath(out)
@@ -931,6 +933,10 @@ def main():
     if a.only and os.path.exists(summary_path):
         with open(summary_path) as f:
             summary = json.load(f)
+        # Figures of another drift law are not merged with these: start afresh.
+        meta = summary.get("meta", {})
+        if (meta.get("drift", PAPER_DRIFT), meta.get("drift_params", "")) != (a.drift or PAPER_DRIFT, a.drift_params):
+            summary = {}
     timing = summary.get("timing_seconds", {}) if a.only else {}
     written = []
     jobs = [("table1", ["table1"], lambda: make_table1(R, cfg, out, written, summary, a.seed)),
@@ -962,7 +968,7 @@ def main():
     summary["meta"] = {
         "command": " ".join(["bash", "scripts/figures"] + [shlex.quote(x) for x in user_args()]),
         "mode": "quick" if a.quick else "default", "only": only if (a.only or a.drift) else "all",
-        "drift": a.drift or "-v/tauL + gbar (the paper's)", "drift_params": a.drift_params,
+        "drift": a.drift or PAPER_DRIFT, "drift_params": a.drift_params,
         "threads": a.threads, "seed": a.seed, "stickslip_version": version,
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "cpus": os.cpu_count(), "seconds_this_run": round(total, 1),

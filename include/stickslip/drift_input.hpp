@@ -54,6 +54,15 @@ DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report = nullptr);
 /// ...) when the text does not parse.
 std::vector<std::string> drift_expression_constants(const std::string& text);
 
+/// --drift-params text ("a=0.8,c=0.5": comma-separated NAME=NUM items)
+/// without the item of `name` (items trimmed; one without '=' is kept, for
+/// the law's parser to refuse).
+std::string drift_params_without(const std::string& params, const std::string& name);
+/// --drift-params text with `name` set to `value` (its item replaced, or
+/// appended), the value written as the shortest text that reads back to the
+/// same double: what a sweep over `name` gives each point.
+std::string drift_params_with(const std::string& params, const std::string& name, double value);
+
 /// The note a run gives on its law: "drift law (SOURCE) TEXT: interpolated on N
 /// knots over [lower, upper] m/s, off by at most E m s^-2".
 std::string drift_law_note(const DriftLawReport& law);

@@ -197,14 +197,17 @@ struct KolmogorovSettings {
     double v_grading = 3.0;         ///< grading of the velocity cells at 0 (KolmogorovGrid::v_grading)
     double rel_precision = 1e-3;    ///< target estimated relative error of D, in (0, 1)
     /// Bytes the factorisations of a round may take at once [bytes]: no round is
-    /// started whose predicted peak exceeds it.
+    /// started whose predicted peak, two factorisations at once whatever the
+    /// thread count (so that the result does not depend on it), exceeds it.
     double memory_budget = 2e9;
     /// Seconds the whole solve may take [s], in modelled seconds: a grid of n
     /// states counts 1.6e-9 n^1.8 s and a round's grids two at a time, which is
     /// about the wall time on 2 cores (measured: 0.4 to 1.3 times it), and no
     /// round is started whose modelled end is later. Modelled, not measured,
     /// so that the result does not depend on the machine, its load or the
-    /// thread count (a slower machine takes longer instead).
+    /// thread count: a slower machine, a debug or sanitizer build, or one
+    /// thread (about twice the modelled time) takes longer instead, and
+    /// nothing stops a solve on wall time.
     double time_budget = 10.0;
     /// threads (1 or 2: two grids of a round solved at once); the result is
     /// the same for both

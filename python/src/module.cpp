@@ -245,8 +245,8 @@ void add_series_access(py::class_<Series>& c, const std::string& name) {
              [name](const Series& s, py::tuple index) {
                  if (s.shape.size() < 2 || index.size() != s.shape.size())
                      throw py::index_error(name + " takes one index per axis, (i, j) or (h, i, j), only when "
-                                                  "2-D or 3-D (its shape is " +
-                                           std::to_string(s.shape.size()) + "-D)");
+                                                  "2-D or 3-D (it is " +
+                                           std::to_string(std::max<std::size_t>(1, s.shape.size())) + "-D)");
                  py::ssize_t flat = 0;
                  for (std::size_t a = 0; a < s.shape.size(); ++a) {
                      const auto i = index[a].cast<py::ssize_t>();

@@ -553,27 +553,27 @@ void bind_results(py::module_& m) {
                 "the swept constant's value at every point (shape as `shape`), None without vary=")
             .def_property_readonly(
                 "noise", [grid_axis](const R& r) { return grid_axis(r, 'n'); },
-                "noise of every point [m^2 s^-3], shape (len(taus), len(noises)) (noises along axis 1)")
+                "noise of every point [m^2 s^-3], shape `shape` (noises along the last axis)")
             .def_property_readonly(
                 "tau", [grid_axis](const R& r) { return grid_axis(r, 't'); },
-                "tau of every point [s], shape (len(taus), len(noises)) (taus along axis 0)")
+                "tau of every point [s], shape `shape` (taus along the axis before it)")
             .def_property_readonly(
                 "diffusivity",
                 column_of(column, [](const SweepPoint& p) { return p.estimates.diffusivity; },
                           [](const SweepPoint& p) { return p.solution->diffusivity; }),
-                "D [m^2/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep "
+                "D [m^2/s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
                 "did not reach; a GridEstimateSeries with engine='kolmogorov')")
             .def_property_readonly(
                 "mobility",
                 column_of(column, [](const SweepPoint& p) { return p.estimates.mobility; },
                           [](const SweepPoint& p) { return p.solution->mobility; }),
-                "M0 [m/s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep "
+                "M0 [m/s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
                 "did not reach; a GridEstimateSeries with engine='kolmogorov')")
             .def_property_readonly(
                 "mean_duration",
                 column_of(column, [](const SweepPoint& p) { return p.estimates.mean_duration; },
                           [](const SweepPoint& p) { return p.solution->mean_duration; }),
-                "E[t1] [s] per point (EstimateSeries, shape (len(taus), len(noises)); NaN where an interrupted sweep "
+                "E[t1] [s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
                 "did not reach; a GridEstimateSeries with engine='kolmogorov')")
             .def_property_readonly(
                 "stuck_probability",
@@ -586,7 +586,7 @@ void bind_results(py::module_& m) {
                 "slope",
                 column_of(column, [](const SweepPoint& p) { return p.slope; },
                           [](const SweepPoint& p) { return KolmogorovEstimate{p.slope.value, p.slope.std_error}; }),
-                "local d log D / d log noise per point (EstimateSeries, shape (len(taus), len(noises)); NaN with one "
+                "local d log D / d log noise per point (EstimateSeries, shape `shape`; NaN with one "
                 "noise value; a GridEstimateSeries with engine='kolmogorov', its error propagated from D's)")
             .def_property_readonly(
                 "method", [](const R& r) -> std::string { return r.solved() ? "kolmogorov" : "monte carlo"; },
@@ -605,7 +605,7 @@ void bind_results(py::module_& m) {
                           "True when the sweep was stopped early (Ctrl-C): only the points run so far are here")
             .def_readonly("resumed", &R::resumed, "excursions restored from a checkpoint (resume=)")
             .def("__repr__", [](const R& r) {
-                return "SweepResult(taus=" + std::to_string(r.request.taus.size()) +
+                return "SweepResult(" + (r.varies() ? r.request.vary + "=" + std::to_string(r.request.vary_values.size()) + " values, " : std::string()) + "taus=" + std::to_string(r.request.taus.size()) +
                        ", noises=" + std::to_string(r.request.noises.size()) +
                        (r.solved() ? std::string(", engine='kolmogorov' (discretisation errors))")
                                    : ", excursions=" + std::to_string(r.request.excursions) + " per point)");

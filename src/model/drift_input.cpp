@@ -14,11 +14,19 @@
 
 #include "core/format.hpp"
 #include "stickslip/errors.hpp"
+#include "stickslip/setting.hpp"
 
 namespace stickslip {
 namespace {
 
 using detail::format_number;
+
+/// s without its leading and trailing blanks.
+std::string trim(std::string s) {
+    s.erase(0, s.find_first_not_of(" \t"));
+    s.erase(s.find_last_not_of(" \t") + 1);
+    return s;
+}
 
 [[noreturn]] void fail(const char* setting, const std::string& what) {
     throw InvalidParameter(setting, what); // the front ends name the setting
@@ -67,11 +75,6 @@ private:
         std::string item;
         while (std::getline(in, item, ',')) {
             const auto eq = item.find('=');
-            auto trim = [](std::string s) {
-                s.erase(0, s.find_first_not_of(" \t"));
-                s.erase(s.find_last_not_of(" \t") + 1);
-                return s;
-            };
             if (eq == std::string::npos) fail("drift-params", "each item must be NAME=NUM, got \"" + item + "\"");
             const std::string name = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
             if (name.empty() || name == "v" || !std::isalpha(static_cast<unsigned char>(name[0])))
@@ -320,6 +323,23 @@ std::vector<std::string> drift_expression_constants(const std::string& text) {
         fail("drift", "cannot read \"" + text + "\": " + e.GetMsg());
     }
     return names;
+}
+
+std::string drift_params_without(const std::string& params, const std::string& name) {
+    std::stringstream in(params);
+    std::string item, out;
+    while (std::getline(in, item, ',')) {
+        item = trim(item);
+        // An item without '=' is kept, for the law's parser to refuse by name.
+        if (item.find('=') == std::string::npos || trim(item.substr(0, item.find('='))) != name)
+            out += (out.empty() ? "" : ",") + item;
+    }
+    return out;
+}
+
+std::string drift_params_with(const std::string& params, const std::string& name, double value) {
+    const std::string others = drift_params_without(params, name);
+    return others + (others.empty() ? "" : ",") + name + "=" + format_setting(value);
 }
 
 std::string drift_law_note(const DriftLawReport& law) {

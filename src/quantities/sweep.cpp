@@ -7,37 +7,13 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 
 #include "core/format.hpp"
 #include "stickslip/drift_input.hpp"
-#include "stickslip/setting.hpp"
 
 namespace stickslip {
 
 namespace {
-
-/// --drift-params (comma-separated NAME=NUM items) without `name`'s item.
-std::string without_drift_param(const std::string& params, const std::string& name) {
-    std::stringstream in(params);
-    std::string item, out;
-    while (std::getline(in, item, ',')) {
-        item.erase(0, item.find_first_not_of(" \t"));
-        std::string key = item.substr(0, item.find('='));
-        key.erase(key.find_last_not_of(" \t") + 1);
-        if (key != name) out += (out.empty() ? "" : ",") + item;
-    }
-    return out;
-}
-
-/// --drift-params with `name` set to `value`: its item replaced (a
-/// placeholder, e.g. what Python's Params needed to make the law), or
-/// appended. The value's text is the shortest that reads back to the same
-/// double.
-std::string with_drift_param(const std::string& params, const std::string& name, double value) {
-    const std::string others = without_drift_param(params, name);
-    return others + (others.empty() ? "" : ",") + name + "=" + format_setting(value);
-}
 
 /// "a, b, c".
 std::string join(const std::vector<std::string>& items, const char* separator) {
@@ -46,7 +22,7 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
     return s;
 }
 
-/// "NAME = X, ": the swept drift constant's value in a point's name ("" without --vary).
+/// "NAME X, ": the swept drift constant's value in a point's name ("" without --vary).
 std::string varied_text(const SweepRequest& req, double varied) {
     return req.vary.empty() ? std::string() : req.vary + " " + detail::format_number(varied) + ", ";
 }
@@ -65,7 +41,7 @@ DiffusivityRequest point_request(const SweepRequest& req, double varied, double 
     static_cast<ExcursionSettings&>(d) = req;
     d.params.noise = noise;
     d.params.tau = tau;
-    if (!req.vary.empty()) d.params.drift_params = with_drift_param(d.params.drift_params, req.vary, varied);
+    if (!req.vary.empty()) d.params.drift_params = drift_params_with(d.params.drift_params, req.vary, varied);
     d.estimator = req.estimator;
     d.rel_precision = req.rel_precision;
     d.control.first_index = req.control.first_index + k * sweep_index_stride;
@@ -84,6 +60,10 @@ struct PreparedSweep {
     /// The swept drift constant's values, or one NaN without --vary.
     std::vector<double> varied;
     std::vector<PreparedEngine> engines;
+    /// With a drift law, how each point's law was made (tau-major as the
+    /// points), for the sweep's one note on it: made here, before any point
+    /// runs, so that a table file changed during the run cannot lose results.
+    std::vector<DriftLawReport> laws;
 };
 
 /// Every check of a sweep, once: the grid, then every point as a diffusivity
@@ -116,7 +96,8 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
     }
     const std::size_t values = req.vary_values.empty() ? 1 : req.vary_values.size();
     if (req.noises.size() * req.taus.size() * values > kMaxPoints)
-        throw InvalidParameter("noise", "at most 65536 sweep points");
+        throw InvalidParameter("noise", "at most 65536 sweep points (noises x taus" +
+                                            std::string(req.vary.empty() ? "" : " x vary-values") + ")");
     if (req.excursions > sweep_index_stride) throw InvalidParameter("excursions", "at most 2^40 excursions per point");
     if (req.control.first_index != 0) throw InvalidParameter("first-index", "a sweep starts at sample index 0");
     for (double g : req.noises)
@@ -126,7 +107,7 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
     PreparedSweep out{sorted_unique(req.noises), sorted_unique(req.taus),
                       req.vary.empty() ? std::vector<double>{std::numeric_limits<double>::quiet_NaN()}
                                        : sorted_unique(req.vary_values),
-                      {}};
+                      {}, {}};
     std::size_t k = 0;
     for (double c : out.varied)
         for (double t : out.taus)
@@ -136,6 +117,7 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
                     const DiffusivityRequest point = point_request(req, c, g, t, k++);
                     if (solved) validate(point);
                     else out.engines.push_back(prepare(point));
+                    if (point.params.has_drift_law()) make_drift_law(point.params, &out.laws.emplace_back());
                 } catch (const InvalidParameter& e) {
                     const std::string where = " (at " + varied_text(req, c) + "noise " + detail::format_number(g) +
                                               ", tau " + detail::format_number(t) + ")";
@@ -155,10 +137,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
     out.request = req;
     out.request.noises = prepared.noises;
     out.request.taus = prepared.taus;
-    if (!req.vary.empty()) { // the swept constant's placeholder value, if any, is not the sweep's
-        out.request.vary_values = prepared.varied;
-        out.request.params.drift_params = without_drift_param(req.params.drift_params, req.vary);
-    }
+    if (!req.vary.empty()) out.request.vary_values = prepared.varied;
     // With --dt auto each point has its own step (SweepPoint::dt), none the sweep's.
     if (out.request.engine.dt_auto && has_time_step(out.request.engine))
         out.request.engine.dt = std::numeric_limits<double>::quiet_NaN();
@@ -299,11 +278,9 @@ SweepResult compute_sweep(const SweepRequest& req) {
     // one note for all of them instead of one per point.
     std::optional<DriftLawReport> laws;
     std::string law_suffix;
-    for (std::size_t i = 0; i < out.points.size(); ++i) {
+    for (std::size_t i = 0; i < out.points.size() && i < prepared.laws.size(); ++i) {
         const SweepPoint& p = out.points[i];
-        if (!req.params.has_drift_law()) break;
-        DriftLawReport law;
-        make_drift_law(point_request(out.request, p.varied, p.noise, p.tau, i).params, &law);
+        const DriftLawReport& law = prepared.laws[i];
         if (!laws) {
             laws = law;
             const std::string head = drift_law_note(law);

@@ -68,6 +68,9 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
     TrajectoryResult out;
     out.request = req;
     out.resolved = prepared.resolved;
+    // What the engine notes of its numerics (the drift law's knots, a coarse
+    // step), as every sampled quantity reports it.
+    out.warnings = prepared.notes;
     const std::uint64_t seed = req.control.seed;
     auto guard = [&](const SamplePath& p) {
         if (p.t.size() >= req.max_points) throw TooManyPoints{};

@@ -5,6 +5,7 @@
 #include "core/format.hpp"
 #include "report/common.hpp"
 #include "report/solved.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 
@@ -31,7 +32,9 @@ std::string model_line(const SweepResult& r) {
         for (std::size_t k = 0; k < q.vary_values.size(); ++k)
             vary += (k ? ", " : "") + format_number(q.vary_values[k]);
     }
-    return "friction " + format_number(q.params.friction) + " m/s^2, " + drift_text(q.params) + vary + "\n\n";
+    ModelParams shown = q.params; // the swept constant's value, if drift_params gives one, is a placeholder
+    if (r.varies()) shown.drift_params = drift_params_without(shown.drift_params, q.vary);
+    return "friction " + format_number(q.params.friction) + " m/s^2, " + drift_text(shown) + vary + "\n\n";
 }
 
 /// The swept constant's column of a table (name, then the point's value), or "".

@@ -49,7 +49,9 @@ TEST(SweepVary, PointsAreValueMajorAndEachIsItsDiffusivityRun) {
     ASSERT_TRUE(res.varies());
     ASSERT_EQ(res.points.size(), 4u);
     EXPECT_EQ(res.request.vary_values, (std::vector<double>{0.1, 0.342})); // sorted
-    EXPECT_EQ(res.request.params.drift_params, ""); // the placeholder is not the sweep's
+    EXPECT_EQ(res.request.params.drift_params, "c=9"); // kept (the Params a user gave), replaced per point
+    EXPECT_EQ(ss::drift_params_with(" c=9, d=2 ", "c", 0.1), "d=2,c=0.1");
+    EXPECT_EQ(ss::drift_params_without("c=9,d", "c"), "d"); // kept for the parser to refuse
     const double expected_varied[] = {0.1, 0.1, 0.342, 0.342};
     const double expected_noise[] = {2, 4, 2, 4};
     for (std::size_t k = 0; k < 4; ++k) {
@@ -78,6 +80,7 @@ TEST(SweepVary, PointsAreValueMajorAndEachIsItsDiffusivityRun) {
     // The reports name the constant and give every point's value.
     const std::string table = ss::to_table(res), csv = ss::to_csv(res), json = ss::to_json(res);
     EXPECT_NE(table.find("c swept over 0.1, 0.342"), std::string::npos) << table;
+    EXPECT_EQ(table.find("c=9"), std::string::npos) << table; // the placeholder is not shown
     EXPECT_NE(csv.find("\nvaried,tau,noise,"), std::string::npos) << csv;
     EXPECT_NE(csv.find("\n0.342,0.5,4,"), std::string::npos) << csv;
     EXPECT_NE(json.find("\"vary\": \"c\""), std::string::npos);

@@ -35,7 +35,8 @@ public:
     static constexpr double work_per_second = 5e6;
     /// The setting that sets its resolution, which a long run may be blamed on.
     static constexpr const char* resolution_setting = "dt";
-    /// Whether the user chose the resolution (the automatic step is not a choice).
+    /// Whether a long run is blamed on the resolution before the model: never
+    /// for the step (the cause falls through to tau, friction, noise, then "dt").
     static bool resolution_chosen(const EngineSettings&) { return false; }
     /// The time quantum of its paths [s]: a leaf.
     double clock() const { return c_.leaf; }

@@ -34,7 +34,8 @@ public:
     static constexpr double work_per_second = 1.4e7;
     /// The setting that sets its resolution, which a long run may be blamed on.
     static constexpr const char* resolution_setting = "grid";
-    /// Whether the user chose the resolution: a lattice step other than the default.
+    /// Whether a long run is blamed on the resolution before the model: when
+    /// the lattice step is not the default one.
     static bool resolution_chosen(const EngineSettings& s) { return s.grid != EngineSettings{}.grid; }
     /// The time quantum of its paths [s]: none, the PDMP runs in continuous time.
     double clock() const { return 0.0; }
