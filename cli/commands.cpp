@@ -20,7 +20,6 @@
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/checkpoint.hpp"
 #include "stickslip/diffusivity.hpp"
-#include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
 #include "stickslip/sweep.hpp"
@@ -220,10 +219,9 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
 void sweep_progress(SweepRequest& req, bool quiet) {
     // A solved sweep counts points, not excursions (SweepRequest).
     if (!samples(req.engine)) req.control.progress = progress_line(quiet, "points solved (kolmogorov engine)");
-    req.point_progress = [quiet](std::size_t k, std::size_t n, double noise, double tau) {
-        return progress_line(quiet, "excursions (point " + std::to_string(k + 1) + "/" + std::to_string(n) +
-                                        ": noise " + number_text::general(noise) + ", tau " +
-                                        number_text::general(tau) + ")");
+    req.point_progress = [quiet](std::size_t k, std::size_t n, const std::string& point) {
+        return progress_line(quiet, "excursions (point " + std::to_string(k + 1) + "/" + std::to_string(n) + ": " +
+                                        point + ")");
     };
 }
 

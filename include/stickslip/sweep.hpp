@@ -31,6 +31,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "stickslip/diffusivity.hpp"
@@ -71,8 +72,9 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     /// The values of `vary` (in the constant's own units; sorted increasing
     /// in the result). Empty without --vary.
     std::vector<double> vary_values;
-    /// Optional: the progress callback for point k of n at (noise, tau).
-    std::function<std::function<bool(const Progress&)>(std::size_t k, std::size_t n, double noise, double tau)>
+    /// Optional: the progress callback for point k of n, `point` saying where
+    /// it is ("noise 2, tau 0.1"; with --vary "c 0.2, noise 2, tau 0.1").
+    std::function<std::function<bool(const Progress&)>(std::size_t k, std::size_t n, const std::string& point)>
         point_progress;
 };
 

@@ -385,9 +385,9 @@ SweepResult run_sweep(SweepRequest req, bool progress, const std::optional<std::
                       double checkpoint_every, const std::optional<std::string>& resume) {
     Monitor mon;
     req.control.progress_interval = 0.0;
-    req.point_progress = [&mon](std::size_t k, std::size_t n, double noise, double tau) {
-        return mon.callback("excursions (point " + std::to_string(k + 1) + "/" + std::to_string(n) + ": noise " +
-                            number_text::general(noise) + ", tau " + number_text::general(tau) + ")");
+    req.point_progress = [&mon](std::size_t k, std::size_t n, const std::string& point) {
+        return mon.callback("excursions (point " + std::to_string(k + 1) + "/" + std::to_string(n) + ": " + point +
+                            ")");
     };
     // A solved sweep (engine='kolmogorov') counts points, and checks for
     // Ctrl-C between them (SweepRequest).

@@ -10,6 +10,7 @@
 
 #include "core/format.hpp"
 #include "stickslip/drift_input.hpp"
+#include "stickslip/number_text.hpp"
 
 namespace stickslip {
 
@@ -163,7 +164,11 @@ SweepResult compute_sweep(const SweepRequest& req) {
             const std::size_t first = out.points.size();
             for (double noise : noises) {
                 DiffusivityRequest d = point_request(out.request, varied, noise, tau, k);
-                d.control.progress = req.point_progress ? req.point_progress(k, total, noise, tau) : nullptr;
+                d.control.progress =
+                    req.point_progress ? req.point_progress(k, total, varied_text(req, varied) + "noise " +
+                                                                         number_text::general(noise) + ", tau " +
+                                                                         number_text::general(tau))
+                                       : nullptr;
                 DiffusivityResult r;
                 try {
                     if (out.solved()) {
