@@ -10,7 +10,6 @@
 
 #include "core/format.hpp"
 #include "stickslip/drift_input.hpp"
-#include "stickslip/number_text.hpp"
 
 namespace stickslip {
 
@@ -23,15 +22,16 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
     return s;
 }
 
-/// "NAME X, ": the swept drift constant's value in a point's name ("" without --vary).
-std::string varied_text(const SweepRequest& req, double varied) {
-    return req.vary.empty() ? std::string() : req.vary + " " + detail::format_number(varied) + ", ";
+/// "noise N, tau T", or with --vary "NAME X, noise N, tau T": which point of
+/// a sweep (its progress line, and where a point failed).
+std::string point_text(const SweepRequest& req, double varied, double noise, double tau) {
+    return (req.vary.empty() ? std::string() : req.vary + " " + detail::format_number(varied) + ", ") + "noise " +
+           detail::format_number(noise) + ", tau " + detail::format_number(tau);
 }
 
 /// " [at noise N, tau T]": where in a sweep a point failed.
 std::string at_point(const SweepRequest& req, double varied, double noise, double tau) {
-    return " [at " + varied_text(req, varied) + "noise " + detail::format_number(noise) + ", tau " +
-           detail::format_number(tau) + "]";
+    return " [at " + point_text(req, varied, noise, tau) + "]";
 }
 
 constexpr std::size_t kMaxPoints = 1u << 16; // sweep_index_stride * kMaxPoints = 2^56 sample indices
@@ -120,9 +120,7 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
                     else out.engines.push_back(prepare(point));
                     if (point.params.has_drift_law()) make_drift_law(point.params, &out.laws.emplace_back());
                 } catch (const InvalidParameter& e) {
-                    const std::string where = " (at " + varied_text(req, c) + "noise " + detail::format_number(g) +
-                                              ", tau " + detail::format_number(t) + ")";
-                    throw InvalidParameter(e.parameter(), e.what() + where);
+                    throw InvalidParameter(e.parameter(), std::string(e.what()) + " (at " + point_text(req, c, g, t) + ")");
                 }
             }
     return out;
@@ -165,10 +163,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             for (double noise : noises) {
                 DiffusivityRequest d = point_request(out.request, varied, noise, tau, k);
                 d.control.progress =
-                    req.point_progress ? req.point_progress(k, total, varied_text(req, varied) + "noise " +
-                                                                         number_text::general(noise) + ", tau " +
-                                                                         number_text::general(tau))
-                                       : nullptr;
+                    req.point_progress ? req.point_progress(k, total, point_text(req, varied, noise, tau)) : nullptr;
                 DiffusivityResult r;
                 try {
                     if (out.solved()) {
