@@ -31,6 +31,11 @@
 //                                 uses (8 SIMD lanes with AVX-512 for coloured
 //                                 noise), 64 excursions per iteration; items =
 //                                 steps and refinement midpoints.
+//   BM_InclusionLanesCv, BM_EventLanesCv, BM_EventStepsCv, BM_PdmpEventsCv/<case>
+//                                 the same kernels with the control variate's
+//                                 martingale, as the runner calls them: the cost
+//                                 of its table lookup per step, side by side
+//                                 with the plain twins in one run.
 //   BM_InclusionLanes/white_dry_dt1e-2, BM_EventSteps/white_dry_dt1e-2 and
 //   .../white_dry_dt0.0625: white noise (friction 1, noise 1, tau 0,
 //                                 relaxation inf, bias 0); 0.0625 is the
@@ -224,9 +229,10 @@ ModelParams white_dry_params() {
 }
 
 // The same kernels with the control variate's martingale (kernels/corrector.hpp),
-// one excursion at a time as the runner calls them: their time per step against
-// the plain kernels' above, side by side in one run (the corrector is made once,
-// outside the timing).
+// as the runner calls them (the resolvent scheme in its SIMD lanes where the
+// plain kernel has them; the event scheme and the PDMP one excursion at a
+// time): their time per step against the plain kernels' above, side by side in
+// one run (the corrector is made once, outside the timing).
 void run_resolvent_cv(benchmark::State& state, const ModelParams& p, double dt) {
     const ResolventConstants c = resolvent_constants(p, dt);
     const auto g = make_corrector(p);
@@ -258,9 +264,14 @@ void run_pdmp_cv(benchmark::State& state, const ModelParams& p, double grid) {
     });
 }
 
-void BM_InclusionStepsCv_dry(benchmark::State& st) { run_resolvent_cv(st, dry_params(), 1e-3); }
+void BM_InclusionLanesCv_dry(benchmark::State& st) { run_resolvent_cv(st, dry_params(), 1e-3); }
+void BM_InclusionLanesCv_fig2(benchmark::State& st) { run_resolvent_cv(st, fig2_params(), 1e-4); }
 void BM_EventStepsCv_fig2_auto(benchmark::State& st) { run_event_cv(st, fig2_params(), 0.01675); }
-void BM_EventStepsCv_fig2(benchmark::State& st) { run_event_cv(st, fig2_params(), 1e-4); }
+void BM_EventLanesCv_fig2(benchmark::State& st) { run_event_cv(st, fig2_params(), 1e-4); }
+// Pure dry friction with tau = 0.5 s at the event scheme's automatic step
+// (tau/16): no drag, so the lanes run, with and without the martingale.
+void BM_EventLanes_dry_auto(benchmark::State& st) { run_event_lanes(st, dry_params(), 0.03125); }
+void BM_EventLanesCv_dry_auto(benchmark::State& st) { run_event_cv(st, dry_params(), 0.03125); }
 void BM_PdmpEventsCv_dry(benchmark::State& st) { run_pdmp_cv(st, dry_params(), 0.125); }
 
 void BM_EventSteps_fig2(benchmark::State& st) { run_event(st, fig2_params(), 1e-4); }
@@ -303,8 +314,11 @@ BENCHMARK(BM_EventLanes_fig2_auto)->Name("BM_EventLanes/fig2_dt0.01675")->Unit(b
 BENCHMARK(BM_InclusionLanes_white)->Name("BM_InclusionLanes/white_dry_dt1e-2")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_white)->Name("BM_EventSteps/white_dry_dt1e-2")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_white_auto)->Name("BM_EventSteps/white_dry_dt0.0625")->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_InclusionStepsCv_dry)->Name("BM_InclusionStepsCv/dry_dt1e-3")->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EventStepsCv_fig2)->Name("BM_EventStepsCv/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InclusionLanesCv_dry)->Name("BM_InclusionLanesCv/dry_dt1e-3")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InclusionLanesCv_fig2)->Name("BM_InclusionLanesCv/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventLanesCv_fig2)->Name("BM_EventLanesCv/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventLanes_dry_auto)->Name("BM_EventLanes/dry_dt0.03125")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventLanesCv_dry_auto)->Name("BM_EventLanesCv/dry_dt0.03125")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventStepsCv_fig2_auto)->Name("BM_EventStepsCv/fig2_dt0.01675")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PdmpEventsCv_dry)->Name("BM_PdmpEventsCv/dry_grid0.125")->Unit(benchmark::kMillisecond);
 

@@ -18,6 +18,7 @@
 #include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/random/rng.hpp"
 #include "stickslip/random/rng_batch.hpp"
+#include "arbitrary_corrector.hpp"
 
 namespace ss = stickslip;
 
@@ -75,6 +76,34 @@ int mismatches(const ss::EventConstants& c, std::uint64_t first, std::uint64_t c
     return bad;
 }
 
+// The control variate's kernel: the default entry point and the forced lanes
+// against event_long_excursion_with one at a time, M and Q included.
+int mismatches_with(const ss::EventConstants& c, std::uint64_t first, std::uint64_t count) {
+    const ss::test::ArbitraryCorrector corrector;
+    const ss::CorrectorTable g = corrector.table();
+    std::vector<ss::ExcursionOutcome> lanes(count), forced(count);
+    EXPECT_TRUE(ss::event_long_excursions_with(c, kSeed, first, count, lanes.data(), nullptr, g));
+    EXPECT_TRUE(ss::detail::event_long_excursions_in_lanes_with(c, kSeed, first, count, forced.data(), nullptr, g));
+    int bad = 0, nonzero = 0;
+    for (std::uint64_t i = 0; i < count; ++i) {
+        ss::CounterRng rng(kSeed, ss::StreamPurpose::LongExcursion, first + i);
+        ss::CounterRng ref(kSeed, ss::StreamPurpose::Refinement, first + i);
+        const ss::ExcursionOutcome o = ss::event_long_excursion_with(c, rng, ref, g);
+        for (const auto* l : {&lanes[i], &forced[i]}) {
+            const bool ok = same(o, *l) && same_bits(o.martingale, l->martingale) &&
+                            same_bits(o.martingale_qv, l->martingale_qv);
+            if (!ok && bad < 3)
+                ADD_FAILURE() << "excursion " << first + i << ": one at a time U = " << o.displacement << ", M = "
+                              << o.martingale << ", Q = " << o.martingale_qv << "; lanes U = " << l->displacement
+                              << ", M = " << l->martingale << ", Q = " << l->martingale_qv;
+            bad += ok ? 0 : 1;
+        }
+        nonzero += o.martingale_qv > 0.0 ? 1 : 0;
+    }
+    EXPECT_EQ(nonzero, static_cast<int>(count)) << "every excursion accumulates Q > 0";
+    return bad;
+}
+
 } // namespace
 
 TEST(EventLanes, BitwiseEqualToOneAtATimeOnTheFig2Case) {
@@ -111,6 +140,13 @@ TEST(EventLanes, CappedExcursionsMatchToo) {
     EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, 4000), 0, 64, &capped), 0);
     EXPECT_GT(capped, 10);
     EXPECT_LT(capped, 64);
+}
+
+TEST(EventLanes, MartingaleSumsBitwiseEqualToOneAtATime) {
+    EXPECT_EQ(mismatches_with(constants(ss::ModelParams{}, 1e-3), 0, 33), 0);
+    EXPECT_EQ(mismatches_with(constants(dry_params(0.1), 5e-2), (std::uint64_t{1} << 40) + 3, 30), 0);
+    EXPECT_EQ(mismatches_with(constants(dry_params(1.0), 1e-2), 11, 20), 0);
+    EXPECT_EQ(mismatches_with(constants(ss::ModelParams{}, 1e-3, 4000), 0, 17), 0); // capped
 }
 
 TEST(EventLanes, CancelStopsStartingExcursions) {

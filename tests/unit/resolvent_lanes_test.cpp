@@ -17,6 +17,7 @@
 #include "stickslip/kernels/resolvent.hpp"
 #include "stickslip/kernels/resolvent_lanes.hpp"
 #include "stickslip/random/rng.hpp"
+#include "arbitrary_corrector.hpp"
 
 namespace ss = stickslip;
 
@@ -79,6 +80,34 @@ ss::ResolventConstants constants(const ss::ModelParams& p, double dt, ss::StopRu
     return ss::make_resolvent_constants(p, s);
 }
 
+// The control variate's kernel: the default entry point and the forced lanes
+// against resolvent_long_excursion_with one at a time, M and Q included.
+int mismatches_with(const ss::ResolventConstants& c, std::uint64_t first, std::uint64_t count) {
+    const ss::test::ArbitraryCorrector corrector;
+    const ss::CorrectorTable g = corrector.table();
+    std::vector<ss::ExcursionOutcome> lanes(count), forced(count);
+    EXPECT_TRUE(ss::resolvent_long_excursions_with(c, kSeed, first, count, lanes.data(), nullptr, g));
+    EXPECT_TRUE(ss::detail::resolvent_long_excursions_in_lanes_with(c, kSeed, first, count, forced.data(), nullptr, g));
+    int bad = 0, nonzero = 0;
+    for (std::uint64_t i = 0; i < count; ++i) {
+        ss::CounterRng rng(kSeed, ss::StreamPurpose::LongExcursion, first + i);
+        const ss::ExcursionOutcome o = ss::resolvent_long_excursion_with(c, rng, g);
+        for (const ss::ExcursionOutcome* l : {&lanes[i], &forced[i]}) {
+            const bool same = same_bits(o.displacement, l->displacement) && same_bits(o.duration, l->duration) &&
+                              same_bits(o.martingale, l->martingale) && same_bits(o.martingale_qv, l->martingale_qv) &&
+                              o.work == l->work && o.capped == l->capped;
+            if (!same && bad < 3)
+                ADD_FAILURE() << "excursion " << first + i << ": one at a time U = " << o.displacement << ", M = "
+                              << o.martingale << ", Q = " << o.martingale_qv << "; lanes U = " << l->displacement
+                              << ", M = " << l->martingale << ", Q = " << l->martingale_qv;
+            bad += same ? 0 : 1;
+        }
+        nonzero += o.martingale_qv > 0.0 ? 1 : 0;
+    }
+    EXPECT_EQ(nonzero, static_cast<int>(count)) << "every excursion accumulates Q > 0";
+    return bad;
+}
+
 } // namespace
 
 TEST(ResolventLanes, BitwiseEqualToOneAtATimeBridgeRule) {
@@ -112,6 +141,17 @@ TEST(ResolventLanes, CappedExcursionsMatchToo) {
     EXPECT_EQ(mismatches(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge, 4000), 0, 64, &capped), 0);
     EXPECT_GT(capped, 10);
     EXPECT_LT(capped, 64);
+}
+
+TEST(ResolventLanes, MartingaleSumsBitwiseEqualToOneAtATime) {
+    EXPECT_EQ(mismatches_with(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge), 0, 41), 0);
+    EXPECT_EQ(mismatches_with(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Stuck), 9, 23), 0);
+    EXPECT_EQ(mismatches_with(constants(dry_params(), 2e-2, ss::StopRule::Bridge), (std::uint64_t{1} << 40) + 3, 30),
+              0);
+    EXPECT_EQ(mismatches_with(constants(ss::ModelParams{}, 1e-3, ss::StopRule::Bridge, 4000), 0, 17), 0); // capped
+    ss::ModelParams white = dry_params();
+    white.tau = 0.0;
+    EXPECT_EQ(mismatches_with(constants(white, 1e-3, ss::StopRule::Auto), 5, 12), 0);
 }
 
 TEST(ResolventLanes, CancelStopsStartingExcursions) {

@@ -52,8 +52,9 @@ bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uin
                            ExcursionOutcome* out, const std::atomic<bool>* cancel = nullptr);
 
 /// event_long_excursions (coloured noise) with the martingale of the
-/// corrector g in each outcome (event_long_excursion_with), one excursion at
-/// a time: U and t bitwise those of event_long_excursions.
+/// corrector g in each outcome: bitwise what event_long_excursion_with
+/// returns, in SIMD lanes where event_long_excursions runs them (each lane
+/// keeps its own M and Q); U and t bitwise those of event_long_excursions.
 bool event_long_excursions_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
                                 std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
                                 const CorrectorTable& g);
@@ -64,6 +65,11 @@ namespace detail {
 bool event_long_excursions_in_lanes(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
                                     std::uint64_t count, ExcursionOutcome* out,
                                     const std::atomic<bool>* cancel = nullptr);
+/// event_long_excursions_with with the lanes forced on any machine (white
+/// noise one excursion at a time), for the same tests.
+bool event_long_excursions_in_lanes_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                         std::uint64_t count, ExcursionOutcome* out,
+                                         const std::atomic<bool>* cancel, const CorrectorTable& g);
 } // namespace detail
 
 } // namespace stickslip

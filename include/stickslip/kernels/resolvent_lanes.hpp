@@ -20,6 +20,9 @@
 // CounterRng (tests/unit/resolvent_lanes_test.cpp), on any instruction set:
 // the file is compiled with -ffp-contract=off, once per x86-64 level.
 //
+// With a corrector (the control variate, kernels/corrector.hpp) each lane also
+// sums its martingale M and Q, step by step as the one-excursion kernel does.
+//
 // Colored noise only; white noise runs the one-excursion kernel, and so does
 // every machine where the lane step is not vectorised (it is for AVX-512 with
 // GCC 12; AVX2 and older x86-64 get the one-excursion kernel). Host only.
@@ -51,8 +54,9 @@ bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, 
                                const std::atomic<bool>* cancel = nullptr);
 
 /// resolvent_long_excursions with the martingale of the corrector g in each
-/// outcome (resolvent_long_excursion_with), one excursion at a time: U and t
-/// bitwise those of resolvent_long_excursions.
+/// outcome: bitwise what resolvent_long_excursion_with returns, in SIMD lanes
+/// where resolvent_long_excursions runs them (each lane keeps its own M and
+/// Q); U and t bitwise those of resolvent_long_excursions.
 bool resolvent_long_excursions_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                     std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
                                     const CorrectorTable& g);
@@ -73,6 +77,11 @@ namespace detail {
 bool resolvent_long_excursions_in_lanes(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
                                         std::uint64_t count, ExcursionOutcome* out,
                                         const std::atomic<bool>* cancel = nullptr);
+/// resolvent_long_excursions_with with the lanes forced on any machine (white
+/// noise and a knots law run one excursion at a time), for the same tests.
+bool resolvent_long_excursions_in_lanes_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                             std::uint64_t count, ExcursionOutcome* out,
+                                             const std::atomic<bool>* cancel, const CorrectorTable& g);
 } // namespace detail
 
 } // namespace stickslip

@@ -76,6 +76,9 @@ struct LaneGroup {
     alignas(64) std::int64_t steps[L];      ///< (signed: AVX2 compares signed 64-bit integers only)
     alignas(64) std::int64_t midpoints[L];
     alignas(64) std::int64_t attention[L];  ///< 1: the lane's step is left to the scalar kernel
+    alignas(64) double mart[L];             ///< the martingale M so far (with a corrector) [m]
+    alignas(64) double mart_qv[L];          ///< its Q so far [m^2]
+    alignas(64) double corrector[L];        ///< g at the start of the step
     alignas(64) double z[2][B][L];
     alignas(64) double side[2][B][L];       ///< side normal and uniform, where side_filled
     bool side_filled[L];
@@ -88,12 +91,17 @@ struct LaneGroup {
     bool active[L];
 };
 
+/// Martingale: NoMartingale (the plain kernel) or MartingaleSums (the sums of
+/// the corrector in it, kernels/corrector.hpp), accumulated per lane exactly
+/// as event_step_with does, so the outcomes' M and Q are bitwise
+/// event_long_excursion_with's too.
+template <class Martingale>
 class LaneRunner {
 public:
     LaneRunner(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
-               ExcursionOutcome* out, const std::atomic<bool>* cancel)
+               ExcursionOutcome* out, const std::atomic<bool>* cancel, const Martingale& mart = Martingale{})
         : c_(c), q_(quiet_constants(c)), seed_(seed), key_(CounterRng::make_key(seed)), first_(first), out_(out),
-          dealer_(count, cancel) {}
+          dealer_(count, cancel), mart_(mart) {}
 
     bool run() {
         int live = 0;
@@ -179,6 +187,8 @@ private:
         EventWalk w;
         event_start_half(c_, w, +1);
         store(l, w);
+        g_.mart[l] = 0.0;
+        g_.mart_qv[l] = 0.0;
         detail::start_lane_stream(g_, key_, l, first_ + g_.slot[l], phase);
         g_.side_filled[l] = false; // (a new stream: nothing of it is filled)
         return true;
@@ -188,6 +198,8 @@ private:
     /// run() skips inactive lanes, so it only computes values nobody reads.
     void park(int l) {
         store(l, EventWalk{});
+        g_.mart[l] = 0.0;
+        g_.mart_qv[l] = 0.0;
         g_.side_filled[l] = true; // (never needs a side draw)
         for (int h = 0; h < 2; ++h)
             for (int i = 0; i < B; ++i) g_.z[h][i][l] = g_.side[h][i][l] = 0.0;
@@ -203,6 +215,12 @@ private:
         // A local copy: the stores to g_ below cannot alias it, so the
         // constants stay in registers and the loop vectorises.
         const QuietStepConstants q = q_;
+        if constexpr (Martingale::active) {
+            // g at the steps' starts, one lane at a time: a loop of its own,
+            // so that the step's loop below still vectorises.
+            const CorrectorTable g = mart_.g;
+            for (int l = 0; l < L; ++l) g_.corrector[l] = g(g_.x[l], g_.v[l]);
+        }
         ColoredSlideLaw law{};
         for (int i = 0; i < 3; ++i) {
             law.g[i] = q.g[i];
@@ -240,6 +258,12 @@ private:
             g_.u[l] = flag ? u0 : un;
             g_.t[l] += flag ? 0 : q.leaves;
             g_.steps[l] += 1 - flag;
+            if constexpr (Martingale::active) { // a whole step: event_step_with's growth and variance
+                const double gv = g_.corrector[l];
+                const double xi = q.x_grow * xn - x0;
+                g_.mart[l] = flag ? g_.mart[l] : g_.mart[l] + gv * xi;
+                g_.mart_qv[l] = flag ? g_.mart_qv[l] : g_.mart_qv[l] + (gv * gv) * q.spread;
+            }
         }
         std::int64_t any = 0; // (a reduction inside the loop above keeps it from vectorising)
         for (int l = 0; l < L; ++l) any |= g_.attention[l];
@@ -252,8 +276,18 @@ private:
         EventWalk w = walk_of(l);
         LaneStepRng rng{g_.z[0][p][l], g_.z[1][p][l], g_.side_filled[l], g_.side[0][p][l], g_.side[1][p][l],
                         &key_, g_.c2[l], g_.c3[l], g_.base[l] + static_cast<std::uint64_t>(p)};
-        NoPieceObserver none;
-        const EventStatus st = event_colored_step(c_, w, 0, rng, *ref_[l], none);
+        EventStatus st;
+        if constexpr (Martingale::active) {
+            Martingale mart = mart_;
+            mart.m = g_.mart[l];
+            mart.q = g_.mart_qv[l];
+            st = event_step_with(c_, w, rng, *ref_[l], mart);
+            g_.mart[l] = mart.m;
+            g_.mart_qv[l] = mart.q;
+        } else {
+            NoPieceObserver none;
+            st = event_colored_step(c_, w, 0, rng, *ref_[l], none);
+        }
         store(l, w);
         if (st == EventStatus::Running) return true;
         if (st == EventStatus::HalfDone && w.dir > 0) {
@@ -262,7 +296,12 @@ private:
             store(l, w);
             return true;
         }
-        out_[g_.slot[l]] = event_walk_outcome(c_, w, st == EventStatus::Capped);
+        ExcursionOutcome& o = out_[g_.slot[l]];
+        o = event_walk_outcome(c_, w, st == EventStatus::Capped);
+        if constexpr (Martingale::active) {
+            o.martingale = g_.mart[l];
+            o.martingale_qv = g_.mart_qv[l];
+        }
         return load(l, p + 1);
     }
 
@@ -273,6 +312,7 @@ private:
     const std::uint64_t first_;
     ExcursionOutcome* const out_;
     detail::LaneDealer dealer_;
+    const Martingale mart_; ///< the corrector (its sums unused: each lane keeps its own)
     LaneGroup g_{};
     std::optional<BatchedCounterRng> ref_[L]; ///< each lane's refinement stream
 };
@@ -282,7 +322,13 @@ private:
 STICKSLIP_X86_CLONES_FLATTEN
 bool run_lanes(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                ExcursionOutcome* out, const std::atomic<bool>* cancel) {
-    return LaneRunner(c, seed, first, count, out, cancel).run();
+    return LaneRunner<NoMartingale>(c, seed, first, count, out, cancel).run();
+}
+
+STICKSLIP_X86_CLONES_FLATTEN
+bool run_lanes_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                    ExcursionOutcome* out, const std::atomic<bool>* cancel, const CorrectorTable& g) {
+    return LaneRunner<MartingaleSums>(c, seed, first, count, out, cancel, MartingaleSums{g}).run();
 }
 
 bool one_at_a_time(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
@@ -296,11 +342,8 @@ bool one_at_a_time(const EventConstants& c, std::uint64_t seed, std::uint64_t fi
     return true;
 }
 
-} // namespace
-
-bool event_long_excursions_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
-                                std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
-                                const CorrectorTable& g) {
+bool one_at_a_time_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                        ExcursionOutcome* out, const std::atomic<bool>* cancel, const CorrectorTable& g) {
     for (std::uint64_t i = 0; i < count; ++i) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return false;
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
@@ -310,8 +353,9 @@ bool event_long_excursions_with(const EventConstants& c, std::uint64_t seed, std
     return true;
 }
 
-bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
-                           ExcursionOutcome* out, const std::atomic<bool>* cancel) {
+/// Whether the lanes run: where they are vectorised and the step is short
+/// enough for most steps to be quiet.
+bool lanes_pay(const EventConstants& c) {
     // With drag, many steps longer than relaxation/16 are not quiet, and a
     // lane whose step is not pays for the vector step too: on the Fig. 2 case,
     // 22% of the steps fail a quiet test at relaxation/16 (3.3% refine), 63%
@@ -322,8 +366,21 @@ bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uin
     // at relaxation/8, relaxation/4 (the automatic step). Without drag the
     // lanes win at every step measured (1.55, 1.19, 1.05 at tau/100, tau/10,
     // tau/2).
-    if (!resolvent_lanes_vectorised() || !(c.h <= c.relaxation / 16.0))
-        return one_at_a_time(c, seed, first, count, out, cancel);
+    return resolvent_lanes_vectorised() && c.h <= c.relaxation / 16.0;
+}
+
+} // namespace
+
+bool event_long_excursions_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
+                                const CorrectorTable& g) {
+    if (!lanes_pay(c)) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
+    return detail::event_long_excursions_in_lanes_with(c, seed, first, count, out, cancel, g);
+}
+
+bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                           ExcursionOutcome* out, const std::atomic<bool>* cancel) {
+    if (!lanes_pay(c)) return one_at_a_time(c, seed, first, count, out, cancel);
     return detail::event_long_excursions_in_lanes(c, seed, first, count, out, cancel);
 }
 
@@ -332,6 +389,13 @@ bool detail::event_long_excursions_in_lanes(const EventConstants& c, std::uint64
                                             const std::atomic<bool>* cancel) {
     if (c.white) return one_at_a_time(c, seed, first, count, out, cancel);
     return run_lanes(c, seed, first, count, out, cancel);
+}
+
+bool detail::event_long_excursions_in_lanes_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                                 std::uint64_t count, ExcursionOutcome* out,
+                                                 const std::atomic<bool>* cancel, const CorrectorTable& g) {
+    if (c.white) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
+    return run_lanes_with(c, seed, first, count, out, cancel, g);
 }
 
 } // namespace stickslip

@@ -34,6 +34,9 @@ struct LaneGroup {
     alignas(64) std::int64_t steps[L];      ///< (signed: AVX2 compares signed 64-bit integers only)
     alignas(64) std::int64_t prev_stuck[L]; ///< rule P: 1 or 0
     alignas(64) std::int64_t attention[L];  ///< 1: the lane's step is left to the scalar kernel
+    alignas(64) double mart[L];             ///< the martingale M so far (with a corrector) [m]
+    alignas(64) double mart_qv[L];          ///< its Q so far [m^2]
+    alignas(64) double corrector[L];        ///< g at the start of the step
     alignas(64) double z[2][B][L];
     std::uint64_t first_half[L];
     std::uint64_t slot[L];
@@ -42,12 +45,16 @@ struct LaneGroup {
     bool active[L];
 };
 
-template <StepKind K>
+/// Martingale: NoMartingale (the plain kernel) or MartingaleSums (the sums of
+/// the corrector in it, kernels/corrector.hpp), accumulated per lane exactly
+/// as resolvent_walk_step_as does, so the outcomes' M and Q are bitwise
+/// resolvent_long_excursion_with's too.
+template <StepKind K, class Martingale>
 class LaneRunner {
 public:
     LaneRunner(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
-               ExcursionOutcome* out, const std::atomic<bool>* cancel)
-        : c_(c), key_(CounterRng::make_key(seed)), first_(first), out_(out), dealer_(count, cancel) {}
+               ExcursionOutcome* out, const std::atomic<bool>* cancel, const Martingale& mart = Martingale{})
+        : c_(c), key_(CounterRng::make_key(seed)), first_(first), out_(out), dealer_(count, cancel), mart_(mart) {}
 
     bool run() {
         int live = 0;
@@ -90,6 +97,8 @@ private:
             return false;
         }
         g_.vsum[l] = 0.0;
+        g_.mart[l] = 0.0;
+        g_.mart_qv[l] = 0.0;
         g_.steps[l] = 0;
         g_.first_half[l] = 0;
         start_half(l, +1);
@@ -104,6 +113,8 @@ private:
         g_.x[l] = 0.0;
         g_.v[l] = 1.0;
         g_.vsum[l] = 0.0;
+        g_.mart[l] = 0.0;
+        g_.mart_qv[l] = 0.0;
         g_.steps[l] = 0;
         g_.prev_stuck[l] = 0;
         g_.dir[l] = 1.0;
@@ -122,6 +133,14 @@ private:
         const ResolventConstants c = c_;
         const double band = c.h_friction, xd = c.x_down, xu = c.x_up, rate = c.bridge_rate;
         const auto cap = static_cast<std::int64_t>(c.max_steps);
+        if constexpr (Martingale::active) {
+            // g at the steps' starts, one lane at a time: a loop of its own,
+            // so that the step's loop below still vectorises (GCC does not
+            // if-convert the table lookup, and its gathers, emulated for
+            // generic tuning, made it no faster: measured in bench/).
+            const CorrectorTable g = mart_.g;
+            for (int l = 0; l < L; ++l) g_.corrector[l] = g(g_.x[l], g_.v[l]);
+        }
         std::int64_t any = 0;
 #if !defined(__clang__) // GCC's no-dependence hint; clang vectorizes this loop without it
 #pragma GCC ivdep
@@ -154,6 +173,12 @@ private:
             g_.v[l] = flag ? v0 : vn;
             g_.vsum[l] = flag ? g_.vsum[l] : g_.vsum[l] + v0;
             g_.steps[l] += 1 - flag;
+            if constexpr (Martingale::active) { // X's exact innovation, as resolvent_walk_step_as
+                const double gv = g_.corrector[l];
+                const double xi = c.ou.l21 * z1 + c.ou.l22 * z2;
+                g_.mart[l] = flag ? g_.mart[l] : g_.mart[l] + gv * xi;
+                g_.mart_qv[l] = flag ? g_.mart_qv[l] : g_.mart_qv[l] + (gv * gv) * c.ou.s22;
+            }
         }
         return any != 0;
     }
@@ -172,7 +197,16 @@ private:
         LaneStepRng rng{g_.z[0][p][l], g_.z[1][p][l], &key_, g_.c2[l], g_.c3[l],
                         g_.base[l] + static_cast<std::uint64_t>(p)};
         NoPathObserver none;
-        const WalkStatus st = resolvent_walk_step_as<K>(c_, w, rng, none);
+        Martingale mart = mart_;
+        if constexpr (Martingale::active) {
+            mart.m = g_.mart[l];
+            mart.q = g_.mart_qv[l];
+        }
+        const WalkStatus st = resolvent_walk_step_as<K>(c_, w, rng, none, mart);
+        if constexpr (Martingale::active) {
+            g_.mart[l] = mart.m;
+            g_.mart_qv[l] = mart.q;
+        }
         g_.x[l] = w.x;
         g_.v[l] = w.v;
         g_.vsum[l] = w.vsum;
@@ -184,7 +218,12 @@ private:
             start_half(l, -1);
             return true;
         }
-        out_[g_.slot[l]] = resolvent_walk_outcome(c_, w, st == WalkStatus::Capped);
+        ExcursionOutcome& o = out_[g_.slot[l]];
+        o = resolvent_walk_outcome(c_, w, st == WalkStatus::Capped);
+        if constexpr (Martingale::active) {
+            o.martingale = mart.m;
+            o.martingale_qv = mart.q;
+        }
         return load(l, p + 1);
     }
 
@@ -193,6 +232,7 @@ private:
     const std::uint64_t first_;
     ExcursionOutcome* const out_;
     detail::LaneDealer dealer_;
+    const Martingale mart_; ///< the corrector (its sums unused: each lane keeps its own)
     LaneGroup g_{};
 };
 
@@ -202,15 +242,28 @@ private:
 STICKSLIP_X86_CLONES_FLATTEN
 bool run_lanes_bridge(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                       ExcursionOutcome* out, const std::atomic<bool>* cancel) {
-    return LaneRunner<StepKind::ColoredBridge>(c, seed, first, count, out, cancel).run();
+    return LaneRunner<StepKind::ColoredBridge, NoMartingale>(c, seed, first, count, out, cancel).run();
 }
 
 STICKSLIP_X86_CLONES_FLATTEN
 bool run_lanes_stuck(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                      ExcursionOutcome* out, const std::atomic<bool>* cancel) {
-    return LaneRunner<StepKind::ColoredStuck>(c, seed, first, count, out, cancel).run();
+    return LaneRunner<StepKind::ColoredStuck, NoMartingale>(c, seed, first, count, out, cancel).run();
 }
 
+STICKSLIP_X86_CLONES_FLATTEN
+bool run_lanes_bridge_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                           ExcursionOutcome* out, const std::atomic<bool>* cancel, const CorrectorTable& g) {
+    return LaneRunner<StepKind::ColoredBridge, MartingaleSums>(c, seed, first, count, out, cancel, MartingaleSums{g})
+        .run();
+}
+
+STICKSLIP_X86_CLONES_FLATTEN
+bool run_lanes_stuck_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                          ExcursionOutcome* out, const std::atomic<bool>* cancel, const CorrectorTable& g) {
+    return LaneRunner<StepKind::ColoredStuck, MartingaleSums>(c, seed, first, count, out, cancel, MartingaleSums{g})
+        .run();
+}
 
 bool one_at_a_time(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
                    ExcursionOutcome* out, const std::atomic<bool>* cancel) {
@@ -222,17 +275,23 @@ bool one_at_a_time(const ResolventConstants& c, std::uint64_t seed, std::uint64_
     return true;
 }
 
-} // namespace
-
-bool resolvent_long_excursions_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
-                                    std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
-                                    const CorrectorTable& g) {
+bool one_at_a_time_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first, std::uint64_t count,
+                        ExcursionOutcome* out, const std::atomic<bool>* cancel, const CorrectorTable& g) {
     for (std::uint64_t i = 0; i < count; ++i) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return false;
         BatchedCounterRng rng(seed, StreamPurpose::LongExcursion, first + i);
         out[i] = resolvent_long_excursion_with(c, rng, g);
     }
     return true;
+}
+
+} // namespace
+
+bool resolvent_long_excursions_with(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
+                                    std::uint64_t count, ExcursionOutcome* out, const std::atomic<bool>* cancel,
+                                    const CorrectorTable& g) {
+    if (!resolvent_lanes_vectorised()) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
+    return detail::resolvent_long_excursions_in_lanes_with(c, seed, first, count, out, cancel, g);
 }
 
 bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, std::uint64_t first,
@@ -247,6 +306,14 @@ bool detail::resolvent_long_excursions_in_lanes(const ResolventConstants& c, std
     if (c.white || c.knots_law) return one_at_a_time(c, seed, first, count, out, cancel);
     return c.rule == StopRule::Bridge ? run_lanes_bridge(c, seed, first, count, out, cancel)
                                       : run_lanes_stuck(c, seed, first, count, out, cancel);
+}
+
+bool detail::resolvent_long_excursions_in_lanes_with(const ResolventConstants& c, std::uint64_t seed,
+                                                     std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
+                                                     const std::atomic<bool>* cancel, const CorrectorTable& g) {
+    if (c.white || c.knots_law) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
+    return c.rule == StopRule::Bridge ? run_lanes_bridge_with(c, seed, first, count, out, cancel, g)
+                                      : run_lanes_stuck_with(c, seed, first, count, out, cancel, g);
 }
 
 bool resolvent_lanes_vectorised() {
