@@ -16,9 +16,11 @@ excursions whose 95% half-width plus the step's bias allowance is the target
 scaled). The Kolmogorov engine has no noise: its estimated discretisation
 error is its total error, and its time is measured at that target.
 
-  /usr/bin/python3 scripts/validation/time_to_error.py build/stickslip \\
+  /usr/bin/python3 scripts/validation/time_to_error.py \\
       [--target 0.003] [--bias 0.0017] [--excursions 20000] [--rounds 3] \\
-      [--json out.json] [-- extra model flags]
+      [--json out.json] build/stickslip
+  /usr/bin/python3 scripts/validation/time_to_error.py --bias 0.0008 \\
+      -- build/stickslip --dt 0.008      # extra flags for the Monte Carlo runs
 
 `--bias` is the step's relative bias allowed for at the automatic step (the
 Fig. 2 case: +0.17%, a straight line through docs/validation.md's table
@@ -51,7 +53,7 @@ def main():
     ap.add_argument("--excursions", type=int, default=20000, help="excursions of each Monte Carlo run")
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--json", help="write every run here")
-    ap.add_argument("model", nargs="*", help="model flags after --, e.g. -- --tau 0.1")
+    ap.add_argument("model", nargs="*", help="flags of every run, after the binary: -- build/stickslip --tau 0.1")
     a = ap.parse_args()
     if not 0 <= a.bias < a.target:
         sys.exit("time_to_error.py: --bias must be in [0, --target)")

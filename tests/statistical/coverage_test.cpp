@@ -75,7 +75,8 @@ Coverage measure(const ss::ModelParams& p, double dt, std::uint64_t n, int runs,
 // the CLI on 1000 other seeds (docs/validation.md, "Interval coverage"): the
 // relative-error interval covers 93.6 +- 0.8% (misses 36 below, 28 above), the
 // old symmetric one 92.6% (55 below, 19 above); here, plain, 946 (28/26) against 938
-// (45/17); with the control variate (the default) 949 (27/24) against 948 (28/24). Binomial sd of the count at 94%: 7.5, so 920-980 leaves about 3 sd
+// (45/17); with the control variate (the default, second-order sums) 950 (28/22) against 951 (29/20);
+// Binomial sd of the count at 94%: 7.5, so 920-980 leaves about 3 sd
 // below. Each side must hold at least a quarter of the misses: about 45% are
 // above here, so this is 3 sd from failing (the symmetric interval, at 27%,
 // would scrape through: the gain is checked in the test below). About 2e6
@@ -100,15 +101,16 @@ TEST(IntervalCoverage, DiffusivityIsNominalAt2000ExcursionsWithDrag) {
 // an order-6 skewness correction or a bootstrap-t over the 64-excursion
 // blocks stays below 93%). Plain, here: 451 of 500 (38 below, 11 above)
 // against 438 (61/1) for the symmetric interval. With the control variate (the
-// default; the resolvent scheme has one for white noise): 460 (11/29) against
-// 462 (14/24), and on 1000 other seeds with the Python module 91.1% (36/53):
+// default; the resolvent scheme has one for white noise, second-order sums):
+// 468 (8/24) against 468 (11/21), and on 1000 other seeds with the CLI 92.2%
+// (31/47):
 // its estimate is no longer skewed, so both intervals miss on both sides. This
 // guards the measured level and what holds anyway: misses on both sides, a
 // positive lower bound, no more misses below than the symmetric interval.
 TEST(IntervalCoverage, DiffusivityWithoutDragIsAsMeasured) {
     const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 0, .relaxation = inf, .bias = 0};
     const Coverage c = measure(p, 1e-2, 2000, 500, 2000001);
-    EXPECT_GE(c.covered(), 430); // 86%, about 3 sd below the measured 89.1% (plain) and 91.1% (control variate)
+    EXPECT_GE(c.covered(), 430); // 86%, about 3 sd below the measured 89.1% (plain) and 92.2% (control variate)
     EXPECT_LE(c.covered(), 490);
     EXPECT_GT(c.above, 0);
     EXPECT_LE(c.below, c.below_sym);
@@ -118,10 +120,10 @@ TEST(IntervalCoverage, DiffusivityWithoutDragIsAsMeasured) {
 // The control variate's case (theory.md, section 12): coloured noise without
 // drag, tau' = 0.1, the resolvent scheme at dt = 1e-2 s; the control variate
 // removes 60-80 times the variance, but the interval at 2000 excursions still
-// covers below nominal (measured on seeds 1..1000 with the Python module:
-// 89.6% (63 below, 41 above) against the pooled control-variate D; the plain
-// estimator 90.9% against the pooled plain D). Guarded as measured: misses on
-// both sides, at least 86%.
+// covers below nominal (measured on seeds 1..1000 with the CLI: 90.6% (59
+// below, 35 above) against the pooled control-variate D, second-order sums;
+// the plain estimator 90.9% against the pooled plain D; here 439 of 500 (46
+// below, 15 above)). Guarded as measured: misses on both sides, at least 86%.
 TEST(IntervalCoverage, ColouredWithoutDragWithTheControlVariateIsAsMeasured) {
     const ss::ModelParams p{.friction = 1, .noise = 1, .tau = 0.1, .relaxation = inf, .bias = 0};
     const Coverage c = measure(p, 1e-2, 2000, 500, 3000001);

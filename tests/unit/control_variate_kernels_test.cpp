@@ -197,7 +197,7 @@ TEST(ControlVariateKernels, ResolventColouredBothRules) {
         const ss::ResolventConstants c = ss::make_resolvent_constants(p, s);
         const double vr = check(rule == ss::StopRule::Bridge ? "resolvent, rule Q" : "resolvent, rule P",
                                 resolvent_samples(c, g->table, 6000));
-        EXPECT_GT(vr, 10.0);
+        EXPECT_GT(vr, 20.0); // the target; measured 34.7 (Q), 33.0 (P)
     }
 }
 
@@ -205,7 +205,7 @@ TEST(ControlVariateKernels, ResolventWhiteNoise) {
     const ss::ModelParams p = pure_dry(0.0);
     const auto g = ss::make_corrector(p);
     const ss::ResolventConstants c = ss::make_resolvent_constants(p, ss::fixed_step_settings(ss::Scheme::Resolvent, 0.002));
-    EXPECT_GT(check("resolvent, white noise", resolvent_samples(c, g->table, 6000)), 5.0);
+    EXPECT_GT(check("resolvent, white noise", resolvent_samples(c, g->table, 6000)), 20.0); // measured 68.2
 }
 
 TEST(ControlVariateKernels, EventSchemeWithRefinements) {
@@ -214,11 +214,13 @@ TEST(ControlVariateKernels, EventSchemeWithRefinements) {
     const auto g = ss::make_corrector(p);
     const ss::EventConstants c =
         ss::make_event_constants(p, ss::fixed_step_settings(ss::Scheme::Event, ss::auto_time_step(p, ss::Scheme::Event)));
-    EXPECT_GT(check("event scheme, Fig. 2 case", event_samples(c, g->table, 6000)), 10.0);
+    // The target, 20; measured 33.5 on these excursions (21.4 without
+    // the second-order term, kernels/corrector.hpp, which this guards).
+    EXPECT_GT(check("event scheme, Fig. 2 case", event_samples(c, g->table, 6000)), 20.0);
     const ss::ModelParams q = pure_dry(0.1);
     const auto gq = ss::make_corrector(q);
     const ss::EventConstants cq = ss::make_event_constants(q, ss::fixed_step_settings(ss::Scheme::Event, 0.01));
-    EXPECT_GT(check("event scheme, pure dry friction tau' = 0.1", event_samples(cq, gq->table, 6000)), 10.0);
+    EXPECT_GT(check("event scheme, pure dry friction tau' = 0.1", event_samples(cq, gq->table, 6000)), 20.0); // measured 43.8
 }
 
 TEST(ControlVariateKernels, PdmpCompensatedJumps) {

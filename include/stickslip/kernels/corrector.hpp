@@ -24,6 +24,18 @@
 // (the same martingale scaled by the constant e^{-h/tau}). White noise: the
 // innovation is the Brownian increment of V, sqrt(noise h) z.
 //
+// The second-order term. g fixed at a step's start misses how chi_x changes
+// along the step; Ito's formula for chi over a step also has the term
+// (1/2) chi_xx ((dX)^2 - its mean), the larger part of what a first-order
+// sum leaves at coarse steps (most steps of the Fig. 2 case are stuck, where
+// X alone moves). Each step therefore adds c (xi^2 - var) with c = g_x / 2,
+// the table's slope in x (white noise: in v), also fixed before the step: its
+// mean is 0 by optional stopping, so M stays an exact martingale. Q adds each
+// increment's square less g^2 (xi^2 - var), a term of mean 0, so that
+// E[M^2 - Q] = 0 holds for any step, cut short or not, Gaussian or not
+// (theory.md, section 12). Measured: the Fig. 2 factor at the event scheme's
+// automatic step 19x -> 34x, the driven case 62x -> 150x (docs/validation.md).
+//
 // g is a table (CorrectorTable), built once per run from a coarse solve of
 // the Kolmogorov equations (coloured noise) or the one-dimensional closed form
 // (white noise) by make_corrector (corrector.hpp at the top level); the
@@ -60,12 +72,31 @@ struct CorrectorTable {
 
     /// g at the state (x [s^-1/2], v [m/s]).
     STICKSLIP_HD double operator()(double x, double v) const {
-        if (v == 0.0 && stuck) return line(stuck, ns, (x - s_first) * inv_ds);
+        double slope;
+        return value_and_slope(x, v, slope);
+    }
+
+    /// g at the state (x [s^-1/2], v [m/s]), and in `slope` its derivative
+    /// in x [m s] (white noise, nx == 1: in v [s^2/m]) on the
+    /// cell or stuck-line segment of the state: the interpolation's own slope.
+    STICKSLIP_HD double value_and_slope(double x, double v, double& slope) const {
+        if (v == 0.0 && stuck) {
+            const double q = clamp((x - s_first) * inv_ds, ns);
+            int i = static_cast<int>(q);
+            if (i > ns - 2) i = ns - 2;
+            const double rise = stuck[i + 1] - stuck[i];
+            slope = rise * inv_ds;
+            return stuck[i] + (q - i) * rise;
+        }
         const double pv = clamp((v - v_first) * inv_dv, nv);
         int k = static_cast<int>(pv);
         if (k > nv - 2) k = nv - 2;
         const double fv = pv - k;
-        if (nx == 1) return slide[k] + fv * (slide[k + 1] - slide[k]);
+        if (nx == 1) {
+            const double rise = slide[k + 1] - slide[k];
+            slope = rise * inv_dv;
+            return slide[k] + fv * rise;
+        }
         const double px = clamp((x - x_first) * inv_dx, nx);
         int i = static_cast<int>(px);
         if (i > nx - 2) i = nx - 2;
@@ -74,6 +105,7 @@ struct CorrectorTable {
         const double* r1 = r0 + nv;
         const double a = r0[0] + fv * (r0[1] - r0[0]);
         const double b = r1[0] + fv * (r1[1] - r1[0]);
+        slope = (b - a) * inv_dx;
         return a + fx * (b - a);
     }
 
@@ -82,13 +114,6 @@ private:
     STICKSLIP_HD static double clamp(double p, int n) {
         const double hi = static_cast<double>(n - 1);
         return p > 0.0 ? (p < hi ? p : hi) : 0.0;
-    }
-    /// Linear interpolation on a line of n nodes at fractional position p.
-    STICKSLIP_HD static double line(const double* y, int n, double p) {
-        const double q = clamp(p, n);
-        int i = static_cast<int>(q);
-        if (i > n - 2) i = n - 2;
-        return y[i] + (q - i) * (y[i + 1] - y[i]);
     }
 };
 
@@ -101,8 +126,9 @@ struct NoMartingale {
     STICKSLIP_HD void add(double /*x*/, double /*v*/, double /*xi*/, double /*var*/) {}
 };
 
-/// The martingale sums of one long excursion: M = sum g(X_n, V_n) xi_n [m] and
-/// Q = sum g(X_n, V_n)^2 var_n [m^2], with xi_n the step's innovation and var_n
+/// The martingale sums of one long excursion: M = sum (g_n xi_n + c_n (xi_n^2 -
+/// var_n)) [m] and Q = sum (g_n^2 var_n + its second-order part) [m^2], with
+/// g_n = g(X_n, V_n), c_n half its slope, xi_n the step's innovation and var_n
 /// its variance (see the top of this header).
 struct MartingaleSums {
     /// Whether the kernel should accumulate.
@@ -110,12 +136,28 @@ struct MartingaleSums {
     CorrectorTable g; ///< the corrector
     double m = 0.0;   ///< M so far [m]
     double q = 0.0;   ///< Q so far [m^2]
+
+    /// One step's increments of M and Q, from g [m s^1/2] and its slope at
+    /// the step's start, the innovation xi and its variance var: one
+    /// definition, for add() and for the SIMD lanes, which must get its bits.
+    STICKSLIP_HD static void increments(double gv, double slope, double xi, double var, double& dm, double& dq) {
+        const double c = 0.5 * slope;       // (1/2) chi_xx: Ito's second-order term
+        const double centred = xi * xi - var; // mean 0 given the step's start
+        const double second = c * centred;
+        dm = gv * xi + second;
+        // dm^2 - g^2 (xi^2 - var), written without the cancellation.
+        dq = (gv * gv) * var + second * (2.0 * (gv * xi) + second);
+    }
+
     /// Adds the step from the state (x [s^-1/2], v [m/s]) whose innovation is
     /// xi [s^-1/2] (white noise: [m/s]) with variance var (its square's unit).
     STICKSLIP_HD void add(double x, double v, double xi, double var) {
-        const double gv = g(x, v);
-        m += gv * xi;
-        q += (gv * gv) * var;
+        double slope;
+        const double gv = g.value_and_slope(x, v, slope);
+        double dm, dq;
+        increments(gv, slope, xi, var, dm, dq);
+        m += dm;
+        q += dq;
     }
 };
 

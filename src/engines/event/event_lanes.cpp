@@ -79,6 +79,7 @@ struct LaneGroup {
     alignas(64) double mart[L];             ///< the martingale M so far (with a corrector) [m]
     alignas(64) double mart_qv[L];          ///< its Q so far [m^2]
     alignas(64) double corrector[L];        ///< g at the start of the step
+    alignas(64) double slope[L];            ///< its slope there
     alignas(64) double z[2][B][L];
     alignas(64) double side[2][B][L];       ///< side normal and uniform, where side_filled
     bool side_filled[L];
@@ -219,7 +220,7 @@ private:
             // g at the steps' starts, one lane at a time: a loop of its own,
             // so that the step's loop below still vectorises.
             const CorrectorTable g = mart_.g;
-            for (int l = 0; l < L; ++l) g_.corrector[l] = g(g_.x[l], g_.v[l]);
+            for (int l = 0; l < L; ++l) g_.corrector[l] = g.value_and_slope(g_.x[l], g_.v[l], g_.slope[l]);
         }
         ColoredSlideLaw law{};
         for (int i = 0; i < 3; ++i) {
@@ -259,10 +260,11 @@ private:
             g_.t[l] += flag ? 0 : q.leaves;
             g_.steps[l] += 1 - flag;
             if constexpr (Martingale::active) { // a whole step: event_step_with's growth and variance
-                const double gv = g_.corrector[l];
                 const double xi = q.x_grow * xn - x0;
-                g_.mart[l] = flag ? g_.mart[l] : g_.mart[l] + gv * xi;
-                g_.mart_qv[l] = flag ? g_.mart_qv[l] : g_.mart_qv[l] + (gv * gv) * q.spread;
+                double dm, dq;
+                MartingaleSums::increments(g_.corrector[l], g_.slope[l], xi, q.spread, dm, dq);
+                g_.mart[l] = flag ? g_.mart[l] : g_.mart[l] + dm;
+                g_.mart_qv[l] = flag ? g_.mart_qv[l] : g_.mart_qv[l] + dq;
             }
         }
         std::int64_t any = 0; // (a reduction inside the loop above keeps it from vectorising)

@@ -37,6 +37,7 @@ struct LaneGroup {
     alignas(64) double mart[L];             ///< the martingale M so far (with a corrector) [m]
     alignas(64) double mart_qv[L];          ///< its Q so far [m^2]
     alignas(64) double corrector[L];        ///< g at the start of the step
+    alignas(64) double slope[L];            ///< its slope there
     alignas(64) double z[2][B][L];
     std::uint64_t first_half[L];
     std::uint64_t slot[L];
@@ -139,7 +140,7 @@ private:
             // if-convert the table lookup, and its gathers, emulated for
             // generic tuning, made it no faster: measured in bench/).
             const CorrectorTable g = mart_.g;
-            for (int l = 0; l < L; ++l) g_.corrector[l] = g(g_.x[l], g_.v[l]);
+            for (int l = 0; l < L; ++l) g_.corrector[l] = g.value_and_slope(g_.x[l], g_.v[l], g_.slope[l]);
         }
         std::int64_t any = 0;
 #if !defined(__clang__) // GCC's no-dependence hint; clang vectorizes this loop without it
@@ -174,10 +175,11 @@ private:
             g_.vsum[l] = flag ? g_.vsum[l] : g_.vsum[l] + v0;
             g_.steps[l] += 1 - flag;
             if constexpr (Martingale::active) { // X's exact innovation, as resolvent_walk_step_as
-                const double gv = g_.corrector[l];
                 const double xi = c.ou.l21 * z1 + c.ou.l22 * z2;
-                g_.mart[l] = flag ? g_.mart[l] : g_.mart[l] + gv * xi;
-                g_.mart_qv[l] = flag ? g_.mart_qv[l] : g_.mart_qv[l] + (gv * gv) * c.ou.s22;
+                double dm, dq;
+                MartingaleSums::increments(g_.corrector[l], g_.slope[l], xi, c.ou.s22, dm, dq);
+                g_.mart[l] = flag ? g_.mart[l] : g_.mart[l] + dm;
+                g_.mart_qv[l] = flag ? g_.mart_qv[l] : g_.mart_qv[l] + dq;
             }
         }
         return any != 0;
