@@ -5,7 +5,7 @@
 # confidence intervals, for the paper's Fig. 2 parameters (the CLI defaults:
 # friction 3.84 m/s^2, noise 5 m^2/s^3, tau 0.5 s, relaxation 0.067 s,
 # bias 0.342 m/s^2; inclusion engine, event scheme at its automatic step):
-# 1.6e6 excursions, D to +-0.5% in about a minute on 2 cores.
+# 1.6e6 excursions, D to about +-0.1% (95%) in about a minute on 2 cores.
 #
 #   bash scripts/main-job.sh                     # table on stdout
 #   bash scripts/main-job.sh --format json       # extra args go to the command
