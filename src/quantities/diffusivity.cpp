@@ -345,6 +345,10 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
     if (req.estimator == Estimator::Paper &&
         (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
         out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");
+    if (!req.check_dt && out.estimates.diffusivity.value > 0) {
+        const Estimate& d = out.estimates.diffusivity;
+        detail::note_precision_beyond_step(engine, req.engine.dt_auto, (d.hi - d.value) / d.value, out.warnings);
+    }
     if (req.check_dt) {
         if (out.monte_carlo().totals.interrupted)
             out.warnings.push_back("the --check-dt run was not started: the run was interrupted");

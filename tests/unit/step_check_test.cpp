@@ -158,5 +158,26 @@ TEST(Defaults, TheEventSchemeAtItsAutomaticStepWhereverItServes) {
     EXPECT_EQ(parse_scheme("auto"), Scheme::Auto);
 }
 
+// A run at an automatic step whose interval is narrower than the 0.3% to
+// which the step's bias was checked says so; at a chosen step, at a wider
+// interval, or with the PDMP (no step), it says nothing.
+TEST(PrecisionNote, SaysWhenTheIntervalIsNarrowerThanTheStepsCheck) {
+    DiffusivityRequest req; // the defaults: the event scheme at --dt auto
+    const PreparedEngine e = prepare(req);
+    std::vector<std::string> notes;
+    note_precision_beyond_step(e, true, 0.0008, notes);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("0.08%, is below the 0.3%"), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("--check-dt"), std::string::npos) << notes[0];
+    notes.clear();
+    note_precision_beyond_step(e, false, 0.0008, notes); // --dt given
+    note_precision_beyond_step(e, true, 0.004, notes);   // wider than the check
+    EXPECT_TRUE(notes.empty());
+    DiffusivityRequest pdmp;
+    pdmp.engine.engine = Engine::Pdmp;
+    note_precision_beyond_step(prepare(pdmp), true, 0.0008, notes);
+    EXPECT_TRUE(notes.empty());
+}
+
 } // namespace
 } // namespace stickslip::detail
