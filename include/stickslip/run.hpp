@@ -101,7 +101,7 @@ struct ResolvedEngine {
 ///    noise/friction^2: (0.001/0.39)^2 T_f = 6.6e-6 T_f for white and
 ///    near-white noise (tau < 0.3 T_f), 0.001/0.35 T_f = 2.9e-3 T_f for
 ///    coloured noise; and at most relaxation/100.
-///  * Event: min(tau/16, relaxation/4, T_f/16) for coloured noise,
+///  * Event: min(tau/16, relaxation/8, T_f/16) for coloured noise,
 ///    min(relaxation/16, T_f/16) for white noise, each a few times below the
 ///    largest steps at which no bias was seen.
 /// Throws InvalidParameter for an invalid model.

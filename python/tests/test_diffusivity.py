@@ -126,11 +126,11 @@ class DiffusivityTest(unittest.TestCase):
         self.assertIsNone(stickslip.diffusivity(P, dt=0.03, excursions=64, threads=1).discretisation)
 
     def test_dt_auto(self):
-        # Fig. 2 case, event scheme: relaxation/4 = 0.01675 s; twice that for the check.
+        # Fig. 2 case, event scheme: relaxation/8 = 0.008375 s; twice that for the check.
         r = stickslip.diffusivity(P, scheme="event", dt="auto", excursions=256, check_dt=True, threads=1)
         d = r.to_dict()
-        self.assertEqual((d["params"]["dt"], d["params"]["dt_auto"]), (0.01675, True))
-        self.assertEqual(r.discretisation["check_dt"], 2 * 0.01675)
+        self.assertEqual((d["params"]["dt"], d["params"]["dt_auto"]), (0.008375, True))
+        self.assertEqual(r.discretisation["check_dt"], 2 * 0.008375)
         cli = cli_json("diffusivity", "--scheme", "event", "--dt", "auto", "--excursions", "256", "--check-dt",
                        "--threads", "1")
         self.assertEqual(without_work(d), without_work(cli))

@@ -95,9 +95,10 @@ void note_precision_beyond_step(const PreparedEngine& e, bool dt_auto, double re
         visit_engine(e, [](const auto& engine) { return std::string_view(engine.resolution_setting) == "dt"; });
     if (!stepped) return;
     notes.push_back("D's relative half-width, " + format_number(100 * relative_half_width, 3) +
-                    "%, is below the 0.3% to which the automatic step's bias of D has been checked (+0.17% on the "
-                    "Fig. 2 case; docs/validation.md, \"Choosing the step\"): the interval does not include that "
-                    "bias; --check-dt measures it at this precision, or choose a smaller --dt");
+                    "%, is below the 0.3% to which the automatic step's bias of D has been checked (on the Fig. 2 "
+                    "case +0.06% +- 0.05% against the Kolmogorov engine; docs/validation.md, \"Choosing the step\"): "
+                    "the interval does not include that bias; --check-dt measures it at this precision, or choose a "
+                    "smaller --dt");
 }
 
 void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {

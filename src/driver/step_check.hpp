@@ -71,7 +71,8 @@ inline constexpr double auto_step_checked_to = 0.003;
 /// Adds a note when a run at an automatic step (`dt_auto`, an engine with a
 /// step) reached a relative half-width of D below auto_step_checked_to: its
 /// interval then says nothing about the step's bias, which can be as large
-/// (measured +0.17% on the Fig. 2 case at the event scheme's automatic step).
+/// (measured on the Fig. 2 case: +0.17% at the event scheme's former
+/// automatic step, relaxation/4; +0.06% +- 0.05% at relaxation/8).
 void note_precision_beyond_step(const PreparedEngine& e, bool dt_auto, double relative_half_width,
                                 std::vector<std::string>& notes);
 

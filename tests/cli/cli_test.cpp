@@ -586,14 +586,14 @@ TEST(CliStepNotes, AnEventStepBeyondItsValidatedReachGetsANote) {
 }
 
 TEST(CliAutoStep, TheJsonSaysTheStepWasChosenAndWhichOne) {
-    // Fig. 2 case: the event scheme's automatic step is relaxation/4 = 0.01675 s.
+    // Fig. 2 case: the event scheme's automatic step is relaxation/8 = 0.008375 s.
     const Result r = run({"diffusivity", "--scheme", "event", "--dt", "auto", "--excursions", "200", "--check-dt",
                           "--format", "json", "--quiet"});
     ASSERT_EQ(r.code, 0) << r.err;
     const json j = json::parse(r.out);
-    EXPECT_EQ(j.at("params").at("dt").get<double>(), 0.01675);
+    EXPECT_EQ(j.at("params").at("dt").get<double>(), 0.008375);
     EXPECT_TRUE(j.at("params").at("dt_auto").get<bool>());
-    EXPECT_EQ(j.at("discretisation").at("check_dt").get<double>(), 2 * 0.01675); // twice the chosen step
+    EXPECT_EQ(j.at("discretisation").at("check_dt").get<double>(), 2 * 0.008375); // twice the chosen step
     const Result table = run({"diffusivity", "--scheme", "resolvent", "--dt", "auto", "--excursions", "200"});
     ASSERT_EQ(table.code, 0) << table.err;
     EXPECT_NE(table.out.find("dt 0.00067 s (auto), resolvent scheme"), std::string::npos) << table.out;
@@ -601,7 +601,7 @@ TEST(CliAutoStep, TheJsonSaysTheStepWasChosenAndWhichOne) {
     const Result defaults = run({"diffusivity", "--excursions", "200", "--format", "json", "--quiet"});
     ASSERT_EQ(defaults.code, 0) << defaults.err;
     const json d = json::parse(defaults.out);
-    EXPECT_EQ(d.at("params").at("dt").get<double>(), 0.01675);
+    EXPECT_EQ(d.at("params").at("dt").get<double>(), 0.008375);
     EXPECT_TRUE(d.at("params").at("dt_auto").get<bool>());
     EXPECT_EQ(d.at("engine_details").at("scheme"), "event");
     const Result given = run({"diffusivity", "--scheme", "resolvent", "--dt", "0.001", "--excursions", "200", "--format", "json"});

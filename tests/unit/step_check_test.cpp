@@ -79,8 +79,8 @@ TEST(AutoStep, FollowsTheMeasuredLawsAndTheTimeScales) {
     const ModelParams fig2;
     // Resolvent: the coloured law gives 0.001/0.35 T_f = 9.7e-4 s; relaxation/100 = 6.7e-4 s wins.
     EXPECT_DOUBLE_EQ(auto_time_step(fig2, Scheme::Resolvent), 0.01 * fig2.relaxation);
-    // Event: min(tau/16 = 0.031, relaxation/4 = 0.01675, T_f/16 = 0.021).
-    EXPECT_DOUBLE_EQ(auto_time_step(fig2, Scheme::Event), fig2.relaxation / 4);
+    // Event: min(tau/16 = 0.031, relaxation/8 = 0.008375, T_f/16 = 0.021).
+    EXPECT_DOUBLE_EQ(auto_time_step(fig2, Scheme::Event), fig2.relaxation / 8);
     ModelParams dry; // pure dry friction, friction = noise = 1 (T_f = 1 s)
     dry.friction = 1;
     dry.noise = 1;
@@ -114,7 +114,7 @@ TEST(AutoStep, ResolvedOnlyWhenAskedAndForTheInclusionEngine) {
     s.dt_auto = true;
     s.scheme = Scheme::Event;
     const EngineSettings r = resolve_engine_settings(fig2, s);
-    EXPECT_DOUBLE_EQ(r.dt, fig2.relaxation / 4);
+    EXPECT_DOUBLE_EQ(r.dt, fig2.relaxation / 8);
     EXPECT_TRUE(r.dt_auto); // so that reports can say so
     EXPECT_EQ(resolve_engine_settings(fig2, r).dt, r.dt); // idempotent
     EXPECT_EQ(prepare_engine(fig2, s).settings.dt, r.dt);
