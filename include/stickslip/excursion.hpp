@@ -25,10 +25,11 @@ struct ExcursionOutcome {
     bool capped = false;       ///< hit max_work_per_excursion; U, t meaningless
     double first_half = 0.0;   ///< long excursions: duration of the +HLE [s]
     /// Long excursions with a corrector (kernels/corrector.hpp): the
-    /// martingale M = sum g xi [m] (0 without one).
+    /// martingale M = sum (g xi + c (xi^2 - var)) [m] (0 without one).
     double martingale = 0.0;
-    /// Its predictable quadratic variation Q = sum g^2 var(xi) [m^2], so that
-    /// E[M^2 - Q] = 0 (0 without a corrector).
+    /// Its compensator Q [m^2], sum g^2 var(xi) plus the second-order term's
+    /// part (kernels/corrector.hpp), so that E[M^2 - Q] = 0; it can be
+    /// negative on an excursion (0 without a corrector).
     double martingale_qv = 0.0;
 };
 

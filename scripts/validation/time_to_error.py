@@ -20,7 +20,7 @@ error is its total error, and its time is measured at that target.
       [--target 0.003] [--bias 0.0008] [--excursions 20000] [--rounds 3] \\
       [--json out.json] build/stickslip
   /usr/bin/python3 scripts/validation/time_to_error.py --bias 0.0008 \\
-      -- build/stickslip --dt 0.008      # extra flags for the Monte Carlo runs
+      -- build/stickslip --dt 0.008      # extra flags for every run
 
 `--bias` is the step's relative bias allowed for at the automatic step (the
 Fig. 2 case, relaxation/8: +0.08%, the straight line through docs/validation.md's

@@ -37,6 +37,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engines/event/event_steps.hpp"
@@ -71,10 +72,17 @@ inline constexpr double auto_step_checked_to = 0.003;
 /// Adds a note when a run at an automatic step (`dt_auto`, an engine with a
 /// step) reached a relative half-width of D below auto_step_checked_to: its
 /// interval then says nothing about the step's bias, which can be as large
-/// (measured on the Fig. 2 case: +0.17% at the event scheme's former
-/// automatic step, relaxation/4; +0.06% +- 0.05% at relaxation/8).
+/// (measured on the Fig. 2 case with the event scheme: +0.18% +- 0.05% at its
+/// former automatic step, relaxation/4; +0.06% +- 0.05% at relaxation/8).
 void note_precision_beyond_step(const PreparedEngine& e, bool dt_auto, double relative_half_width,
                                 std::vector<std::string>& notes);
+
+/// The first words of that note, by which a sweep gathers its points' notes.
+inline constexpr std::string_view precision_note_start = "D's relative half-width, ";
+
+/// A sweep's one note for its `points` points that got that note, the
+/// narrowest relative half-width among them `narrowest` [1].
+std::string sweep_precision_note(std::size_t points, double narrowest);
 
 
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/format.hpp"
+#include "driver/step_check.hpp"
 #include "stickslip/drift_input.hpp"
 
 namespace stickslip {
@@ -297,11 +298,19 @@ SweepResult compute_sweep(const SweepRequest& req) {
                                detail::format_number(laws->lower, 4) + ", " + detail::format_number(laws->upper, 4) +
                                "] m/s), off by at most " + detail::format_number(laws->interpolation_error, 2) +
                                " m s^-2" + law_suffix);
+    std::size_t narrow_points = 0; // points whose interval is narrower than the automatic step's check
+    double narrowest = 1.0;
     for (const auto& p : out.points)
-        for (const auto& w : p.warnings)
-            if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
-                w.rfind("only ", 0) != 0 && w.rfind("drift law (", 0) != 0)
+        for (const auto& w : p.warnings) {
+            if (w.starts_with(detail::precision_note_start)) {
+                ++narrow_points;
+                const Estimate& d = p.estimates.diffusivity;
+                narrowest = std::min(narrowest, (d.hi - d.value) / d.value);
+            } else if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
+                       w.rfind("only ", 0) != 0 && w.rfind("drift law (", 0) != 0)
                 out.warnings.push_back(w);
+        }
+    if (narrow_points > 0) out.warnings.push_back(detail::sweep_precision_note(narrow_points, narrowest));
     if (req.excursions < 5000 && !out.solved())
         out.warnings.push_back("fewer than 5000 excursions per point: the standard errors (and so the slope errors) "
                                "are themselves uncertain");

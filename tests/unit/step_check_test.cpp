@@ -167,8 +167,11 @@ TEST(PrecisionNote, SaysWhenTheIntervalIsNarrowerThanTheStepsCheck) {
     std::vector<std::string> notes;
     note_precision_beyond_step(e, true, 0.0008, notes);
     ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0].rfind(precision_note_start, 0), 0u) << notes[0]; // how a sweep finds it
     EXPECT_NE(notes[0].find("0.08%, is below the 0.3%"), std::string::npos) << notes[0];
     EXPECT_NE(notes[0].find("--check-dt"), std::string::npos) << notes[0];
+    EXPECT_NE(sweep_precision_note(3, 0.0012).find("at 3 points D's relative half-width (the narrowest 0.12%) is below"),
+              std::string::npos);
     notes.clear();
     note_precision_beyond_step(e, false, 0.0008, notes); // --dt given
     note_precision_beyond_step(e, true, 0.004, notes);   // wider than the check

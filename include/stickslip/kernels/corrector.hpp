@@ -10,8 +10,9 @@
 //   U - M0 t = int chi_x(X, V) (sqrt(2)/tau) dW,
 // a martingale of the noise. A kernel that sums g(X, V) times the noise's own
 // innovation over every step, for any g fixed before the step, builds a
-// martingale M of the simulated chain with E[M] = 0 and E[M^2 - Q] = 0 (Q its
-// predictable quadratic variation) exactly, whatever g and whatever the step:
+// martingale M of the simulated chain with E[M] = 0 and E[M^2 - Q] = 0 (Q the
+// sum of the steps' conditional variances g^2 var) exactly, whatever g and
+// whatever the step:
 // C = M^2 - Q is then a control variate of known mean 0 for (U - M0 t)^2, and
 // the closer g is to chi_x, the more variance it removes. Nothing is drawn
 // differently: the plain estimates stay bitwise what they are without it.
@@ -32,9 +33,13 @@
 // the table's slope in x (white noise: in v), also fixed before the step: its
 // mean is 0 by optional stopping, so M stays an exact martingale. Q adds each
 // increment's square less g^2 (xi^2 - var), a term of mean 0, so that
-// E[M^2 - Q] = 0 holds for any step, cut short or not, Gaussian or not
-// (theory.md, section 12). Measured: the Fig. 2 factor at the event scheme's
-// automatic step 19x -> 34x, the driven case 62x -> 150x (docs/validation.md).
+// E[M^2 - Q] = 0 holds for any step, cut short or not, Gaussian or not (as
+// for the first-order term, the event scheme's event times rounded to a leaf
+// make it hold to far below any standard error; theory.md, section 12). Q is
+// then no longer positive on every excursion. Measured: the Fig. 2 factor at
+// dt = 0.01675 s 19x -> 34x, the driven case 62x -> 150x (docs/validation.md).
+// Beyond the table's edges the value is clamped flat but the slope is the
+// edge cell's: any c fixed before the step keeps M a martingale.
 //
 // g is a table (CorrectorTable), built once per run from a coarse solve of
 // the Kolmogorov equations (coloured noise) or the one-dimensional closed form

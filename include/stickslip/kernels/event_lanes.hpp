@@ -25,7 +25,7 @@
 //
 // Coloured noise only; white noise runs the one-excursion kernel, and so do
 // steps longer than relaxation/16 (many of them are not quiet: measured
-// slower in lanes, see event_long_excursions) and every machine where the
+// slower in lanes, see lanes_pay in event_lanes.cpp) and every machine where the
 // lane step is not vectorised (resolvent_lanes_vectorised). Host only.
 #pragma once
 

@@ -5,9 +5,10 @@
 // Why: per excursion (U - M0 t)^2 is extremely heavy-tailed, so the plain
 // renewal-reward estimator of D (estimators.hpp) needs millions of excursions
 // for a fraction of a percent, and its interval under-covers. Over an
-// excursion U - M0 t is close to a martingale of the noise, M = sum g xi, when
-// the corrector g is good; M has E[M] = 0 and C = M^2 - Q (Q its predictable
-// quadratic variation) has E[C] = 0 exactly, whatever g. So
+// excursion U - M0 t is close to a martingale of the noise, M = sum g xi (plus
+// Ito's second-order term, kernels/corrector.hpp), when the corrector g is
+// good; M has E[M] = 0 and C = M^2 - Q (Q its compensator) has E[C] = 0
+// exactly, whatever g. So
 //   D_cv  = (sum (U - M0_hat t)^2 - beta  sum C) / sum t
 //   M0_cv = (sum U - beta' sum M) / sum t
 // estimate the same D and M0 for any beta, beta', and the coefficients that
@@ -55,8 +56,8 @@ public:
     static constexpr int monomials = 46;
 
     /// Adds one excursion: displacement u [m], duration t [s], martingale sum
-    /// m [m] (E[M] = 0) and c = M^2 - Q [m^2] (E[C] = 0), Q the predictable
-    /// quadratic variation of M.
+    /// m [m] (E[M] = 0) and c = M^2 - Q [m^2] (E[C] = 0), Q the compensator
+    /// of M^2 (kernels/corrector.hpp).
     void add(double u, double t, double m, double c);
     /// Number of excursions added.
     std::uint64_t count() const { return n_; }

@@ -365,7 +365,7 @@ bool lanes_pay(const EventConstants& c) {
     // exponent is below 50, which the scalar kernel settles without a
     // refinement). Measured (Fig. 2 case, 2048 excursions, time one at a time / in
     // lanes): 1.25, 1.19, 1.04 at dt = 3e-4, 1e-3, relaxation/16; 0.93, 0.89
-    // at relaxation/8, relaxation/4 (the automatic step). Without drag the
+    // at relaxation/8 (the automatic step), relaxation/4. Without drag the
     // lanes win at every step measured (1.55, 1.19, 1.05 at tau/100, tau/10,
     // tau/2).
     return resolvent_lanes_vectorised() && c.h <= c.relaxation / 16.0;
