@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <tuple>
 
 #include "core/format.hpp"
@@ -255,8 +254,7 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
             // The interval the result reports: the control variate's when it runs.
             const Estimate est = g ? estimate_control_variate(total.control_variate, req.level).diffusivity
                                    : estimate_long_excursion(total.moments, req.level, req.estimator).diffusivity;
-            const double d = est.value;
-            outcome.relative_half_width = d > 0 ? (est.hi - d) / d : std::numeric_limits<double>::infinity();
+            outcome.relative_half_width = relative_upper_half_width(est);
             if (outcome.relative_half_width <= req.rel_precision) {
                 outcome.reached = true;
                 break;
@@ -345,10 +343,9 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
     if (req.estimator == Estimator::Paper &&
         (out.estimates.mobility.lo > 0 || out.estimates.mobility.hi < 0))
         out.warnings.push_back("estimator 'paper' (eq. 12) is biased because the mobility is not 0; use 'renewal'");
-    if (!req.check_dt && out.estimates.diffusivity.value > 0) {
-        const Estimate& d = out.estimates.diffusivity;
-        detail::note_precision_beyond_step(engine, req.engine.dt_auto, (d.hi - d.value) / d.value, out.warnings);
-    }
+    if (!req.check_dt)
+        detail::note_precision_beyond_step(engine, req.engine.dt_auto,
+                                           relative_upper_half_width(out.estimates.diffusivity), out.warnings);
     if (req.check_dt) {
         if (out.monte_carlo().totals.interrupted)
             out.warnings.push_back("the --check-dt run was not started: the run was interrupted");

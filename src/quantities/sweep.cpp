@@ -304,8 +304,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
         for (const auto& w : p.warnings) {
             if (w.starts_with(detail::precision_note_start)) {
                 ++narrow_points;
-                const Estimate& d = p.estimates.diffusivity;
-                narrowest = std::min(narrowest, (d.hi - d.value) / d.value);
+                narrowest = std::min(narrowest, relative_upper_half_width(p.estimates.diffusivity));
             } else if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
                        w.rfind("only ", 0) != 0 && w.rfind("drift law (", 0) != 0)
                 out.warnings.push_back(w);

@@ -27,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <initializer_list>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -113,6 +114,13 @@ struct Estimate {
     /// Nominal coverage of [lo, hi], in (0, 1).
     double level = 0.95;
 };
+
+/// The relative upper half-width (hi - value) / value [1] of an estimate of a
+/// positive quantity: what --rel-precision and the notes on a run's precision
+/// compare; +inf where value <= 0 (no relative precision).
+inline double relative_upper_half_width(const Estimate& e) {
+    return e.value > 0 ? (e.hi - e.value) / e.value : std::numeric_limits<double>::infinity();
+}
 
 /// Estimate with the normal interval value -+ q_{(1+level)/2} * std_error.
 Estimate make_interval(double value, double std_error, double level);
