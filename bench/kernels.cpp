@@ -44,7 +44,9 @@
 // Cases: fig2 = ModelParams defaults (the paper's Fig. 2), inclusion dt 1e-4
 //               (and 6.7e-4, the resolvent's automatic step);
 //        dry  = pure dry friction: friction 1, noise 1, tau 0.5, relaxation inf,
-//               bias 0, inclusion dt 1e-3.
+//               bias 0, inclusion dt 1e-3;
+//        fig2_knots = the Fig. 2 law given as the expression "0.342 - v/0.067"
+//               (1025 knots: every knot an event), beside fig2 at the same step.
 // Successive iterations use successive sample indices: independent excursions.
 #include <benchmark/benchmark.h>
 
@@ -198,12 +200,14 @@ void run_pdmp(benchmark::State& state, const ModelParams& p, double grid) {
     });
 }
 
-// The event scheme: one excursion at a time (it has no lanes).
+// The event scheme: one excursion at a time (it has no lanes). A drift law's
+// laws per piece are built outside the timing.
 void run_event(benchmark::State& state, const ModelParams& p, double dt) {
     EngineSettings s;
     s.scheme = Scheme::Event;
     s.dt = dt;
-    const EventConstants c = make_event_constants(p, s);
+    std::shared_ptr<const std::vector<EventDriftPiece>> pieces;
+    const EventConstants c = make_event_constants(p, s, &pieces);
     time_excursions(state, "steps_per_excursion", [&c](std::uint64_t k) {
         BatchedCounterRng rng(kSeed, StreamPurpose::LongExcursion, k);
         BatchedCounterRng ref(kSeed, StreamPurpose::Refinement, k);
@@ -278,6 +282,14 @@ void BM_PdmpEventsCv_dry(benchmark::State& st) { run_pdmp_cv(st, dry_params(), 0
 
 void BM_EventSteps_fig2(benchmark::State& st) { run_event(st, fig2_params(), 1e-4); }
 void BM_EventSteps_fig2_auto(benchmark::State& st) { run_event(st, fig2_params(), 0.01675); }
+// The Fig. 2 law given as an expression: the same model cut into 1024 pieces,
+// every knot an event (against BM_EventSteps/fig2_dt0.01675: what the pieces cost).
+ModelParams fig2_knots_params() {
+    ModelParams p;
+    p.drift = "0.342 - v/0.067";
+    return p;
+}
+void BM_EventSteps_fig2_knots(benchmark::State& st) { run_event(st, fig2_knots_params(), 0.01675); }
 void BM_EventSteps_white(benchmark::State& st) { run_event(st, white_dry_params(), 1e-2); }
 void BM_EventSteps_white_auto(benchmark::State& st) { run_event(st, white_dry_params(), 0.0625); }
 void BM_EventLanes_fig2(benchmark::State& st) { run_event_lanes(st, fig2_params(), 1e-4); }
@@ -311,6 +323,7 @@ BENCHMARK(BM_PdmpEventsLogWaits_fig2)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_fig2)->Name("BM_EventSteps/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventSteps_fig2_auto)->Name("BM_EventSteps/fig2_dt0.01675")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EventSteps_fig2_knots)->Name("BM_EventSteps/fig2_knots_dt0.01675")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventLanes_fig2)->Name("BM_EventLanes/fig2_dt1e-4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EventLanes_fig2_auto)->Name("BM_EventLanes/fig2_dt0.01675")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InclusionLanes_white)->Name("BM_InclusionLanes/white_dry_dt1e-2")->Unit(benchmark::kMillisecond);

@@ -45,6 +45,9 @@ struct PreparedEngine {
     EngineSettings settings;
     /// The constants of the engine (and scheme) that runs.
     EngineConstants constants;
+    /// What the constants point to and must outlive them (the event scheme's
+    /// laws of each piece of a knots drift law); shared by the copies.
+    std::shared_ptr<const void> storage;
     /// What was chosen for the run, for the reports.
     ResolvedEngine resolved;
     /// Notes on the settings found when preparing (a step too coarse for a

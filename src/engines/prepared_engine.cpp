@@ -20,8 +20,8 @@ double auto_time_step(const ModelParams& p, Scheme scheme) {
 }
 
 Scheme auto_scheme(const ModelParams& p, PathUse use) {
-    // The event scheme's exact Gaussian laws are built for the affine law only.
-    if (p.has_drift_law()) return Scheme::Resolvent;
+    // The white-noise event scheme takes the affine law only.
+    if (p.has_drift_law() && p.white()) return Scheme::Resolvent;
     if (p.white()) return use == PathUse::GridSamples ? Scheme::Resolvent : Scheme::Event;
     // Near-white noise (tau' below about 1e-4): the event step must resolve
     // tau, the resolvent's follows the white-noise law and is the longer.
@@ -58,8 +58,10 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
         r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
         r.jump_rate = c.rate;
     } else if (s.scheme == Scheme::Event) {
-        const EventConstants c = make_event_constants(p, s);
+        std::shared_ptr<const std::vector<EventDriftPiece>> pieces;
+        const EventConstants c = make_event_constants(p, s, &pieces);
         e.constants = c;
+        e.storage = pieces;
         r.stop_rule = c.white ? "velocity-levels" : "exact";
         if (c.white) r.white_level = c.level;
     } else {
@@ -76,9 +78,9 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
         DriftLawReport law;
         make_drift_law(p, &law);
         e.notes.push_back(drift_law_note(law) +
-                          (given.scheme == Scheme::Auto && s.engine == Engine::Inclusion
-                               ? "; the inclusion engine runs the resolvent scheme (the event scheme takes the "
-                                 "affine law only)"
+                          (given.scheme == Scheme::Auto && s.engine == Engine::Inclusion && p.white()
+                               ? "; the inclusion engine runs the resolvent scheme (the white-noise event scheme "
+                                 "takes the affine law only)"
                                : ""));
         e.notes.insert(e.notes.end(), law.notes.begin(), law.notes.end());
     }

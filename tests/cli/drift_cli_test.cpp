@@ -47,8 +47,8 @@ TEST(CliDrift, BadLawsAreRefusedWithOneLine) {
     expect_refused(with(kFast, {"--drift", "-v", "--knots", "8"}), "--knots", "odd");
     expect_refused(with(kFast, {"--drift", "-v", "--bias", "0.1"}), "--bias", "cannot be combined with --drift");
     expect_refused(with(kFast, {"--drift", "-v", "--relaxation", "2"}), "--relaxation", "cannot be combined");
-    expect_refused({"diffusivity", "--drift", "-v", "--scheme", "event", "--excursions", "100"}, "--scheme",
-                   "affine drift law only");
+    expect_refused({"diffusivity", "--drift", "-v", "--tau", "0", "--scheme", "event", "--excursions", "100"},
+                   "--scheme", "white-noise event scheme takes the affine drift law only");
     expect_refused(with(kFast, {"--check-knots"}), "--check-knots", "needs a drift law");
     const std::string unsorted = table_file("v,b\n1,0\n-1,1\n");
     expect_refused(with(kFast, {"--drift-table", unsorted}), "--drift-table", "unsorted");

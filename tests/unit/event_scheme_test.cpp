@@ -11,6 +11,7 @@
 #include "stickslip/analytic.hpp"
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/random/rng_batch.hpp"
 #include "stickslip/runner.hpp"
@@ -292,6 +293,74 @@ TEST(EventScheme, PiecesStayWithinTheSpreadOfTheirLawAtEveryStep) {
         EXPECT_LT(worst, 7.0) << "white noise, dt " << dt << " s: a piece's V moved by " << worst
                               << " standard deviations (" << pieces << " pieces)";
     }
+}
+
+// A knots drift law: the event scheme's table holds every piece of the law
+// (slope, intercept, ends), the lookup finds the piece of any velocity (at 0
+// the one on the sliding side), a law without a place for its table or with
+// white noise is refused, and along paths no piece of the refinement slides
+// across more than one knot (a step ends at the end of the finest piece
+// beyond a knot) while the pieces tile the time. Few knots (65), so that a
+// piece is wide against a step's move and a crossing is a visible event.
+TEST(EventScheme, KnotsLawSlidesOnThePieceThatHoldsV) {
+    ss::ModelParams p;
+    p.friction = 1;
+    p.noise = 1;
+    p.tau = 1;
+    p.relaxation = INFINITY;
+    p.bias = 0;
+    p.drift = "0.1 + 0.4*tanh(v/0.1) - v/2";
+    p.knots = 65;
+    const ss::DriftLaw b = ss::make_drift_law(p);
+    EXPECT_THROW(ss::make_event_constants(p, event(0.05)), ss::InvalidParameter);
+    std::shared_ptr<const std::vector<ss::EventDriftPiece>> table;
+    const ss::EventConstants c = ss::make_event_constants(p, event(0.05), &table);
+    ASSERT_TRUE(table);
+    ASSERT_EQ(c.piece_count, b.pieces());
+    ASSERT_EQ(table->size(), static_cast<std::size_t>(b.pieces()));
+    EXPECT_EQ(c.pieces, table->data());
+    EXPECT_EQ(c.bias, b(0.0)) << "the static band is set by b(0)";
+    for (int j = 0; j < b.pieces(); ++j) {
+        const ss::EventDriftPiece& q = (*table)[static_cast<std::size_t>(j)];
+        EXPECT_EQ(q.inv_relaxation, -b.piece_slope(j));
+        EXPECT_EQ(q.intercept, b.piece_intercept(j));
+        EXPECT_EQ(q.lower, b.piece_lower(j));
+        EXPECT_EQ(q.upper, b.piece_upper(j));
+        const double mid = j == 0 ? b.knot(0) - 1.0 : (j == b.pieces() - 1 ? b.knot(j) + 1.0 : b.knot(j) + 0.5 * b.spacing);
+        for (int s : {-1, +1}) EXPECT_EQ(&ss::event_drift_piece(c, mid, s), &q) << "piece " << j;
+        if (j > 0) { // just above and just below knot j
+            EXPECT_EQ(&ss::event_drift_piece(c, std::nextafter(b.knot(j), INFINITY), +1), &q) << "knot " << j;
+            EXPECT_EQ(&ss::event_drift_piece(c, std::nextafter(b.knot(j), -INFINITY), -1), &q - 1) << "knot " << j;
+        }
+    }
+    EXPECT_EQ(ss::event_drift_piece(c, 0.0, +1).lower, 0.0);
+    EXPECT_EQ(ss::event_drift_piece(c, 0.0, -1).upper, 0.0);
+    ss::ModelParams white = p;
+    white.tau = 0;
+    EXPECT_THROW(ss::make_event_constants(white, event(0.05), &table), ss::InvalidParameter);
+
+    const auto piece_of = [&](double v, int s) { return &ss::event_drift_piece(c, v, s) - c.pieces; };
+    std::uint64_t crossings = 0, sliding = 0;
+    for (std::uint64_t k = 0; k < 40; ++k) {
+        ss::BatchedCounterRng rng(6, ss::StreamPurpose::Test, k);
+        ss::CounterRng ref(6, ss::StreamPurpose::Refinement, k);
+        std::uint64_t last_t = 0;
+        bool tiled = true;
+        const auto o = ss::event_long_excursion(c, rng, ref, [&](const ss::EventPiece& q) {
+            tiled = tiled && q.t0 == last_t && q.t1 > q.t0;
+            last_t = q.t1;
+            if (q.phase == 0) return;
+            ++sliding;
+            const long moved = std::labs(piece_of(q.v1, q.phase) - piece_of(q.v0, q.phase));
+            EXPECT_LE(moved, 1) << "a piece of the refinement slid across " << moved << " knots, from v = " << q.v0
+                                << " to " << q.v1 << " m/s";
+            crossings += static_cast<std::uint64_t>(moved);
+        });
+        ASSERT_FALSE(o.capped);
+        EXPECT_TRUE(tiled);
+    }
+    EXPECT_GT(crossings, 100u) << "the paths must cross knots for this test to mean anything (" << sliding
+                               << " sliding pieces)";
 }
 
 } // namespace

@@ -63,6 +63,8 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "stickslip/config.hpp"
 #include "stickslip/engine.hpp"
@@ -137,6 +139,27 @@ struct EventLevel {
     double v_touch_rate;
 };
 
+/// The sliding laws of one refinement depth within one piece of a knots drift
+/// law (drift_law.hpp): EventLevel's slide, mid and v_mid_sd with the piece's
+/// own slope.
+struct EventSlideLevel {
+    ColoredSlideLaw slide;  ///< sliding step
+    ColoredSlideBridge mid; ///< its midpoint bridge
+    double v_mid_sd;        ///< conditional sd of V at the midpoint [m/s]
+};
+
+/// One piece of a knots drift law as the event scheme slides on it (coloured
+/// noise): b(v) = -v inv_relaxation + intercept for v in [lower, upper].
+struct EventDriftPiece {
+    double inv_relaxation; ///< -db/dv on the piece [s^-1] (negative where the law pushes V away from 0)
+    double intercept;      ///< the piece's line at v = 0 [m s^-2]
+    /// @{
+    /// The piece's ends [m/s]; -inf and +inf for the outer pieces (the law continues).
+    double lower, upper;
+    /// @}
+    EventSlideLevel lv[event_depth + 1]; ///< the laws of every refinement depth
+};
+
 /// Per-run constants of the event scheme (SI units).
 struct EventConstants {
     double h;             ///< step [s]
@@ -162,12 +185,45 @@ struct EventConstants {
     /// that it practically never reaches a level (6 standard deviations) and
     /// that the drag it leaves out is small (tauL/16).
     std::uint64_t leave_zero_leaves;
+    /// @{
+    /// A knots drift law (coloured noise): its pieces, pieces[0 .. piece_count),
+    /// owned by whoever built the constants (make_event_constants); null for
+    /// the affine law, whose laws are lv[d] and bias, inv_relaxation above.
+    /// zero_piece is the piece just above v = 0 (a knot is at 0), knot_first
+    /// [m/s] and knot_inv_spacing [s/m] locate a piece in O(1). Host memory:
+    /// a device kernel takes the affine law only.
+    const EventDriftPiece* pieces;
+    int piece_count, zero_piece;
+    double knot_first, knot_inv_spacing;
+    /// @}
     /// The laws of every refinement depth d = 0 .. event_depth (steps h / 2^d).
     EventLevel lv[event_depth + 1];
 };
 
 /// Validates p and s (InvalidParameter) and builds the laws of every depth.
-EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s);
+/// A knots drift law (coloured noise) also needs the laws of every piece:
+/// they are built into *pieces, which must outlive the constants (they point
+/// into it); without `pieces` such a law is refused (InvalidParameter
+/// "scheme"), as is a knots law with white noise.
+EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s,
+                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces = nullptr);
+
+/// The piece of the knots law of c that holds velocity v [m/s] for an object
+/// sliding in direction s (+1 or -1): at v = 0 the piece on s's side.
+STICKSLIP_HD inline const EventDriftPiece& event_drift_piece(const EventConstants& c, double v, int s) {
+    int j;
+    if (v == 0.0) {
+        j = s > 0 ? c.zero_piece : c.zero_piece - 1;
+    } else {
+        const double r = (v - c.knot_first) * c.knot_inv_spacing;
+        const int last = c.piece_count - 1;
+        j = !(r > 0.0) ? 0 : (r >= static_cast<double>(last) ? last : static_cast<int>(r));
+        // (The quotient's rounding can put v one piece off next to a knot.)
+        if (j > 0 && v < c.pieces[j].lower) --j;
+        else if (j < last && v >= c.pieces[j].upper) ++j;
+    }
+    return c.pieces[j];
+}
 
 /// A long excursion (or a path) of the event scheme between two steps.
 struct EventWalk {
@@ -509,8 +565,23 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     // minimum at the end of a finest piece (the object is stuck there) and
     // the noise is then away from the launching threshold: the stuck phase
     // (or, beyond the opposite threshold, a pass-through) takes over.
+    //
+    // With a knots drift law the step slides on the piece that holds V
+    // (EventDriftPiece: its own laws, slope and intercept), and V reaching
+    // either end of the piece is one more event, refined like a landing (the
+    // cubic's highest and lowest values against the ends): the step ends at
+    // the end of the finest piece beyond a knot, and the next one slides on
+    // the new piece. A piece next to v = 0 has 0 as its lower end in s V,
+    // which is the landing; beyond it the law is continued by the piece's line
+    // for at most one leaf (the law is continuous, so that changes b by its
+    // slope's jump times V's move within a leaf).
     const int s = w.phase;
-    const double cs = c.bias - s * c.friction;
+    const EventDriftPiece* law_piece = c.pieces ? &event_drift_piece(c, w.v, s) : nullptr;
+    const double cs = (law_piece ? law_piece->intercept : c.bias) - s * c.friction;
+    const double inv_relaxation = law_piece ? law_piece->inv_relaxation : c.inv_relaxation;
+    // The piece's ends in s V: [piece_bottom, piece_top], piece_bottom >= 0 (0: it can land).
+    const double piece_bottom = law_piece ? (s > 0 ? law_piece->lower : -law_piece->upper) : 0.0;
+    const double piece_top = law_piece ? (s > 0 ? law_piece->upper : -law_piece->lower) : HUGE_VAL;
     const NormalPair side = rng.side_draw();
     using Node = detail::RefinedPiece<3>;
     Node stack[event_depth + 1];
@@ -531,13 +602,13 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     Node cur{{w.x, w.v, 0.0}, {0.0, 0.0, 0.0}, d0, t0};
     {
         const double n[3] = {z.x, z.y, side.x};
-        apply(L0.slide, cur.a, cs, n, cur.b);
+        apply(law_piece ? law_piece->lv[d0].slide : L0.slide, cur.a, cs, n, cur.b);
     }
     const Node whole = cur;
     const std::uint64_t window = std::uint64_t{1} << (event_depth - event_launch_depth);
     double floor = 0.0; // min(0, running minimum of s V_free): V = V_free - s floor
     double du = 0.0;    // the displacement that reflection adds, up to t_end [m]
-    bool landed = false;
+    bool landed = false, crossed = false;
     // The observer sees every piece of the refinement that is not halved, in
     // time order, with its exact ends: a step that launches from V = 0 and
     // lands again has V > 0 in between, which one piece from end to end would
@@ -556,12 +627,30 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     };
     for (;;) {
         const EventLevel& L = c.lv[cur.d];
-        const double low = s * cur.b[1] <= floor ? s * cur.b[1] : detail::cubic_low(c.amp, c.inv_relaxation, L.len, cur.a[0], cur.a[1], cur.b[0],
+        const double v_mid_sd = law_piece ? law_piece->lv[cur.d].v_mid_sd : L.v_mid_sd;
+        const double low = s * cur.b[1] <= floor ? s * cur.b[1] : detail::cubic_low(c.amp, inv_relaxation, L.len, cur.a[0], cur.a[1], cur.b[0],
                                                                           cur.b[1], s, cs);
         const double floor_before = floor;
-        if (low < floor + event_sigma_margin * L.v_mid_sd) {
+        // Near the lower end: the landing at 0 (the reflection's floor), or a knot.
+        bool near = low < (piece_bottom > 0.0 ? piece_bottom : floor) + event_sigma_margin * v_mid_sd;
+        if (piece_top < HUGE_VAL) { // near the upper knot, V lifted by the reflection
+            const double high = s * cur.b[1] >= piece_top + floor
+                                    ? s * cur.b[1]
+                                    : -detail::cubic_low(c.amp, inv_relaxation, L.len, cur.a[0], cur.a[1], cur.b[0],
+                                                         cur.b[1], -s, cs);
+            near = near || high - floor > piece_top - event_sigma_margin * v_mid_sd;
+        }
+        if (near) {
             const int max_depth = w.launched && cur.t < w.launch + window ? event_launch_depth : event_depth;
-            if (cur.d >= max_depth) {
+            if (cur.d >= max_depth && piece_bottom > 0.0) {
+                // A knots law away from 0: no landing, no reflection (floor = 0).
+                const double sv = s * cur.b[1];
+                if (sv < piece_bottom || sv > piece_top) {
+                    crossed = true; // on the next piece at the end of this one
+                    emit(cur, floor_before, floor);
+                    break;
+                }
+            } else if (cur.d >= max_depth) {
                 const double m = low < s * cur.b[1] ? low : s * cur.b[1];
                 const std::uint64_t t_b = cur.t + L.leaves;
                 if (m < floor) { // a new minimum: the reflection lifts the rest of the step
@@ -570,6 +659,11 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
                 }
                 if (s * cur.b[1] <= floor && !(s > 0 ? cur.b[0] > c.x_up : cur.b[0] < c.x_down)) {
                     landed = true; // stuck at the end of this piece
+                    emit(cur, floor_before, floor);
+                    break;
+                }
+                if (s * cur.b[1] - floor > piece_top) {
+                    crossed = true; // on the next piece at the end of this one
                     emit(cur, floor_before, floor);
                     break;
                 }
@@ -582,7 +676,7 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
                 const double a_rel[3] = {cur.a[0], cur.a[1], 0.0};
                 const double b_rel[3] = {cur.b[0], cur.b[1], cur.b[2] - cur.a[2]};
                 double m[3];
-                apply(L.mid, a_rel, b_rel, cs, n, m);
+                apply(law_piece ? law_piece->lv[cur.d].mid : L.mid, a_rel, b_rel, cs, n, m);
                 m[2] += cur.a[2];
                 Node right{{m[0], m[1], m[2]}, {cur.b[0], cur.b[1], cur.b[2]}, cur.d + 1, cur.t + L.leaves / 2};
                 stack[top++] = right;
@@ -593,6 +687,14 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
         emit(cur, floor_before, floor);
         if (top == 0) break;
         cur = stack[--top];
+    }
+    if (crossed) { // the step ends at the end of cur, sliding on
+        const std::uint64_t te = cur.t + c.lv[cur.d].leaves;
+        w.x = cur.b[0];
+        w.v = cur.b[1] - s * floor;
+        w.u = u_start + (cur.b[2] + du - s * (-floor) * c.leaf * static_cast<double>(t_end - te));
+        w.t = te;
+        return EventStatus::Running;
     }
     if (!landed) {
         const double v_end = whole.b[1] - s * floor, u_end = u_start + (whole.b[2] + du);

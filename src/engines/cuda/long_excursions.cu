@@ -167,7 +167,11 @@ DeviceTiming resolvent_long_excursions(const ResolventConstants& c, std::uint64_
 DeviceTiming event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
                                    std::uint64_t count, ExcursionOutcome* out, unsigned threads) {
     // The constants (about 10 KB: the laws of every refinement depth) go to
-    // device memory once; every thread reads the same entries (cached).
+    // device memory once; every thread reads the same entries (cached). A
+    // knots drift law's laws per piece live in host memory (c.pieces).
+    if (c.pieces)
+        throw std::invalid_argument("the device's event kernel takes the affine drift law only (a knots law's laws "
+                                    "per piece are in host memory)");
     DeviceBuffer<EventConstants> dc(1);
     check(cudaMemcpy(dc.p, &c, sizeof c, cudaMemcpyHostToDevice), "cudaMemcpy");
     return run(event_kernel, count, out, threads,

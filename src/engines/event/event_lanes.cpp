@@ -389,14 +389,15 @@ bool event_long_excursions(const EventConstants& c, std::uint64_t seed, std::uin
 bool detail::event_long_excursions_in_lanes(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
                                             std::uint64_t count, ExcursionOutcome* out,
                                             const std::atomic<bool>* cancel) {
-    if (c.white) return one_at_a_time(c, seed, first, count, out, cancel);
+    // (The lanes slide on the affine law; a knots law's steps run one at a time.)
+    if (c.white || c.pieces) return one_at_a_time(c, seed, first, count, out, cancel);
     return run_lanes(c, seed, first, count, out, cancel);
 }
 
 bool detail::event_long_excursions_in_lanes_with(const EventConstants& c, std::uint64_t seed, std::uint64_t first,
                                                  std::uint64_t count, ExcursionOutcome* out,
                                                  const std::atomic<bool>* cancel, const CorrectorTable& g) {
-    if (c.white) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
+    if (c.white || c.pieces) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
     return run_lanes_with(c, seed, first, count, out, cancel, g);
 }
 

@@ -6,17 +6,46 @@
 #include <cmath>
 
 #include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/kernels/resolvent.hpp"
 
 namespace stickslip {
 
-EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s) {
+namespace {
+
+/// The laws of every piece of the knots law b and every depth (steps h / 2^d).
+std::vector<EventDriftPiece> drift_pieces(const DriftLaw& b, const ModelParams& p, double h, double amp) {
+    std::vector<EventDriftPiece> out(static_cast<std::size_t>(b.pieces()));
+    for (int j = 0; j < b.pieces(); ++j) {
+        EventDriftPiece& q = out[static_cast<std::size_t>(j)];
+        const double slope = b.piece_slope(j);
+        q.inv_relaxation = -slope;
+        q.intercept = b.piece_intercept(j);
+        q.lower = b.piece_lower(j);
+        q.upper = b.piece_upper(j);
+        for (int d = 0; d <= event_depth; ++d) {
+            const double len = std::ldexp(h, -d);
+            q.lv[d].slide = colored_piece_law(p.tau, slope, amp, len);
+            q.lv[d].mid = colored_piece_bridge(p.tau, slope, amp, len);
+            q.lv[d].v_mid_sd = std::sqrt(q.lv[d].mid.cov[1][1]);
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s,
+                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces) {
     validate(p);
     validate(s);
     require_stationary_state(p);
-    if (p.has_drift_law())
-        throw InvalidParameter("scheme", "the event scheme takes the affine drift law only (--relaxation, --bias); "
-                                         "with --drift or --drift-table use --scheme resolvent or --engine pdmp");
+    if (p.has_drift_law() && p.white())
+        throw InvalidParameter("scheme", "the white-noise event scheme takes the affine drift law only (--relaxation, "
+                                         "--bias); with --drift or --drift-table use --scheme resolvent");
+    if (p.has_drift_law() && !pieces)
+        throw InvalidParameter("scheme", "the event scheme's laws of a knots drift law need a place to live "
+                                         "(make_event_constants without `pieces`)");
     EventConstants c{};
     c.h = s.dt;
     c.leaf = std::ldexp(s.dt, -event_depth);
@@ -66,6 +95,25 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
                 L.x_tau = p.tau;
             }
         }
+        if (p.has_drift_law()) {
+            // b(0) sets the static band (c.bias, as the thresholds); the
+            // slope and intercept of each piece replace the affine law's.
+            const DriftLaw b = make_drift_law(p);
+            auto table = std::make_shared<const std::vector<EventDriftPiece>>(drift_pieces(b, p, s.dt, c.amp));
+            c.bias = b(0.0);
+            c.inv_relaxation = 0.0;
+            c.relaxation = HUGE_VAL;
+            c.pieces = table->data();
+            c.piece_count = b.pieces();
+            c.zero_piece = static_cast<int>(std::lround(-b.first * b.inv_spacing));
+            if (b.knot(c.zero_piece) != 0.0 || c.zero_piece < 1 || c.zero_piece > c.piece_count - 1)
+                throw InvalidParameter("knots", "the drift law's knots must include v = 0"); // make_drift_law's invariant
+            c.knot_first = b.first;
+            c.knot_inv_spacing = b.inv_spacing;
+            *pieces = std::move(table);
+        }
+    } catch (const InvalidParameter&) {
+        throw;
     } catch (const std::invalid_argument& e) {
         throw InvalidParameter("dt", "dt = " + detail::format_number(s.dt) +
                                          " s is outside the range the event scheme's laws can be computed for (" +

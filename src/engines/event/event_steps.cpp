@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/format.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/errors.hpp"
 
 namespace stickslip::detail {
@@ -58,8 +59,10 @@ double event_auto_step(const ModelParams& p) {
     const Scales sc = scales_of(p);
     double dt = kAutoEventFriction * sc.time;
     if (!p.white()) dt = std::fmin(dt, kAutoEventTau * p.tau);
-    if (std::isfinite(p.relaxation))
-        dt = std::fmin(dt, (p.white() ? kAutoEventWhiteRelaxation : kAutoEventRelaxation) * p.relaxation);
+    // A drift law's own time 1/L (L its Lipschitz constant) in place of the relaxation.
+    const double relaxation = drift_time_scale(p);
+    if (std::isfinite(relaxation))
+        dt = std::fmin(dt, (p.white() ? kAutoEventWhiteRelaxation : kAutoEventRelaxation) * relaxation);
     return dt;
 }
 
