@@ -574,7 +574,8 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
     // the new piece. A piece next to v = 0 has 0 as its lower end in s V,
     // which is the landing; beyond it the law is continued by the piece's line
     // for at most one leaf (the law is continuous, so that changes b by its
-    // slope's jump times V's move within a leaf).
+    // slope's jump times V's move within a leaf; within h / 2^event_launch_depth
+    // right after a launch, where the refinement stops there).
     const int s = w.phase;
     const EventDriftPiece* law_piece = c.pieces ? &event_drift_piece(c, w.v, s) : nullptr;
     const double cs = (law_piece ? law_piece->intercept : c.bias) - s * c.friction;
@@ -645,6 +646,11 @@ STICKSLIP_HD inline EventStatus event_colored_step(const EventConstants& c, Even
             if (cur.d >= max_depth && piece_bottom > 0.0) {
                 // A knots law away from 0: no landing, no reflection (floor = 0).
                 const double sv = s * cur.b[1];
+                if (sv <= 0.0) { // past the next piece and 0 within one finest piece: a landing there
+                    landed = true;
+                    emit(cur, floor_before, floor);
+                    break;
+                }
                 if (sv < piece_bottom || sv > piece_top) {
                     crossed = true; // on the next piece at the end of this one
                     emit(cur, floor_before, floor);

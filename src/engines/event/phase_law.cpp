@@ -5,8 +5,10 @@
 // 1/tau, 1/tauL and 0 with O(1) terms whose sum is O(h^5) (Var U) for small h,
 // and they have removable singularities at tauL = tau and tauL = inf; a case
 // split per regime would need a dozen series, each with its own switch point.
-// Instead we use the structure of A: it is lower bidiagonal with non-positive
-// diagonal (-1/tau, -1/tauL, 0) and non-negative sub-diagonal (a, 1). For such
+// Instead we use the structure of A: it is lower bidiagonal with diagonal
+// (-1/tau, -1/tauL, 0) (non-positive for the affine law; a piece of a drift
+// law puts its slope, of either sign, in place of -1/tauL) and non-negative
+// sub-diagonal (a, 1). For such
 // a matrix every entry of e^{Ar} is a sum over the paths of its graph of
 // (product of the couplings on the path) x (divided difference of exp over the
 // diagonal entries visited), and so is every entry of the Kronecker square
@@ -140,7 +142,8 @@ private:
 };
 
 // dZ = (A Z + c e_input) dt + sqrt(b2) e_noisy dW with A lower bidiagonal:
-// A[i][i] = lam[i] <= 0, A[i+1][i] = w[i] >= 0.
+// A[i][i] = lam[i] (<= 0 but for a drift law's piece that pushes V away),
+// A[i+1][i] = w[i] >= 0.
 template <class T, int N>
 struct Chain {
     T lam[N];
@@ -271,12 +274,13 @@ T magnitude(const T& x) {
 // that (far below double resolution, far above the 1e-50 of the working
 // precision times any conditioning met here) is an exact cancellation. In
 // long double (a piece's bridge with slope h in [-64, 0.5], colored_piece_bridge)
-// the rounding left by a cancellation is up to about 64 eps = 7e-18 of the
-// scale, so there the line is 1e-16: what it zeroes is below a double's
+// the rounding left by a cancellation is up to about 64 eps of the scale, so
+// there the line is 1000 eps (1.1e-16 with x86's 64-bit significand, 2.2e-13
+// where long double is a double): what it zeroes is at or below a double's
 // resolution of the sum.
 template <class T>
 T snap(const T& x, const T& scale) {
-    const T line = std::is_same_v<T, Wide> ? T(1e-16) : T(1e-36);
+    const T line = std::is_same_v<T, Wide> ? T(1000) * std::numeric_limits<Wide>::epsilon() : T(1e-36);
     return magnitude(x) <= line * scale ? T(0) : x;
 }
 
