@@ -236,9 +236,10 @@ TEST(EventScheme, FirstPassageOfAStuckStepMatchesTheBridgeLaw) {
 // it tells at fine depths: X then moved by 9 to 5e10 standard deviations
 // within a piece (measured with this test on the code before the fix; 5.2 at
 // most after it, over 4e6 pieces per case), and D came out up to 2e4 times too
-// large (docs/validation.md, "The event scheme at fine steps").
+// large (docs/validation.md, "The event scheme at fine steps"). A knots drift
+// law (tau 1, its own laws per piece, positive slopes near 0) is one more case.
 TEST(EventScheme, PiecesStayWithinTheSpreadOfTheirLawAtEveryStep) {
-    for (double tau : {1.0, 0.1, 0.01}) {
+    for (double tau : {1.0, 0.1, 0.01, -1.0}) { // -1: tau 1 with a knots drift law
         for (double ratio : {1e-1, 1e-3, 1e-5}) {
             ss::ModelParams p;
             p.friction = 1;
@@ -246,7 +247,12 @@ TEST(EventScheme, PiecesStayWithinTheSpreadOfTheirLawAtEveryStep) {
             p.tau = tau;
             p.relaxation = tau == 0.1 ? 0.3 : INFINITY;
             p.bias = tau == 1.0 ? 0.3 : 0.0;
-            const ss::EventConstants c = ss::make_event_constants(p, event(ratio * tau));
+            if (tau < 0) {
+                p.tau = tau = 1.0;
+                p.drift = "0.3 + 0.8*v - 0.5*v^3";
+            }
+            std::shared_ptr<const std::vector<ss::EventDriftPiece>> laws;
+            const ss::EventConstants c = ss::make_event_constants(p, event(ratio * tau), &laws);
             double worst = 0;
             std::uint64_t pieces = 0;
             for (std::uint64_t k = 0; k < 6; ++k) {
@@ -262,8 +268,9 @@ TEST(EventScheme, PiecesStayWithinTheSpreadOfTheirLawAtEveryStep) {
                 };
                 ss::event_advance_to(c, w, static_cast<std::uint64_t>(2 * tau / c.leaf), rng, ref, observe);
             }
-            EXPECT_LT(worst, 7.0) << "tau " << tau << " s, dt/tau " << ratio << ": a piece's X moved by " << worst
-                                  << " standard deviations (" << pieces << " pieces)";
+            EXPECT_LT(worst, 7.0) << "tau " << tau << " s, dt/tau " << ratio << (laws ? ", drift law" : "")
+                                  << ": a piece's X moved by " << worst << " standard deviations (" << pieces
+                                  << " pieces)";
         }
     }
     for (double dt : {1e-1, 1e-3, 1e-5}) {
