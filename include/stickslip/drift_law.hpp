@@ -94,6 +94,11 @@ struct DriftLaw {
     }
 };
 
+/// The index k of the knot at v = 0 of a knots law (make_drift_law puts one
+/// there, so that V reaching 0 is a knot: the exact engines' landing), with
+/// 1 <= k <= knots - 2. Throws InvalidParameter("knots") where there is none.
+int zero_knot(const DriftLaw& b);
+
 /// The affine law b(v) = -v/relaxation + bias (relaxation may be +inf: no drag).
 DriftLaw affine_drift_law(double relaxation, double bias);
 

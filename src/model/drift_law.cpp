@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stickslip/errors.hpp"
+
 namespace stickslip {
 
 DriftLaw affine_drift_law(double relaxation, double bias) {
@@ -67,6 +69,13 @@ DriftLaw coarsened_drift_law(const DriftLaw& b) {
     for (int k = 0; k < c.knots; ++k) c.values[k] = b.values[2 * k];
     for (int k = c.knots; k < DriftLaw::max_knots; ++k) c.values[k] = 0.0;
     return c;
+}
+
+int zero_knot(const DriftLaw& b) {
+    const long k = std::lround(-b.first * b.inv_spacing);
+    if (b.kind != DriftLaw::Kind::Knots || k < 1 || k > b.knots - 2 || b.knot(static_cast<int>(k)) != 0.0)
+        throw InvalidParameter("knots", "the drift law's knots must include v = 0"); // make_drift_law's invariant
+    return static_cast<int>(k);
 }
 
 } // namespace stickslip

@@ -105,9 +105,7 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
             c.relaxation = HUGE_VAL;
             c.pieces = table->data();
             c.piece_count = b.pieces();
-            c.zero_piece = static_cast<int>(std::lround(-b.first * b.inv_spacing));
-            if (b.knot(c.zero_piece) != 0.0 || c.zero_piece < 1 || c.zero_piece > c.piece_count - 1)
-                throw InvalidParameter("knots", "the drift law's knots must include v = 0"); // make_drift_law's invariant
+            c.zero_piece = zero_knot(b); // the piece above the knot at 0
             c.knot_first = b.first;
             c.knot_inv_spacing = b.inv_spacing;
             *pieces = std::move(table);

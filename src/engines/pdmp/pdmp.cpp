@@ -30,9 +30,7 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
         c.drift = make_drift_law(p);
         c.bias = c.drift(0.0); // b(0): the static band and the acceleration at rest
         c.viscous = false;
-        const int zero = static_cast<int>(std::lround(-c.drift.first * c.drift.inv_spacing));
-        if (c.drift.knot(zero) != 0.0)
-            throw InvalidParameter("knots", "the drift law's knots must include v = 0"); // make_drift_law's invariant
+        zero_knot(c.drift); // the landing at 0 is a knot (make_drift_law's invariant)
     }
     c.max_events = s.max_work_per_excursion;
     // k+ is the last lattice index with a x <= friction - bias, k- the first
