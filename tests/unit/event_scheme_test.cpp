@@ -314,9 +314,7 @@ TEST(EventScheme, KnotsLawSlidesOnThePieceThatHoldsV) {
     p.friction = 1;
     p.noise = 1;
     p.tau = 1;
-    p.relaxation = INFINITY;
-    p.bias = 0;
-    p.drift = "0.1 + 0.4*tanh(v/0.1) - v/2";
+    p.drift = "0.1 + 0.4*tanh(v/0.1) - v/2"; // replaces relaxation and bias
     p.knots = 65;
     const ss::DriftLaw b = ss::make_drift_law(p);
     EXPECT_THROW(ss::make_event_constants(p, event(0.05)), ss::InvalidParameter);
