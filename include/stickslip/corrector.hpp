@@ -55,7 +55,9 @@ struct Corrector {
 inline constexpr int corrector_grid_level = 1;
 
 /// Whether make_corrector has a corrector for p (SI units): white noise, or
-/// coloured noise where the Kolmogorov solver runs (tau' >= kolmogorov_min_tau_prime).
+/// coloured noise where the Kolmogorov solver's grids run (tau' >=
+/// kolmogorov_white_limit_below; below kolmogorov_near_white_below from the
+/// near-white discretisation, near_white/corrector_table.hpp).
 /// When not, *why (if given) says why, in words for a note.
 bool has_corrector(const ModelParams& p, std::string* why = nullptr);
 

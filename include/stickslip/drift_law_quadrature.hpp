@@ -35,6 +35,15 @@ class DriftLawWhiteNoise {
 public:
     /// Throws InvalidParameter as make_drift_law does (no stationary state, bad law).
     explicit DriftLawWhiteNoise(const ModelParams& p);
+    /// The same for a law already made (make_drift_law), with the friction
+    /// [m s^-2] and noise [m^2 s^-3] it runs with: a caller that holds the
+    /// run's law does not make it again (a table file is read once per run).
+    DriftLawWhiteNoise(const DriftLaw& law, double friction, double noise);
+    /// The velocities [m/s] below and above which Phi has fallen by `drop`
+    /// (> 0) below its maximum: the stationary density there is e^-drop of
+    /// its peak. Within the quadrature's own domain for drop <= 60.
+    double lower_end(double drop) const;
+    double upper_end(double drop) const; ///< see lower_end
     /// Stationary density p(v) [s/m].
     double density(double v) const;
     /// P(a < V < b) [1].
@@ -45,12 +54,14 @@ public:
     const DriftLaw& law() const { return law_; }
 
 private:
+    void build(); // from law_, friction_ and noise_
     double phi(double v) const; // Phi(v) - Phi_max [1]
     template <class F>
     double integrate(double a, double b, F&& f) const;
     DriftLaw law_;
     double friction_ = 0, noise_ = 0, phi_max_ = 0, inv_z_ = 0, lo_ = 0, hi_ = 0;
     std::vector<double> cuts_; // panel ends, increasing, from lo_ to hi_
+    std::vector<double> breaks_; // 0 and the knots: where Phi changes its quadratic
     WhiteNoiseReference reference_{};
 };
 

@@ -101,14 +101,33 @@
 // against its Monte Carlo (driven case at grid 0.2: within 0.7 standard
 // errors of 0.2%).
 //
-// Limits. White noise (tau = 0) is refused: the velocity alone is Markov and
-// the exact one-dimensional references apply (analytic.hpp,
-// white_noise_reference). The near-white limit is singular for an x grid (its
-// range grows like 1/sqrt(tau') while the band stays fixed): below tau' =
-// kolmogorov_min_tau_prime = 0.05 the solver is refused, because there its
+// Limits of this discretisation. The near-white limit is singular for an x
+// grid (its range grows like 1/sqrt(tau') while the band stays fixed): below
+// tau' = kolmogorov_chain_min_tau_prime = 0.05 it is refused, because there its
 // affordable grids gave confident, wrong answers (tau' = 0.03: D = 2.07 with
 // an estimated 1.8%, where D must lie between its tau' = 0.1 value 1.06 and
-// the white-noise 1.25); use the inclusion engine (Monte Carlo) there.
+// the white-noise 1.25).
+//
+// Every tau' > 0: the near-white discretisation. A second discretisation of
+// the same equations, in src/deterministic/near_white/ (near_white.hpp says
+// why and how): the scaled noise z = sqrt(tau) X on graded nodes with a chain
+// that keeps the white-noise intensity exactly, discontinuous Galerkin of
+// degree 2 in v on cells graded to the layer at v = 0, so that the unknowns
+// stay bounded as tau' -> 0 and the limit is the white-noise quadrature.
+// solve_kolmogorov chooses (KolmogorovDiscretisation::Automatic): the
+// near-white discretisation below tau' = kolmogorov_near_white_below = 0.1,
+// the chain above it. Measured side by side on pure dry friction and on the
+// Fig. 2 law at tau' = 0.05 to 5 (docs/kolmogorov_measurements.md), the two
+// agree within their estimates everywhere; with drag the chain reached
+// smaller errors in the same time from tau' = 0.1 up, without drag the
+// near-white one (at tau' = 0.1 the chain stopped at its budget with 0.31%
+// where the near-white one gave 0.09% in 0.9 s). Below tau' =
+// kolmogorov_white_limit_below = 1e-7 the grid's rates (up to 1/(tau' h^2))
+// cost the LU its digits, and the white-noise quadrature, whose distance to
+// the coloured D is bounded by what the grid measures at 1e-7, gives D and M0
+// (near_white.cpp). White noise itself (tau = 0) is refused: the velocity
+// alone is Markov and the exact one-dimensional references apply
+// (analytic.hpp, white_noise_reference).
 #pragma once
 
 /// \file
@@ -148,10 +167,20 @@ struct KolmogorovGrid {
     double lattice_step = 0;
     double lattice_bound = 0;     ///< the PDMP lattice's half-width L [s^-1/2] (0: as the engine chooses)
 
+    /// The near-white grids' nodes are not uniform (x_spacing is then the
+    /// band's): their lowest node [s^-1/2]; 0 on a uniform grid.
+    double graded_x_lower = 0;
+    /// The near-white grids' highest node [s^-1/2]; 0 on a uniform grid.
+    double graded_x_upper = 0;
+
     /// The lowest x node [s^-1/2].
-    double x_lower() const { return lower_threshold - static_cast<double>(band_first) * x_spacing; }
+    double x_lower() const {
+        return graded_x_lower < graded_x_upper ? graded_x_lower : lower_threshold - static_cast<double>(band_first) * x_spacing;
+    }
     /// The highest x node [s^-1/2].
-    double x_upper() const { return x_lower() + static_cast<double>(x_nodes - 1) * x_spacing; }
+    double x_upper() const {
+        return graded_x_lower < graded_x_upper ? graded_x_upper : x_lower() + static_cast<double>(x_nodes - 1) * x_spacing;
+    }
 };
 
 /// The exact solution of the chain on one grid.
@@ -177,6 +206,13 @@ struct KolmogorovGridSolution {
     /// cell (its mass divided by its width) [s/m]; the stuck states' atom at
     /// v = 0 is stuck_probability. Integrates to 1 - stuck_probability.
     std::vector<double> velocity_density;
+};
+
+/// The discretisation of the Kolmogorov equations (the header's comment).
+enum class KolmogorovDiscretisation {
+    Automatic, ///< the near-white one below tau' = kolmogorov_near_white_below, the chain above
+    Chain,     ///< the upwind Markov chain on a uniform X grid (tau' >= kolmogorov_chain_min_tau_prime)
+    NearWhite, ///< the moment-exact noise chain in z with DG in v (every tau' > 0)
 };
 
 /// Resolution and budget of solve_kolmogorov. Zero means automatic where said.
@@ -219,7 +255,14 @@ struct KolmogorovSettings {
     /// the extrapolation). 0: the continuum solver.
     double pdmp_grid = 0;
     double pdmp_lattice_bound = 0;  ///< the PDMP lattice's L [s^-1/2] (`--lattice-bound`; 0: the engine's choice)
+    /// Which discretisation (the chain alone has the PDMP lattice mode; band_intervals,
+    /// v_cells, x_range, v_lower, v_upper, v_stretch and v_grading are the chain's).
+    KolmogorovDiscretisation discretisation = KolmogorovDiscretisation::Automatic;
 };
+
+/// The discretisation that solve_kolmogorov runs for p (SI) and settings:
+/// Chain or NearWhite, never Automatic.
+KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const KolmogorovSettings& settings);
 
 /// A value with its estimated discretisation error (an absolute error, in the
 /// value's unit).
@@ -258,8 +301,17 @@ struct KolmogorovResult : MethodResult {
 /// (value, row index and the supernodal structure's overhead; measured).
 inline constexpr double kolmogorov_bytes_per_lu_nonzero = 16.0;
 
-/// The smallest nondimensional tau' = tau friction^2/noise the solver takes.
-inline constexpr double kolmogorov_min_tau_prime = 0.05;
+/// The smallest nondimensional tau' = tau friction^2/noise the upwind chain
+/// takes (the near-white discretisation takes every tau' > 0).
+inline constexpr double kolmogorov_chain_min_tau_prime = 0.05;
+
+/// Below this tau', KolmogorovDiscretisation::Automatic takes the near-white
+/// discretisation; from it up, the upwind chain (the header's comment says why).
+inline constexpr double kolmogorov_near_white_below = 0.1;
+
+/// Below this tau', the near-white solver gives the white-noise quadrature for
+/// D and M0 with the bound that its grids measure at this tau' (near_white.cpp).
+inline constexpr double kolmogorov_white_limit_below = 1e-7;
 
 /// What the grids of a solve spanned (no one grid is fine in both directions).
 struct KolmogorovGridSpan {
@@ -289,8 +341,9 @@ KolmogorovGridSolution solve_kolmogorov_grid(const ModelParams& p, const Kolmogo
 KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& settings, int level);
 
 /// Throws InvalidParameter for what solve_kolmogorov refuses: an invalid
-/// model (validate), white noise or tau' < kolmogorov_min_tau_prime ("tau"),
-/// no stationary state ("bias"), invalid settings (the field's name).
+/// model (validate), white noise ("tau"), the chain asked for below
+/// kolmogorov_chain_min_tau_prime ("tau"), no stationary state ("bias"),
+/// invalid settings (the field's name).
 void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings);
 
 /// D [m^2/s], M0 [m/s], P(V = 0) and E[t1] [s] of p (SI units) by rounds of grid

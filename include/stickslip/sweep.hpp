@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // stickslip/sweep.hpp -- D, M0 and E[t1] over a grid of noise intensities and
 // correlation times (the paper's Figs. 4 and 9), with the local log-log slope
-// d log D / d log Gamma and, per tau, the fitted exponent of D ~ Gamma^alpha.
+// d log D / d log Gamma and, per tau, the fitted exponent of D ~ Gamma^alpha;
+// per noise, D over its white-noise value and how the departure from it
+// scales with tau' (SweepWhiteLimit: the paper's question, how white is white
+// enough).
 //
 // A third axis, --vary NAME with --vary-values LIST, sweeps a named constant
 // of the --drift expression (given as NAME=value in each point's
@@ -132,8 +135,45 @@ struct SweepPoint {
     /// points: std_error is the error propagated from D's discretisation
     /// errors, and the interval is NaN (there is no sampling distribution).
     Estimate slope;
+    /// D over white noise's D at the same point (the same model with tau =
+    /// 0, by exact quadrature: white_noise_reference): how white the noise
+    /// is, in D. Its error is D's (sampled: a standard error and interval;
+    /// solved: the discretisation error, no interval).
+    Estimate white_ratio;
     /// The point's own warnings (DiffusivityResult::warnings).
     std::vector<std::string> warnings;
+};
+
+/// How D approaches its white-noise value as tau' -> 0 at one noise
+/// intensity (and value of the swept constant): the answer to the source
+/// paper's question, how small tau must be for the white-noise D to hold.
+/// The relative departure delta = 1 - D/D_white of the points whose delta is
+/// resolved (above 3 errors) and at most 0.1 (the near-white regime) is
+/// fitted as delta = c1 tau'^p (weighted least squares in log-log, tau' =
+/// tau friction^2/noise); and, to test for a tau'^(1/2) law (Doering, Hagan
+/// and Levermore's, at absorbing boundaries), as delta = a tau'^(1/2) +
+/// b tau' + c tau'^(3/2) (weighted linear least squares, 4 or more points).
+struct SweepWhiteLimit {
+    double noise = 0; ///< the noise intensity Gamma [m^2 s^-3]
+    /// The value of the swept drift constant; NaN without --vary.
+    double varied = std::numeric_limits<double>::quiet_NaN();
+    double white_diffusivity = 0; ///< D with white noise at this noise [m^2/s]
+    Estimate exponent;            ///< p (NaN with fewer than 2 points)
+    Estimate coefficient;         ///< c1 (per unit tau'^p; NaN with fewer than 2 points)
+    double chi2_per_dof = 0;      ///< of the power law (NaN with fewer than 3 points)
+    /// a, the coefficient of tau'^(1/2) in the three-term fit: 0 within its
+    /// error when there is no tau'^(1/2) law (NaN with fewer than 4 points).
+    Estimate half_order;
+    /// b, the coefficient of tau' in the three-term fit: the leading one when a
+    /// is 0 (NaN with fewer than 4 points).
+    Estimate first_order;
+    /// c, the coefficient of tau'^(3/2) in the three-term fit (NaN with fewer than 4 points).
+    Estimate three_half_order;
+    /// The tau [s] below which D is within 1% of the white value: where delta
+    /// crosses 0.01 between two points (log-log interpolation); NaN when no
+    /// two neighbouring points bracket it.
+    double tau_within_percent = std::numeric_limits<double>::quiet_NaN();
+    int points = 0; ///< points fitted
 };
 
 /// The power law D ~ Gamma^alpha fitted over the noises of one tau.
@@ -161,6 +201,8 @@ struct SweepResult {
     /// for each value in turn)
     std::vector<SweepPoint> points;
     std::vector<SweepExponent> exponents; ///< one per tau and value (when >= 2 noises)
+    /// One per noise and value with 2 or more tau > 0: D's approach to white noise.
+    std::vector<SweepWhiteLimit> white_limits;
     /// Wall time of the whole sweep [s].
     double seconds = 0;
     bool interrupted = false;  ///< stopped early (RunControl::stop): the points run so far

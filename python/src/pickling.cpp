@@ -91,9 +91,13 @@ template <class F> void fields(F& f, ExcursionOutcome& x) {
 }
 template <class F> void fields(F& f, SweepPoint& x) {
     f(x.noise, x.tau, x.varied, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope,
-      x.warnings);
+      x.white_ratio, x.warnings);
 }
 template <class F> void fields(F& f, SweepExponent& x) { f(x.tau, x.varied, x.exponent, x.chi2_per_dof, x.points); }
+template <class F> void fields(F& f, SweepWhiteLimit& x) {
+    f(x.noise, x.varied, x.white_diffusivity, x.exponent, x.coefficient, x.chi2_per_dof, x.half_order, x.first_order,
+      x.three_half_order, x.tau_within_percent, x.points);
+}
 template <class F> void fields(F& f, WhiteNoiseReference& x) { f(x.mobility, x.diffusivity, x.variance); }
 
 /// The model: its settings, and the law's knots given as arrays (a callable
@@ -142,7 +146,7 @@ template <class F> void fields(F& f, TrajectoryResult& x) {
     f(x.request, x.resolved, x.paths, x.excursion, x.warnings);
 }
 template <class F> void fields(F& f, SweepResult& x) {
-    f(x.request, x.points, x.exponents, x.seconds, x.interrupted, x.resumed, x.warnings);
+    f(x.request, x.points, x.exponents, x.white_limits, x.seconds, x.interrupted, x.resumed, x.warnings);
 }
 template <class F> void fields(F& f, WhiteNoiseResult& x) {
     f(static_cast<MethodResult&>(x), x.request, x.reference, x.first_moment, x.autocorrelation, x.stationary_density,
@@ -347,6 +351,7 @@ void bind_pickling(py::module_& m) {
     pickled<VelocityHistogram>(m, "Histogram");
     pickled<SamplePath>(m, "Path");
     pickled<SweepExponent>(m, "SweepExponent");
+    pickled<SweepWhiteLimit>(m, "SweepWhiteLimit");
     // The results.
     pickled<DiffusivityResult>(m, "DiffusivityResult");
     pickled<BruteForceResult>(m, "BruteForceResult");

@@ -469,6 +469,30 @@ void bind_results(py::module_& m) {
                        "tau=" + g4(e.tau) + ", exponent=" + estimate_short(e.exponent) +
                        ", chi2_per_dof=" + g4(e.chi2_per_dof) + ", points=" + std::to_string(e.points) + ")";
             });
+        py::class_<SweepWhiteLimit>(m, "SweepWhiteLimit",
+                                    "How D approaches its white-noise value as tau' -> 0 at one noise: 1 - D/D_white "
+                                    "fitted as c1 tau'^p (weighted least squares in log-log over the points resolved "
+                                    "and within 10%) and as a tau'^(1/2) + b tau' + c tau'^(3/2) (a tests for a "
+                                    "tau'^(1/2) law); tau' = tau friction^2/noise.")
+            .def_readonly("noise", &SweepWhiteLimit::noise, "[m^2 s^-3]")
+            .def_readonly("varied", &SweepWhiteLimit::varied, "the swept drift constant's value (NaN without vary=)")
+            .def_readonly("white_diffusivity", &SweepWhiteLimit::white_diffusivity, "D with white noise [m^2/s]")
+            .def_readonly("exponent", &SweepWhiteLimit::exponent, "p (Estimate; NaN with fewer than 2 points)")
+            .def_readonly("coefficient", &SweepWhiteLimit::coefficient, "c1 (Estimate; NaN with fewer than 2 points)")
+            .def_readonly("chi2_per_dof", &SweepWhiteLimit::chi2_per_dof, "of the power law")
+            .def_readonly("half_order", &SweepWhiteLimit::half_order, "a (Estimate; NaN with fewer than 4 points)")
+            .def_readonly("first_order", &SweepWhiteLimit::first_order, "b (Estimate; NaN with fewer than 4 points)")
+            .def_readonly("three_half_order", &SweepWhiteLimit::three_half_order,
+                          "c (Estimate; NaN with fewer than 4 points)")
+            .def_readonly("tau_within_percent", &SweepWhiteLimit::tau_within_percent,
+                          "the tau [s] below which D is within 1% of the white value (NaN when no two taus bracket it)")
+            .def_readonly("points", &SweepWhiteLimit::points, "points fitted")
+            .def("__repr__", [](const SweepWhiteLimit& w) {
+                return "SweepWhiteLimit(" + (std::isnan(w.varied) ? std::string() : "varied=" + g4(w.varied) + ", ") +
+                       "noise=" + g4(w.noise) + ", exponent=" + estimate_short(w.exponent) +
+                       ", coefficient=" + estimate_short(w.coefficient) + ", half_order=" + estimate_short(w.half_order) +
+                       ", tau_within_percent=" + g4(w.tau_within_percent) + ", points=" + std::to_string(w.points) + ")";
+            });
         py::class_<R> c(m, "SweepResult",
                         "D, M0 and E[t1] over a grid of noise and tau (stickslip.sweep). Points are tau-major "
                         "(for each tau in `taus`, the noises in `noises`, both sorted and deduplicated), and every "
@@ -589,6 +613,12 @@ void bind_results(py::module_& m) {
                 "local d log D / d log noise per point (EstimateSeries, shape `shape`; NaN with one "
                 "noise value; a GridEstimateSeries with engine='kolmogorov', its error propagated from D's)")
             .def_property_readonly(
+                "white_ratio",
+                column_of(column, [](const SweepPoint& p) { return p.white_ratio; },
+                          [](const SweepPoint& p) { return KolmogorovEstimate{p.white_ratio.value, p.white_ratio.std_error}; }),
+                "D over the white-noise D at every point (EstimateSeries, shape `shape`; a "
+                "GridEstimateSeries with engine='kolmogorov', its error D's)")
+            .def_property_readonly(
                 "method", [](const R& r) -> std::string { return r.solved() ? "kolmogorov" : "monte carlo"; },
                 "'monte carlo', or 'kolmogorov' with engine='kolmogorov'")
             .def_property_readonly(
@@ -600,6 +630,8 @@ void bind_results(py::module_& m) {
                 },
                 "stop rule used at every point (list of str)")
             .def_readonly("exponents", &R::exponents, "one SweepExponent per tau (with >= 2 noises), per value and tau with vary=")
+            .def_readonly("white_limits", &R::white_limits,
+                          "one SweepWhiteLimit per noise (with >= 2 taus > 0), per value and noise with vary=")
             .def_readonly("seconds", &R::seconds, "wall time [s]")
             .def_readonly("interrupted", &R::interrupted,
                           "True when the sweep was stopped early (Ctrl-C): only the points run so far are here")

@@ -101,6 +101,7 @@ from ._core import (  # noqa: F401  (re-exported)
     SweepExponent,
     SweepRequest,
     SweepResult,
+    SweepWhiteLimit,
     TrajectoryRequest,
     TrajectoryResult,
     __version__,
@@ -117,7 +118,7 @@ _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityR
 # Show (and pickle) the compiled classes under the names users import.
 for _cls in (BruteForceResult, CorrelationResult, DensityResult, DiffusivityResult, Estimate, EstimateSeries,
              GridEstimate, GridEstimateSeries, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
-             TrajectoryResult,
+             SweepWhiteLimit, TrajectoryResult,
              InvalidParameterError, UntrustworthyResultError, CappedExcursionsError, StickslipWarning) + _REQUESTS:
     _cls.__module__ = __name__
 run.__module__ = __name__
@@ -126,7 +127,7 @@ del _cls
 __all__ = [
     "Params", "Scales", "Estimate", "EstimateSeries", "GridEstimate", "GridEstimateSeries", "Histogram", "Path",
     "DiffusivityResult", "BruteForceResult", "DensityResult", "CorrelationResult", "MomentsResult",
-    "TrajectoryResult", "SweepResult", "SweepExponent",
+    "TrajectoryResult", "SweepResult", "SweepExponent", "SweepWhiteLimit",
     "DiffusivityRequest", "BruteForceRequest", "DensityRequest", "CorrelationRequest", "MomentsRequest",
     "TrajectoryRequest", "SweepRequest", "run",
     "InvalidParameterError", "UntrustworthyResultError", "CappedExcursionsError", "StickslipWarning",

@@ -29,6 +29,7 @@ from ._core import (
     SweepExponent as SweepExponent,
     SweepRequest as SweepRequest,
     SweepResult as SweepResult,
+    SweepWhiteLimit as SweepWhiteLimit,
     TrajectoryRequest as TrajectoryRequest,
     TrajectoryResult as TrajectoryResult,
     UntrustworthyResultError as UntrustworthyResultError,

@@ -89,12 +89,12 @@ def _trajectory(r):
 def _sweep(r):
     cols = {"tau": _np.asarray(r.tau).ravel(), "noise": _np.asarray(r.noise).ravel()}
     if r.method != "monte carlo":  # engine="kolmogorov": values and discretisation errors
-        for name in ("diffusivity", "mobility", "stuck_probability", "mean_duration", "slope"):
+        for name in ("diffusivity", "mobility", "stuck_probability", "mean_duration", "slope", "white_ratio"):
             e = getattr(r, name)
             cols[name] = _np.asarray(e.value, dtype=float).ravel()
             cols[name + "_error"] = _np.asarray(e.error, dtype=float).ravel()
         return cols
-    for name in ("diffusivity", "mobility", "mean_duration", "slope"):
+    for name in ("diffusivity", "mobility", "mean_duration", "slope", "white_ratio"):
         _estimate(cols, name, getattr(r, name))
     return cols
 

@@ -44,6 +44,7 @@ def examples():
     d = stickslip.diffusivity(p, **SMALL)
     density = stickslip.density(p, bins=6, **SMALL)
     sweep = stickslip.sweep(p, noise=[4, 5, 6], tau=[0.5, 1], excursions=64)
+    white_sweep = stickslip.sweep(p, noise=[5], tau=[1e-3, 3e-3, 1e-2, 3e-2], engine="kolmogorov", rel_precision=1e-2)
     solved_sweep = stickslip.sweep(p, noise=[4, 5], tau=[0.5], engine="kolmogorov", rel_precision=1e-2)
     moments = stickslip.moments(p, scheme="resolvent", dt=1e-3, trajectories=100, times=[0.1, 0.3], density=True,
                                 bins=4)
@@ -61,6 +62,7 @@ def examples():
         "Histogram": [density.histogram, moments.density[1]],
         "Path": [trajectory.paths[1]],
         "SweepExponent": [sweep.exponents[0]],
+        "SweepWhiteLimit": [white_sweep.white_limits[0]],
         "DiffusivityResult": [
             d,
             stickslip.diffusivity(p, engine="kolmogorov", rel_precision=1e-2),
@@ -73,7 +75,7 @@ def examples():
         "CorrelationResult": [stickslip.correlation(p, lags=4, **SMALL)],
         "MomentsResult": [moments],
         "TrajectoryResult": [trajectory, stickslip.trajectory(p, scheme="resolvent", dt=1e-3)],
-        "SweepResult": [sweep, solved_sweep],
+        "SweepResult": [sweep, solved_sweep, white_sweep],
         "WhiteNoiseResult": [stickslip.analytic.white_noise(p.replace(bias=0.2), times=[0, 0.5], v0=0.5,
                                                             velocities=[-0.5, 0.25, 1])],
         "DiffusivityRequest": [request],

@@ -58,12 +58,50 @@ DriftLawWhiteNoise::DriftLawWhiteNoise(const ModelParams& given) {
     law_ = make_drift_law(p);
     friction_ = p.friction;
     noise_ = p.noise;
+    build();
+}
+
+DriftLawWhiteNoise::DriftLawWhiteNoise(const DriftLaw& law, double friction, double noise)
+    : law_(law), friction_(friction), noise_(noise) {
+    build();
+}
+
+double DriftLawWhiteNoise::lower_end(double drop) const {
+    // From the outer break outwards while Phi is above -drop; where it is far
+    // below there already (a table over a wide range), inwards over the knots
+    // to the outermost one still within a margin of -drop, keeping the next.
+    const double margin = 5;
+    double v = breaks_.front();
+    if (phi(v) < -drop - margin) {
+        std::size_t k = 0;
+        while (k + 1 < breaks_.size() && phi(breaks_[k + 1]) < -drop - margin) ++k;
+        return breaks_[k];
+    }
+    for (double step = noise_ / friction_ / 64; phi(v) > -drop; step *= 1.25) v -= step;
+    return v;
+}
+
+double DriftLawWhiteNoise::upper_end(double drop) const {
+    const double margin = 5;
+    double v = breaks_.back();
+    if (phi(v) < -drop - margin) {
+        std::size_t k = breaks_.size() - 1;
+        while (k > 0 && phi(breaks_[k - 1]) < -drop - margin) --k;
+        return breaks_[k];
+    }
+    for (double step = noise_ / friction_ / 64; phi(v) > -drop; step *= 1.25) v += step;
+    return v;
+}
+
+void DriftLawWhiteNoise::build() {
     // The points where the net force b - friction sgn v changes: the knots
     // (and 0) bound pieces on which Phi is one quadratic.
     std::vector<double> breaks{0.0};
     if (!law_.affine())
         for (int k = 0; k < law_.knots; ++k) breaks.push_back(law_.knot(k));
-    const double unit = p.noise / p.friction;
+    breaks_ = breaks;
+    std::sort(breaks_.begin(), breaks_.end());
+    const double unit = noise_ / friction_;
     // Phi's maximum: at a break or where a piece's net force vanishes.
     phi_max_ = 0.0;
     double best = -HUGE_VAL;

@@ -10,6 +10,7 @@
 
 #include "core/format.hpp"
 #include "driver/step_check.hpp"
+#include "stickslip/analytic.hpp"
 #include "stickslip/drift_input.hpp"
 
 namespace stickslip {
@@ -138,6 +139,132 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
                 }
             }
     return out;
+}
+
+/// The least-squares fit y = sum_k beta_k f_k(x) with weights 1/sigma^2:
+/// the coefficients, their standard errors and chi^2 (normal equations,
+/// solved by Gaussian elimination: at most three terms).
+struct LinearFit {
+    std::vector<double> beta, se;
+    double chi2 = 0;
+};
+LinearFit least_squares(const std::vector<std::vector<double>>& f, const std::vector<double>& y,
+                        const std::vector<double>& sigma) {
+    const std::size_t m = f.size(), n = y.size();
+    std::vector<std::vector<double>> a(m, std::vector<double>(m, 0.0)), inv(m, std::vector<double>(m, 0.0));
+    std::vector<double> b(m, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double w = 1.0 / (sigma[i] * sigma[i]);
+        for (std::size_t j = 0; j < m; ++j) {
+            b[j] += w * f[j][i] * y[i];
+            for (std::size_t k = 0; k < m; ++k) a[j][k] += w * f[j][i] * f[k][i];
+        }
+    }
+    for (std::size_t j = 0; j < m; ++j) inv[j][j] = 1.0;
+    for (std::size_t c = 0; c < m; ++c) { // Gauss-Jordan with partial pivoting
+        std::size_t pivot = c;
+        for (std::size_t r = c + 1; r < m; ++r)
+            if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
+        std::swap(a[c], a[pivot]);
+        std::swap(inv[c], inv[pivot]);
+        std::swap(b[c], b[pivot]);
+        const double d = a[c][c];
+        for (std::size_t k = 0; k < m; ++k) a[c][k] /= d, inv[c][k] /= d;
+        b[c] /= d;
+        for (std::size_t r = 0; r < m; ++r) {
+            if (r == c) continue;
+            const double factor = a[r][c];
+            for (std::size_t k = 0; k < m; ++k) a[r][k] -= factor * a[c][k], inv[r][k] -= factor * inv[c][k];
+            b[r] -= factor * b[c];
+        }
+    }
+    LinearFit fit{b, std::vector<double>(m), 0.0};
+    for (std::size_t j = 0; j < m; ++j) fit.se[j] = std::sqrt(inv[j][j]);
+    for (std::size_t i = 0; i < n; ++i) {
+        double model = 0;
+        for (std::size_t j = 0; j < m; ++j) model += b[j] * f[j][i];
+        fit.chi2 += (y[i] - model) * (y[i] - model) / (sigma[i] * sigma[i]);
+    }
+    return fit;
+}
+
+/// Each point's D over its white-noise value, and per noise (and value)
+/// the approach to white noise (SweepWhiteLimit in sweep.hpp).
+void add_white_limits(SweepResult& out) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double level = out.request.level;
+    const bool solved = out.solved();
+    auto spread = [&](double value, double error) {
+        return solved ? Estimate{value, error, nan, nan, level} : make_interval(value, error, level);
+    };
+    std::vector<bool> done(out.points.size(), false);
+    for (std::size_t first = 0; first < out.points.size(); ++first) {
+        if (done[first]) continue;
+        const SweepPoint& head = out.points[first];
+        std::vector<std::size_t> group; // this noise and value, increasing tau
+        for (std::size_t i = first; i < out.points.size(); ++i) {
+            const SweepPoint& p = out.points[i];
+            const bool same_value = std::isnan(head.varied) ? std::isnan(p.varied) : p.varied == head.varied;
+            if (p.noise == head.noise && same_value) group.push_back(i), done[i] = true;
+        }
+        ModelParams white = point_request(out.request, head.varied, head.noise, 0.0, 0).params;
+        const double d_white = white_noise_reference(white).diffusivity;
+        const double time_unit = scales_of(white).time;
+        std::vector<double> tau_prime, delta, sigma;
+        for (std::size_t i : group) {
+            SweepPoint& p = out.points[i];
+            const double d = p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
+            const double e = p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.std_error;
+            p.white_ratio = spread(d / d_white, e / d_white);
+            if (p.tau > 0) {
+                tau_prime.push_back(p.tau / time_unit);
+                delta.push_back(1.0 - d / d_white);
+                sigma.push_back(e / d_white);
+            }
+        }
+        if (tau_prime.size() < 2) continue;
+        SweepWhiteLimit w;
+        w.noise = head.noise;
+        w.varied = head.varied;
+        w.white_diffusivity = d_white;
+        // Where delta crosses 1%, between neighbouring taus.
+        for (std::size_t k = 0; k + 1 < tau_prime.size(); ++k)
+            if (delta[k] > 0 && delta[k] <= 0.01 && delta[k + 1] > 0.01) {
+                const double f = std::log(0.01 / delta[k]) / std::log(delta[k + 1] / delta[k]);
+                w.tau_within_percent = time_unit * std::exp(std::log(tau_prime[k]) + f * std::log(tau_prime[k + 1] / tau_prime[k]));
+                break;
+            }
+        std::vector<double> x, logs, log_sigma, ys, ss;
+        std::vector<std::vector<double>> terms(3);
+        for (std::size_t k = 0; k < tau_prime.size(); ++k) {
+            if (!(delta[k] > 3 * sigma[k]) || delta[k] > 0.1) continue;
+            x.push_back(std::log(tau_prime[k]));
+            logs.push_back(std::log(delta[k]));
+            log_sigma.push_back(sigma[k] / delta[k]);
+            ys.push_back(delta[k]);
+            ss.push_back(sigma[k]);
+            terms[0].push_back(std::sqrt(tau_prime[k]));
+            terms[1].push_back(tau_prime[k]);
+            terms[2].push_back(tau_prime[k] * std::sqrt(tau_prime[k]));
+        }
+        w.points = static_cast<int>(x.size());
+        w.exponent = w.coefficient = w.half_order = w.first_order = w.three_half_order = spread(nan, nan);
+        w.chi2_per_dof = nan;
+        if (x.size() >= 2) {
+            const LinearFit power = least_squares({std::vector<double>(x.size(), 1.0), x}, logs, log_sigma);
+            w.exponent = spread(power.beta[1], power.se[1]);
+            const double c1 = std::exp(power.beta[0]);
+            w.coefficient = spread(c1, c1 * power.se[0]);
+            if (x.size() >= 3) w.chi2_per_dof = power.chi2 / static_cast<double>(x.size() - 2);
+        }
+        if (x.size() >= 4) {
+            const LinearFit expansion = least_squares(terms, ys, ss);
+            w.half_order = spread(expansion.beta[0], expansion.se[0]);
+            w.first_order = spread(expansion.beta[1], expansion.se[1]);
+            w.three_half_order = spread(expansion.beta[2], expansion.se[2]);
+        }
+        out.white_limits.push_back(w);
+    }
 }
 
 } // namespace
@@ -285,6 +412,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
             }
         }
     }
+    add_white_limits(out);
     if (out.solved() && !out.interrupted) solved_progress(out.points.size());
     if (out.interrupted)
         out.warnings.push_back("interrupted: " + std::to_string(out.points.size()) + " of " + std::to_string(total) +

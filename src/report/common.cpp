@@ -341,12 +341,13 @@ std::string first_null(const nlohmann::json& j, const std::string& path) {
         for (auto it = j.begin(); it != j.end(); ++it) {
             // The settings may say "not applicable" with null (x0 of white
             // noise), and so may a sweep's fits, which need two (slope) or
-            // three (exponent's chi2_per_dof) points: their inputs, the
-            // points' D and M0, are checked.
+            // three (exponent's chi2_per_dof) points, or for the approach to
+            // white noise two to four resolved points and two taus that
+            // bracket 1%: their inputs, the points' D and M0, are checked.
             if (path.empty() && (it.key() == "params" || it.key() == "nondimensional" || it.key() == "settings" ||
                                  it.key() == "command"))
                 continue;
-            if (it.key() == "slope" || it.key() == "exponents") continue;
+            if (it.key() == "slope" || it.key() == "exponents" || it.key() == "white_limits") continue;
             if (std::string bad = first_null(*it, path + "." + it.key()); !bad.empty()) return bad;
         }
     } else if (j.is_array()) {

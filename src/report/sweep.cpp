@@ -69,6 +69,69 @@ ordered_json exponents_json(const SweepResult& r) {
     return ex;
 }
 
+/// An estimate of a sweep: with its interval when sampled, as {value, error}
+/// when solved.
+ordered_json sweep_estimate_json(const SweepResult& r, const Estimate& e) {
+    return r.solved() ? grid_estimate_json({e.value, e.std_error}) : estimate_json(e);
+}
+
+/// D's approach to white noise per noise (SweepWhiteLimit).
+ordered_json white_limits_json(const SweepResult& r) {
+    ordered_json out = ordered_json::array();
+    for (const auto& w : r.white_limits) {
+        ordered_json o;
+        if (r.varies()) o["varied"] = w.varied;
+        o["noise"] = w.noise;
+        o["white_diffusivity"] = w.white_diffusivity;
+        o["exponent"] = sweep_estimate_json(r, w.exponent);
+        o["coefficient"] = sweep_estimate_json(r, w.coefficient);
+        o["chi2_per_dof"] = json_number(w.chi2_per_dof);
+        o["half_order"] = sweep_estimate_json(r, w.half_order);
+        o["first_order"] = sweep_estimate_json(r, w.first_order);
+        o["three_half_order"] = sweep_estimate_json(r, w.three_half_order);
+        o["points"] = w.points;
+        o["tau_within_percent"] = json_number(w.tau_within_percent);
+        out.push_back(o);
+    }
+    return out;
+}
+
+/// The table's lines on D's approach to white noise, or "".
+std::string white_limits_text(const SweepResult& r) {
+    // Only the noises with something to say: a fit, or the 1% point bracketed.
+    std::vector<const SweepWhiteLimit*> shown;
+    for (const auto& w : r.white_limits)
+        if (w.points >= 2 || !std::isnan(w.tau_within_percent)) shown.push_back(&w);
+    if (shown.empty()) return {};
+    using number_text::fixed;
+    std::ostringstream os = report_stream();
+    os << "\nD against its white-noise value per noise (1 - D/D_white = c1 tau'^p, tau' = tau friction^2/noise, "
+          "fitted where resolved and at most 10%; and as a tau'^(1/2) + b tau' + c tau'^(3/2)):\n";
+    for (const SweepWhiteLimit* each : shown) {
+        const SweepWhiteLimit& w = *each;
+        os << "  " << (r.varies() ? r.request.vary + " " + format_number(w.varied, 4) + ", " : std::string())
+           << "noise " << format_number(w.noise, 4) << ": D_white " << format_number(w.white_diffusivity, 6)
+           << " m^2/s; ";
+        if (w.points >= 2)
+            os << "p = " << fixed(w.exponent.value, 3) << " +- " << format_number(w.exponent.std_error, 2)
+               << ", c1 = " << format_number(w.coefficient.value, 4) << " +- " << format_number(w.coefficient.std_error, 2)
+               << " over " << w.points << " points";
+        else
+            os << "fewer than 2 points resolved for a fit";
+        if (!std::isnan(w.chi2_per_dof)) os << " (chi2/dof " << format_number(w.chi2_per_dof, 2) << ")";
+        if (!std::isnan(w.half_order.value))
+            os << "; a = " << format_number(w.half_order.value, 3) << " +- " << format_number(w.half_order.std_error, 2)
+               << ", b = " << format_number(w.first_order.value, 4) << " +- " << format_number(w.first_order.std_error, 2)
+               << ", c = " << format_number(w.three_half_order.value, 3) << " +- "
+               << format_number(w.three_half_order.std_error, 2);
+        os << "; within 1% of white below tau = "
+           << (std::isnan(w.tau_within_percent) ? std::string("- (not bracketed by the taus)")
+                                                : format_number(w.tau_within_percent, 3) + " s")
+           << "\n";
+    }
+    return os.str();
+}
+
 // The reports of a sweep solved by the Kolmogorov engine: each value with its
 // estimated discretisation error, no samples, stop rules, steps or intervals.
 
@@ -118,6 +181,7 @@ std::string solved_json(const SweepResult& r, int indent) {
         o["mean_duration"] = grid_estimate_json(s.mean_duration);
         o["precision_reached"] = s.converged;
         o["slope"] = {{"value", json_number(p.slope.value)}, {"error", json_number(p.slope.std_error)}};
+        o["white_ratio"] = sweep_estimate_json(r, p.white_ratio);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", s.diffusivity.value / sc.diffusivity},
                                {"mobility", s.mobility.value / sc.velocity},
@@ -127,6 +191,7 @@ std::string solved_json(const SweepResult& r, int indent) {
     }
     j["points"] = pts;
     j["exponents"] = exponents_json(r);
+    j["white_limits"] = white_limits_json(r);
     ordered_json work = {{"seconds", r.seconds}};
     add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
     return dump(j, indent);
@@ -150,7 +215,7 @@ std::string solved_table(const SweepResult& r) {
     using number_text::pad;
     os << varied_head(r) << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -24) << " "
        << pad("M0 [m/s]", -24) << " " << pad("E[t1] [s]", -24) << " " << pad("P(V = 0)", -10) << " "
-       << pad("dlogD/dlogGamma", -20) << "\n";
+       << pad("dlogD/dlogGamma", -20) << " " << pad("D/D_white", -20) << "\n";
     for (const auto& p : r.points) {
         const KolmogorovResult& s = *p.solution;
         const std::string slope = std::isnan(p.slope.value)
@@ -159,7 +224,8 @@ std::string solved_table(const SweepResult& r) {
         os << varied_cell(r, p.varied) << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10)
            << "  "
            << solved_cell(s.diffusivity) << " " << solved_cell(s.mobility) << " " << solved_cell(s.mean_duration) << " "
-           << pad(format_number(s.stuck_probability.value, 4), -10) << " " << slope << "\n";
+           << pad(format_number(s.stuck_probability.value, 4), -10) << " " << pad(slope, -20) << " "
+           << fixed(p.white_ratio.value, 6) << " +- " << format_number(p.white_ratio.std_error, 2) << "\n";
     }
     if (!r.exponents.empty()) {
         os << "\nfitted D ~ noise^alpha per " << (r.varies() ? r.request.vary + " and " : "") << "tau (least squares in log-log, weighted by the discretisation errors):\n";
@@ -167,6 +233,7 @@ std::string solved_table(const SweepResult& r) {
             os << exponent_head(r, e) << "alpha = " << fixed(e.exponent.value, 4)
                << " +- " << format_number(e.exponent.std_error, 2) << " over " << e.points << " points\n";
     }
+    os << white_limits_text(r);
     os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3)
        << " s (the errors are estimated discretisation errors, not standard errors)\n"
        << notes(r.warnings);
@@ -176,7 +243,8 @@ std::string solved_table(const SweepResult& r) {
 std::string solved_csv(const SweepResult& r) {
     std::ostringstream os = report_stream();
     os << (r.varies() ? "varied," : "") << "tau,noise,diffusivity,diffusivity_error,mobility,mobility_error,stuck_probability,stuck_probability_error,"
-          "mean_duration,mean_duration_error,slope,slope_error,tau_nondim,diffusivity_nondim,states\n";
+          "mean_duration,mean_duration_error,slope,slope_error,tau_nondim,diffusivity_nondim,states,white_ratio,"
+          "white_ratio_error\n";
     for (const auto& p : r.points) {
         const KolmogorovResult& s = *p.solution;
         const Scales sc = scales_of(point_params(r, p));
@@ -186,7 +254,7 @@ std::string solved_csv(const SweepResult& r) {
             os << "," << csv_number(e->value) << "," << csv_number(e->error);
         os << "," << csv_number(p.slope.value) << "," << csv_number(p.slope.std_error) << ","
            << csv_number(p.tau / sc.time) << "," << csv_number(s.diffusivity.value / sc.diffusivity) << "," << p.work
-           << "\n";
+           << "," << csv_number(p.white_ratio.value) << "," << csv_number(p.white_ratio.std_error) << "\n";
     }
     return csv_provenance(r.request) + os.str();
 }
@@ -216,6 +284,7 @@ std::string to_json(const SweepResult& r, int indent) {
         if (own_scheme) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
         append_members(o, long_excursion_json(p.estimates));
         o["slope"] = {{"value", json_number(p.slope.value)}, {"stderr", json_number(p.slope.std_error)}};
+        o["white_ratio"] = sweep_estimate_json(r, p.white_ratio);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},
                                {"mobility", p.estimates.mobility.value / sc.velocity},
@@ -225,6 +294,7 @@ std::string to_json(const SweepResult& r, int indent) {
     }
     j["points"] = pts;
     j["exponents"] = exponents_json(r);
+    j["white_limits"] = white_limits_json(r);
     ordered_json work = {{"seconds", r.seconds}};
     if (r.resumed) work["resumed_samples"] = r.resumed;
     add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
@@ -242,7 +312,7 @@ std::string to_table(const SweepResult& r) {
     using number_text::fixed;
     using number_text::pad;
     os << varied_head(r) << pad("tau [s]", 10) << " " << pad("noise", 10) << "  " << pad("D [m^2/s]", -25) << " " << pad("M0 [m/s]", -25)
-       << " " << pad("E[t1] [s]", -20) << " " << pad("dlogD/dlogGamma", -20) << "\n";
+       << " " << pad("E[t1] [s]", -20) << " " << pad("dlogD/dlogGamma", -20) << " " << pad("D/D_white", -18) << "\n";
     for (const auto& p : r.points) {
         const std::string slope = std::isnan(p.slope.value)
                                       ? std::string("-")
@@ -251,7 +321,8 @@ std::string to_table(const SweepResult& r) {
            << "  "
            << estimate_cell(p.estimates.diffusivity) << " " << estimate_cell(p.estimates.mobility) << " "
            << pad(format_number(p.estimates.mean_duration.value, 4), 10) << " +- "
-           << pad(format_number(p.estimates.mean_duration.std_error, 2), -7) << " " << slope;
+           << pad(format_number(p.estimates.mean_duration.std_error, 2), -7) << " " << pad(slope, -20) << " "
+           << fixed(p.white_ratio.value, 4) << " +- " << pad(format_number(p.white_ratio.std_error, 2), -7);
         if (dt_per_point(q.engine)) os << "  dt " << format_number(p.dt) << " s";
         if (scheme_per_point(q.engine)) os << "  " << to_string(p.scheme);
         os << "\n";
@@ -265,6 +336,7 @@ std::string to_table(const SweepResult& r) {
                << " points)\n";
         }
     }
+    os << white_limits_text(r);
     os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3) << " s (seed " << q.control.seed << ")\n"
        << notes(r.warnings);
     return os.str();
@@ -274,7 +346,8 @@ std::string to_csv(const SweepResult& r) {
     if (r.solved()) return solved_csv(r);
     std::ostringstream os = report_stream();
     os << (r.varies() ? "varied," : "") << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
-       << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions"
+       << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions,"
+       << csv_estimate_header("white_ratio")
        << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
        << "\n";
     for (const auto& p : r.points) {
@@ -285,7 +358,7 @@ std::string to_csv(const SweepResult& r) {
            << csv_number(p.estimates.mean_duration.std_error) << "," << csv_number(p.slope.value) << ","
            << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time) << ","
            << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << ","
-           << p.estimates.excursions;
+           << p.estimates.excursions << "," << csv_estimate(p.white_ratio);
         if (dt_per_point(r.request.engine)) os << "," << csv_number(p.dt);
         if (scheme_per_point(r.request.engine)) os << "," << to_string(p.scheme);
         os << "\n";

@@ -97,7 +97,6 @@ TEST(CliKolmogorov, RefusedWhereItCannotServeInOneLine) {
         {{"sweep", "--noise", "1,2", "--rel-precision", "0.01"}, "--engine kolmogorov"},
         {{"sweep", "--engine", "kolmogorov", "--noise", "1,2", "--checkpoint", checkpoint}, "nothing to checkpoint"},
         {{"diffusivity", "--engine", "kolmogorov", "--tau", "0"}, "stickslip analytic"},
-        {{"diffusivity", "--engine", "kolmogorov", "--tau", "0.01"}, "inclusion engine"},
         {{"density", "--engine", "kolmogorov", "--tau", "0"}, "stickslip analytic"},
         {{"diffusivity", "--engine", "kolmogorov", "--check-dt"}, "inclusion engine"},
         {{"diffusivity", "--engine", "kolmogorov", "--checkpoint", checkpoint}, "nothing to checkpoint"},

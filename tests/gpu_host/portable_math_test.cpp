@@ -181,3 +181,30 @@ TEST(PortableMath, DeviceZigguratTablesAreTheHostTables) {
         EXPECT_TRUE(same_bits(f.v[i], ss::detail::zig_f[i])) << i;
     }
 }
+
+TEST(PortableMath, Expm1AndPowForTheGridSolvers) {
+    // The Kolmogorov solvers take expm1 and pow from here, so that their
+    // numbers do not follow glibc's run-time choice of variant: within one
+    // ulp of glibc (both accurate) over the solvers' arguments, exact where
+    // the answer is exact, and expm1 keeps its digits near 0.
+    const double inf = std::numeric_limits<double>::infinity();
+    EXPECT_TRUE(same_bits(ss::portable_expm1(0.0), 0.0));
+    EXPECT_TRUE(same_bits(ss::portable_expm1(-0.0), -0.0));
+    EXPECT_EQ(ss::portable_expm1(1e-300), 1e-300);
+    EXPECT_EQ(ss::portable_expm1(-50.0), -1.0);
+    EXPECT_EQ(ss::portable_expm1(-inf), -1.0);
+    EXPECT_EQ(ss::portable_expm1(710.0), inf);
+    EXPECT_TRUE(std::isnan(ss::portable_expm1(std::numeric_limits<double>::quiet_NaN())));
+    EXPECT_EQ(ss::portable_pow(0.25, 0.5), 0.5);
+    EXPECT_EQ(ss::portable_pow(3.0, 0.0), 1.0);
+    EXPECT_EQ(ss::portable_pow(0.0, 2.0), 0.0);
+    ss::CounterRng rng(15, ss::StreamPurpose::Test, 0);
+    for (int i = 0; i < 100000; ++i) {
+        double u, v;
+        rng.uniform2(u, v);
+        const double a = (i % 3 == 0) ? 1e-9 * (u - 0.5) : (i % 3 == 1 ? 60.0 * (u - 0.5) : 700.0 * (u - 0.5));
+        ASSERT_LE(ulps(ss::portable_expm1(a), std::expm1(a)), 1u) << std::hexfloat << a;
+        const double x = 1e-6 + 1e6 * u * u, y = 4.0 * (v - 0.5);
+        ASSERT_LE(ulps(ss::portable_pow(x, y), std::pow(x, y)), 2u) << std::hexfloat << x << " " << y;
+    }
+}

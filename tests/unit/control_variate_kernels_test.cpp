@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "stickslip/corrector.hpp"
+#include "stickslip/kolmogorov.hpp"
 #include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/kernels/pdmp.hpp"
 #include "stickslip/kernels/resolvent.hpp"
@@ -178,8 +179,14 @@ TEST(ControlVariateCorrector, WhiteNoisePureDryFrictionIsTheClosedForm) {
 TEST(ControlVariateCorrector, ColouredNeedsTheKolmogorovSolversRange) {
     std::string why;
     EXPECT_TRUE(ss::has_corrector(pure_dry(1.0)));
-    EXPECT_FALSE(ss::has_corrector(pure_dry(0.01), &why));
+    EXPECT_TRUE(ss::has_corrector(pure_dry(0.01))); // the near-white discretisation's
+    EXPECT_TRUE(ss::has_corrector(pure_dry(2 * ss::kolmogorov_white_limit_below)));
+    EXPECT_FALSE(ss::has_corrector(pure_dry(0.5 * ss::kolmogorov_white_limit_below), &why));
     EXPECT_NE(why.find("tau'"), std::string::npos);
+    const auto near_white = ss::make_corrector(pure_dry(0.01));
+    EXPECT_EQ(near_white->source, "kolmogorov");
+    EXPECT_NE(near_white->grid.find("near-white"), std::string::npos) << near_white->grid;
+    EXPECT_NEAR(near_white->diffusivity, 1.2333, 0.01); // its coarse grid's D (1.23331 converged)
     const auto c = ss::make_corrector(pure_dry(1.0));
     EXPECT_EQ(c->source, "kolmogorov");
     // The coarse grid's D, with its upwind diffusion (0.437 at level 1; the

@@ -437,7 +437,11 @@ TEST(KolmogorovRefusals, WhiteNoiseSmallTauAndBadSettings) {
         return std::string("nothing thrown");
     };
     EXPECT_EQ(parameter_of([] { ss::solve_kolmogorov(dry(0.0)); }), "tau");
-    EXPECT_EQ(parameter_of([] { ss::solve_kolmogorov(dry(0.5 * ss::kolmogorov_min_tau_prime)); }), "tau");
+    {
+        ss::KolmogorovSettings chain;
+        chain.discretisation = ss::KolmogorovDiscretisation::Chain;
+        EXPECT_EQ(parameter_of([&] { ss::solve_kolmogorov(dry(0.5 * ss::kolmogorov_chain_min_tau_prime), chain); }), "tau");
+    }
     EXPECT_EQ(parameter_of([] { ss::solve_kolmogorov(dry(1.0, 1.0)); }), "bias"); // no stationary state
     ss::KolmogorovSettings s;
     s.band_intervals = 6;

@@ -216,6 +216,55 @@ STICKSLIP_HD STICKSLIP_PM_NOINLINE inline double portable_exp(double a) {
     return m * pow2(k);
 }
 
+/// exp(a) - 1, correctly rounded but for hard cases for a <= 709.78; the
+/// same bits on every machine (no libm: glibc's expm1 is chosen at run time
+/// among variants that differ in the last bit). For the grid solvers, whose
+/// every number would follow it; not used in kernels.
+STICKSLIP_HD STICKSLIP_PM_NOINLINE inline double portable_expm1(double a) {
+    using namespace detail::pm;
+    if (a != a || a == 0.0) return a;
+    if (a > 0x1.62e42fefa39efp+9) return HUGE_VAL;
+    if (a < -40.0) return -1.0; // exp(a) < 2^-57: -1 to the last bit
+    // As portable_exp: a = k ln2 + r, exp(r) = 1 + q in double-double.
+    const double kd = std::floor(a * 0x1.71547652b82fep+0 + 0.5);
+    const DD kh = two_prod(kd, ln2_hi);
+    DD r = two_sum(a, -kh.hi);
+    r.lo -= kh.lo;
+    r.lo -= kd * ln2_lo;
+    r = fast_two_sum(r.hi, r.lo);
+    const DD x{r.hi * 0x1p-8, r.lo * 0x1p-8};
+    double t = 0x1.27e4fb7789f5cp-22;
+    t = t * x.hi + 0x1.71de3a556c734p-19;
+    t = t * x.hi + 0x1.a01a01a01a01ap-16;
+    t = t * x.hi + 0x1.a01a01a01a01ap-13;
+    t = t * x.hi + 0x1.6c16c16c16c17p-10;
+    DD q{t, 0.0};
+    q = add(mul(q, x), DD{0x1.1111111111111p-7, 0x1.1111111111111p-63});
+    q = add(mul(q, x), DD{0x1.5555555555555p-5, 0x1.5555555555555p-59});
+    q = add(mul(q, x), DD{0x1.5555555555555p-3, 0x1.5555555555555p-57});
+    q = add(mul(q, x), 0.5);
+    q = add(mul(q, x), 1.0);
+    q = mul(q, x);
+    for (int i = 0; i < 8; ++i) q = add(mul(q, q), DD{2.0 * q.hi, 2.0 * q.lo});
+    // exp(a) - 1 = 2^k (1 + q) - 1, in double-double (2^k scales exactly).
+    const int k = static_cast<int>(kd);
+    if (k == 0) return q.hi + q.lo;
+    const DD m = add(q, 1.0);
+    const double scale = k > 1023 ? 2.0 * pow2(k - 1) : pow2(k);
+    return add(DD{m.hi * scale, m.lo * scale}, -1.0).hi;
+}
+
+/// x^y for x > 0 (normal), within about 1 ulp and the same bits on every
+/// machine, unlike glibc's pow: y log x in double-double, then exp of its
+/// high part times 1 + its low part.
+STICKSLIP_HD inline double portable_pow(double x, double y) {
+    using namespace detail::pm;
+    if (y == 0.0 || x == 1.0) return 1.0;
+    if (!(x > 0.0)) return x == 0.0 ? (y > 0 ? 0.0 : HUGE_VAL) : (x - x) / (x - x);
+    const DD t = mul(dd_log(DD{x, 0.0}), y);
+    return portable_exp(t.hi) * (1.0 + t.lo);
+}
+
 namespace detail {
 
 /// Whether y < exp(a), given p, an approximation of exp(a) within 2 ulps

@@ -22,6 +22,10 @@
 //    node when the node is in the band, and otherwise through to the first
 //    cell of the other half line (the flow there points away from 0). No flux
 //    through the outermost faces.
+// exp, expm1 and pow are the project's portable ones (portable_math.hpp):
+// glibc chooses among variants at run time (FMA or not) that differ in the
+// last bit, and every number of the solve followed the machine's choice
+// (the Fig. 2 case's D differed in its 12th digit between two machines).
 // Band membership is decided by node index (the band's edges are nodes), never
 // by a floating comparison of the force with Delta. In the PDMP-lattice mode
 // the x moves are the PDMP engine's jumps (rate 2/(tau delta)^2, up with
@@ -31,6 +35,7 @@
 
 #include "stickslip/engine.hpp"
 #include "stickslip/kernels/pdmp.hpp"
+#include "stickslip/random/portable_math.hpp"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseLU>
@@ -42,8 +47,8 @@ namespace stickslip::detail::kolmogorov {
 
 double bernoulli_weight(double z) {
     if (std::abs(z) < 1e-10) return 1.0 - 0.5 * z;
-    if (z > 700.0) return z * std::exp(-z);
-    return z / std::expm1(z);
+    if (z > 700.0) return z * portable_exp(-z);
+    return z / portable_expm1(z);
 }
 
 ChainGrid make_grid(const ModelParams& p, const KolmogorovGrid& g) {
@@ -96,8 +101,8 @@ ChainGrid make_grid(const ModelParams& p, const KolmogorovGrid& g) {
         const double s = g.v_stretch;
         for (std::size_t k = 0; k <= cells; ++k) {
             const double u = static_cast<double>(k) / static_cast<double>(cells);
-            const double stretched = s > 0 ? std::expm1(s * u) / std::expm1(s) : u;
-            f[k] = end * stretched * std::pow(u, g.v_grading - 1.0);
+            const double stretched = s > 0 ? portable_expm1(s * u) / portable_expm1(s) : u;
+            f[k] = end * stretched * portable_pow(u, g.v_grading - 1.0);
         }
         f[cells] = end;
         return f;

@@ -27,6 +27,7 @@ namespace stickslip::detail::kolmogorov {
 struct DriftLaw {
     stickslip::DriftLaw law;
     explicit DriftLaw(const ModelParams& p) : law(make_drift_law(p)) {}
+    explicit DriftLaw(const stickslip::DriftLaw& made) : law(made) {}
     double operator()(double v) const { return law(v); }
 };
 

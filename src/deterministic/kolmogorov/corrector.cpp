@@ -11,6 +11,8 @@
 
 #include "core/format.hpp"
 #include "deterministic/kolmogorov/chain.hpp"
+#include "deterministic/near_white/corrector_table.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/drift_law_quadrature.hpp"
 #include "stickslip/errors.hpp"
 #include "stickslip/kolmogorov.hpp"
@@ -173,10 +175,11 @@ std::shared_ptr<Corrector> white_corrector(const ModelParams& p) {
 bool has_corrector(const ModelParams& p, std::string* why) {
     if (p.white()) return true;
     const double tau_prime = to_nondimensional(p).tau;
-    if (tau_prime >= kolmogorov_min_tau_prime) return true;
+    if (tau_prime >= kolmogorov_white_limit_below) return true;
     if (why)
         *why = "tau' = " + detail::format_number(tau_prime) + " is below " +
-               detail::format_number(kolmogorov_min_tau_prime) + ", where the Kolmogorov solver gives no corrector";
+               detail::format_number(kolmogorov_white_limit_below) +
+               ", where the Kolmogorov solver's grids give way to the white-noise limit and no corrector";
     return false;
 }
 
@@ -197,7 +200,11 @@ std::shared_ptr<const Corrector> make_corrector(const ModelParams& p) {
         if (last && key == last_key) return last;
     }
     const auto start = std::chrono::steady_clock::now();
-    std::shared_ptr<Corrector> c = p.white() ? white_corrector(p) : coloured_corrector(p);
+    std::shared_ptr<Corrector> c =
+        p.white() ? white_corrector(p)
+                  : (resolved_discretisation(p, KolmogorovSettings{}) == KolmogorovDiscretisation::NearWhite
+                         ? detail::near_white::make_corrector(p, make_drift_law(p))
+                         : coloured_corrector(p));
     c->table.slide = c->slide.data();
     c->table.stuck = c->stuck.empty() ? nullptr : c->stuck.data();
     c->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -17,8 +17,11 @@
 
 #include "core/format.hpp"
 #include "deterministic/kolmogorov/chain.hpp"
+#include "deterministic/near_white/near_white.hpp"
+#include "stickslip/drift_input.hpp"
 #include "stickslip/engine.hpp"
 #include "stickslip/errors.hpp"
+#include "stickslip/random/portable_math.hpp"
 #include "stickslip/kernels/pdmp.hpp"
 
 namespace stickslip {
@@ -220,7 +223,7 @@ std::vector<GridKey> grids_needed(const Levels& l, bool lattice) {
 /// tau' = 0.1 to 1, 3e4 to 1.3e5 states), seconds / n^1.8 was 0.7e-9 to
 /// 2.1e-9, so 1.6e-9 puts most solves' wall time below the modelled one.
 constexpr double kSecondsPerState18 = 1.6e-9;
-double modelled_seconds(double n) { return kSecondsPerState18 * std::pow(n, 1.8); }
+double modelled_seconds(double n) { return kSecondsPerState18 * portable_pow(n, 1.8); }
 /// A round's modelled duration: its grids two at a time (whatever the thread
 /// count, which must not change the result), so the longest grid or half
 /// their sum.
@@ -236,7 +239,7 @@ double modelled_round(const std::vector<double>& states) {
 /// Predicted LU nonzeros of a grid of n states from the largest grid solved
 /// so far (n_ref states, z_ref nonzeros; both a function of the grids alone):
 /// they grow like n^1-1.3.
-double predicted_nonzeros(double n, double n_ref, double z_ref) { return z_ref * std::pow(n / n_ref, 1.3); }
+double predicted_nonzeros(double n, double n_ref, double z_ref) { return z_ref * portable_pow(n / n_ref, 1.3); }
 
 void validate_settings(const KolmogorovSettings& s) {
     auto require = [](bool ok, const char* name, const std::string& what) {
@@ -267,6 +270,13 @@ void validate_settings(const KolmogorovSettings& s) {
 
 } // namespace
 
+KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const KolmogorovSettings& s) {
+    if (s.discretisation != KolmogorovDiscretisation::Automatic) return s.discretisation;
+    if (s.pdmp_grid > 0) return KolmogorovDiscretisation::Chain; // the chain's own mode
+    return to_nondimensional(p).tau < kolmogorov_near_white_below ? KolmogorovDiscretisation::NearWhite
+                                                                    : KolmogorovDiscretisation::Chain;
+}
+
 void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
     validate(p);
     if (p.white())
@@ -274,20 +284,26 @@ void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
                                       "(tau = 0) the velocity alone is Markov; use the exact white-noise references "
                                       "(`stickslip analytic`, white_noise_reference())");
     const double tau_prime = to_nondimensional(p).tau;
-    if (tau_prime < kolmogorov_min_tau_prime)
+    const KolmogorovDiscretisation d = resolved_discretisation(p, s);
+    if (d == KolmogorovDiscretisation::Chain && tau_prime < kolmogorov_chain_min_tau_prime)
         throw InvalidParameter("tau", "tau' = tau friction^2/noise = " + detail::format_number(tau_prime) +
-                                          " is below " + detail::format_number(kolmogorov_min_tau_prime) +
-                                          ", where the x grid of the Kolmogorov solver grows like 1/sqrt(tau') and its "
-                                          "rates stiffen: use the inclusion engine (Monte Carlo), or for tau' -> 0 "
-                                          "the white-noise references (`stickslip analytic`)");
+                                          " is below " + detail::format_number(kolmogorov_chain_min_tau_prime) +
+                                          ", where the upwind chain's x grid grows like 1/sqrt(tau') and its "
+                                          "rates stiffen: use the near-white discretisation, which takes every tau'");
+    if (d == KolmogorovDiscretisation::NearWhite && s.pdmp_grid > 0)
+        throw InvalidParameter("pdmp_grid", "the PDMP lattice mode belongs to the upwind chain, not to the "
+                                            "near-white discretisation");
     require_stationary_state(p);
     validate_settings(s);
 }
 
 KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings) {
     validate_kolmogorov(p, settings);
+    const DriftLaw law = make_drift_law(p); // the run's law, made once for every grid of the solve
+    if (resolved_discretisation(p, settings) == KolmogorovDiscretisation::NearWhite)
+        return detail::near_white::solve(p, settings, law);
     namespace k = detail::kolmogorov;
-    const KolmogorovDrift drift{p}; // the run's law, made once for every grid of the solve
+    const KolmogorovDrift drift{law};
     const auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
@@ -417,7 +433,7 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
             auto cost = [&](const Levels& l) {
                 double sum = 0;
                 for (GridKey key : grids_needed(l, lattice))
-                    if (!solved.count(key)) sum += std::pow(states_of(key), 2.0);
+                    if (!solved.count(key)) sum += portable_pow(states_of(key), 2.0);
                 return sum;
             };
             Levels finer_x = next, finer_v = next;
