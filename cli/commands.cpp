@@ -183,6 +183,7 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                         req.control.progress = progress_line(state->output.quiet, progress.samples,
                                                              progress.with_estimate ? req.level : 0.0);
                     req.control.notice = notice_line(state->output.quiet);
+                    req.control.long_run = long_run_line(state->output.quiet);
                 } else {
                     (void)progress; // only runs report progress
                 }

@@ -60,4 +60,14 @@ std::function<void(const std::string&)> notice_line(bool quiet) {
     return [](const std::string& note) { std::fprintf(stderr, "note: %s\n", note.c_str()); };
 }
 
+std::function<void(const std::string&)> long_run_line(bool quiet) {
+    // On a terminal notice_line shows every note, this one among them; one
+    // process of a distributed run speaks for all (the first rank).
+    if (quiet || isatty(STDERR_FILENO) || !is_root()) return {};
+    return [](const std::string& note) {
+        std::fprintf(stderr, "stickslip: note: %s\n", note.c_str());
+        std::fflush(stderr);
+    };
+}
+
 } // namespace stickslip::cli

@@ -19,4 +19,9 @@ std::function<bool(const Progress&)> progress_line(bool quiet, const std::string
 /// as the progress line; they are in the result's warnings either way.
 std::function<void(const std::string&)> notice_line(bool quiet);
 
+/// The note of a run predicted to last an hour or more (RunControl::long_run),
+/// as one "stickslip: note:" line on stderr at once where notice_line shows
+/// nothing (no terminal: a script, a batch job's log); nothing with --quiet.
+std::function<void(const std::string&)> long_run_line(bool quiet);
+
 } // namespace stickslip::cli

@@ -813,34 +813,26 @@ def make_fig9(R, cfg, out, written, summary, seed):
                                "z_vs_long_excursions": [rnd(x, 3) for x in zbf]},
                 "sim_seconds": rnd(sw["work"]["seconds"], 3),
             }
-            # The Kolmogorov engine where it applies (squares, its estimated error as the
-            # bar): the solver itself refuses tau' below its limit (exit 2, a refusal
-            # naming --tau; the model was accepted by the sweep above), which leaves only
-            # the largest tau at the lowest noises.
-            solvable, solved = [], []
-            for i in range(len(g)):
-                try:
-                    precision = ["--rel-precision", c["kolmogorov_precision"]] if "kolmogorov_precision" in c else []
-                    solved.append(R("diffusivity", bargs + ["--engine", "kolmogorov", "--tau", tau, "--noise", g[i]]
-                                    + precision,
-                                    label=f"kolmogorov {bname} tau={tau:g} Gamma={g[i]:g}", fig="fig9"))
-                    solvable.append(i)
-                except StickslipFailure as e:
-                    if e.exit_code != 2:
-                        raise
-            if solvable:
-                Dk = np.array([r["diffusivity"]["value"] for r in solved])
-                eDk = np.array([r["diffusivity"]["error"] for r in solved])
-                ax.errorbar(g[solvable], Dk, yerr=eDk, fmt="s", color="k", mfc=col, ms=5, capsize=2, zorder=5,
-                            label="Kolmogorov engine (tau' >= 0.05)" if not kolmogorov_labelled else None)
-                axr.errorbar(g[solvable] * shift, Dk / white_at[solvable], yerr=eDk / white_at[solvable], fmt="s",
-                             color="k", mfc=col, ms=5, capsize=2, zorder=5)
-                kolmogorov_labelled = True
-                rb["per_tau"][f"{tau:g}"]["kolmogorov"] = {
-                    "gammas": [float(g[i]) for i in solvable], "D": [rnd(x) for x in Dk],
-                    "D_error": [rnd(x, 2) for x in eDk],
-                    "z_long_excursions_vs_kolmogorov": [rnd(x, 3) for x in zscores(D[solvable], sD[solvable], Dk)],
-                    "seconds": rnd(sum(r["work"]["seconds"] for r in solved), 3)}
+            # The Kolmogorov engine at every point (a line with squares, its estimated
+            # error as the bar): one solved sweep over the noises of this tau (below
+            # tau' = 0.1 its near-white discretisation, down to the white limit).
+            precision = ["--rel-precision", c["kolmogorov_precision"]] if "kolmogorov_precision" in c else []
+            sk = R("sweep", bargs + ["--engine", "kolmogorov", "--tau", tau,
+                                     "--noise", ",".join(fmt(gg) for gg in c["gammas"])] + precision,
+                   label=f"sweep kolmogorov {bname} tau={tau:g}", fig="fig9")
+            Dk = np.array([p["diffusivity"]["value"] for p in sk["points"]])
+            eDk = np.array([p["diffusivity"]["error"] for p in sk["points"]])
+            ax.errorbar(g, Dk, yerr=eDk, fmt="s:", color=col, mfc=col, mec="k", ms=5, lw=1.0, capsize=2, zorder=5,
+                        label="Kolmogorov engine (squares, dotted)" if not kolmogorov_labelled else None)
+            axr.errorbar(g * shift, Dk / white_at, yerr=eDk / white_at, fmt="s:", color=col, mfc=col, mec="k", ms=5,
+                         lw=1.0, capsize=2, zorder=5)
+            kolmogorov_labelled = True
+            rb["per_tau"][f"{tau:g}"]["kolmogorov"] = {
+                "gammas": [float(x) for x in g], "D": [rnd(x) for x in Dk], "D_error": [rnd(x, 2) for x in eDk],
+                "D_over_white": [rnd(x, 6) for x in Dk / white_at],
+                "exponent": rnd(sk["exponents"][0]["exponent"]["value"], 5) if sk["exponents"] else None,
+                "z_long_excursions_vs_kolmogorov": [rnd(x, 3) for x in zscores(D, sD, Dk)],
+                "seconds": rnd(sk["work"]["seconds"], 3)}
         ax.plot([], [], "o", color="gray", mfc="none", label=f"brute force, t = {c['bf_time']:g} s, V(0) = 0 "
                                                               f"(N' = {c['bf_trajectories']})")
         ax.set_xscale("log")

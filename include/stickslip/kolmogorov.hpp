@@ -122,9 +122,9 @@
 // smaller errors in the same time from tau' = 0.1 up, without drag the
 // near-white one (at tau' = 0.1 the chain stopped at its budget with 0.31%
 // where the near-white one gave 0.09% in 0.9 s). Below tau' =
-// kolmogorov_white_limit_below = 1e-7 the grid's rates (up to 1/(tau' h^2))
+// kolmogorov_white_limit_below = 1e-6 the grid's rates (up to 1/(tau' h^2))
 // cost the LU its digits, and the white-noise quadrature, whose distance to
-// the coloured D is bounded by what the grid measures at 1e-7, gives D and M0
+// the coloured D is bounded by what the grid measures at 1e-6, gives D and M0
 // (near_white.cpp). White noise itself (tau = 0) is refused: the velocity
 // alone is Markov and the exact one-dimensional references apply
 // (analytic.hpp, white_noise_reference).
@@ -311,7 +311,7 @@ inline constexpr double kolmogorov_near_white_below = 0.1;
 
 /// Below this tau', the near-white solver gives the white-noise quadrature for
 /// D and M0 with the bound that its grids measure at this tau' (near_white.cpp).
-inline constexpr double kolmogorov_white_limit_below = 1e-7;
+inline constexpr double kolmogorov_white_limit_below = 1e-6;
 
 /// What the grids of a solve spanned (no one grid is fine in both directions).
 struct KolmogorovGridSpan {

@@ -63,6 +63,11 @@ struct RunControl {
     /// the run (a coarse step, a long run): for showing them at the start. The
     /// notes are in the result's warnings too.
     std::function<void(const std::string&)> notice;
+    /// Called, from the calling thread, before any work, with the note on
+    /// the run's predicted duration when that is long_run_seconds or more: for
+    /// saying so at once where the notes are not shown at the start (the
+    /// command without a terminal, a batch job's log).
+    std::function<void(const std::string&)> long_run;
     /// Optional cancel flag, read by the workers before every sample: set it
     /// from any thread (a signal watcher, a GUI) to stop the run within one
     /// sample; the run then throws RunCancelled. Set after `stop` (a single

@@ -216,6 +216,7 @@ void note_cost(const PreparedEngine& e, std::uint64_t samples, const RunControl&
                     (r.threads == 1 ? " thread" : " threads") + " (" + std::to_string(samples) +
                     " excursions of about " + rounded(r.work) + " " + work_unit(e.settings) +
                     " each; the prediction is good to a factor of 3); --checkpoint FILE keeps it safe");
+    if (r.seconds >= long_run_seconds && ctl.long_run) ctl.long_run(notes.back());
 }
 
 } // namespace stickslip::detail

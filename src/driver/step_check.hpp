@@ -136,8 +136,13 @@ inline constexpr double hopeless_seconds = 2 * 86400.0;
 void check_run_duration(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
                         const PathSampling& sampling = {});
 
+/// A predicted duration [s] from which a run says so at once, terminal or
+/// not (RunControl::long_run): an hour.
+inline constexpr double long_run_seconds = 3600.0;
+
 /// A note with the predicted duration when `samples` long excursions are
-/// predicted to last a minute or more; nothing otherwise.
+/// predicted to last a minute or more; nothing otherwise. From
+/// long_run_seconds on, the note is also handed to ctl.long_run.
 void note_cost(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
                std::vector<std::string>& notes, const PathSampling& sampling = {});
 

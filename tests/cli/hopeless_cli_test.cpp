@@ -8,6 +8,9 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <chrono>
+#include <thread>
+
 #include "cli_support.hpp"
 
 namespace {
@@ -151,6 +154,40 @@ TEST(HopelessCli, LongRunsSayTheirPredictedDurationBeforeStarting) {
         const std::string err = stderr_on_terminal(args, "keeps it safe");
         EXPECT_NE(err.find("note: a long run: predicted about"), std::string::npos) << describe(args) << ": " << err;
     }
+}
+
+// Without a terminal (a script, a batch job's log) the notes come with the
+// result, at the end; a run predicted to last an hour or more says so on
+// stderr at once all the same (issue 43: near-white noise and the PDMP at small
+// tau or fine grids gave nothing for the first 15 s, then hours of silence).
+TEST(HopelessCli, RunsOfHoursSaySoAtOnceWithoutATerminal) {
+    for (const Args& args : {Args{"diffusivity", "--tau", "1e-6", "--excursions", "10000", "--threads", "2"},
+                             Args{"diffusivity", "--engine", "pdmp", "--tau", "1e-3", "--threads", "2"},
+                             Args{"diffusivity", "--engine", "pdmp", "--grid", "0.001", "--threads", "2"}}) {
+        const std::string err_path = clitest::temp_file("err"), out_path = clitest::temp_file("out");
+        const pid_t pid = clitest::start(args, out_path, err_path);
+        ASSERT_GT(pid, 0);
+        std::string err;
+        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(15);
+        while (err.find("keeps it safe") == std::string::npos && std::chrono::steady_clock::now() < end) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            err = clitest::slurp(err_path);
+        }
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, nullptr, 0);
+        std::remove(err_path.c_str());
+        std::remove(out_path.c_str());
+        EXPECT_NE(err.find("stickslip: note: a long run: predicted about"), std::string::npos) << describe(args) << ": " << err;
+        EXPECT_EQ(clitest::count_lines(err), 1) << err;
+    }
+    // Below an hour nothing is said before the result (here: 4 s).
+    const auto r = run({"diffusivity", "--excursions", "2000", "--threads", "2", "--format", "json"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    // And a run of days is refused, as before (--tau 1e-8: 2.7 days).
+    const auto days = run({"diffusivity", "--tau", "1e-8", "--excursions", "10000", "--threads", "2"});
+    EXPECT_EQ(days.code, 2) << days.err;
+    EXPECT_EQ(days.err.rfind("stickslip: error: --tau:", 0), 0u) << days.err;
 }
 
 } // namespace

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // --engine kolmogorov: diffusivity, density and sweep solved on grids, each value with
-// its estimated discretisation error and no standard error; every command that
-// samples paths, white noise and near-white noise refused in one line.
+// its estimated discretisation error and no standard error; every tau' > 0 down
+// to the white-noise limit; every command that samples paths and white noise
+// refused in one line.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,6 +35,43 @@ TEST(CliKolmogorov, DiffusivityJsonHasValueAndErrorNoStderr) {
     // No excursion totals, step or seed for a solver.
     for (const char* key : {"completed", "capped", "engine_details"}) EXPECT_FALSE(j->contains(key)) << key;
     EXPECT_FALSE((*j)["params"].contains("dt") || (*j)["params"].contains("seed"));
+}
+
+TEST(CliKolmogorov, EveryTauDownToTheWhiteNoiseLimit) {
+    // Near-white noise (tau' = 0.01, 1e-5) was refused below 0.05; now its own
+    // discretisation solves it, and below tau' = 1e-6 the white-noise values
+    // come with a bound and a note.
+    for (const char* tau : {"0.01", "1e-5"}) {
+        const auto j = run_json(with(with(kBase, {"--tau", tau}), {"--friction", "1", "--noise", "1", "--relaxation",
+                                                                    "inf", "--bias", "0"}));
+        ASSERT_TRUE(j) << tau;
+        EXPECT_NE((*j)["method"].get<std::string>().find("near-white"), std::string::npos) << (*j)["method"];
+        const double d = (*j)["diffusivity"]["value"], error = (*j)["diffusivity"]["error"];
+        EXPECT_GT(d, 1.2) << tau; // between D(tau' = 0.1) = 1.06 and the white 1.25
+        EXPECT_LT(d, 1.25) << tau;
+        EXPECT_LT(error, 0.01 * d) << tau;
+    }
+    const auto white = run_json(with(with(kBase, {"--tau", "1e-9"}), {"--friction", "1", "--noise", "1", "--relaxation",
+                                                                       "inf", "--bias", "0"}));
+    ASSERT_TRUE(white);
+    EXPECT_EQ((*white)["diffusivity"]["value"].get<double>(), 1.25);
+    const std::string notes = (*white)["warnings"].dump();
+    EXPECT_NE(notes.find("white-noise values"), std::string::npos) << notes;
+    // A sweep over tau answers how white is white enough: D over white noise's
+    // D at every point, the fitted departure and where it crosses 1%.
+    const auto sweep = run_json(with({"sweep", "--engine", "kolmogorov", "--noise", "1", "--tau", "1e-4,1e-3,1e-2,3e-2",
+                                      "--rel-precision", "0.01", "--format", "json"},
+                                     {"--friction", "1", "--relaxation", "inf", "--bias", "0"}));
+    ASSERT_TRUE(sweep);
+    for (const json& p : (*sweep)["points"]) {
+        EXPECT_LT(p["white_ratio"]["value"].get<double>(), 1.0) << p;
+        EXPECT_GT(p["white_ratio"]["value"].get<double>(), 0.9) << p;
+    }
+    const json& limit = (*sweep)["white_limits"][0];
+    EXPECT_NEAR(limit["exponent"]["value"].get<double>(), 1.0, 0.1) << limit;
+    EXPECT_NEAR(limit["half_order"]["value"].get<double>(), 0.0, 0.05) << limit;
+    EXPECT_GT(limit["tau_within_percent"].get<double>(), 1e-3) << limit;  // measured 0.0076 s
+    EXPECT_LT(limit["tau_within_percent"].get<double>(), 1e-2) << limit;
 }
 
 TEST(CliKolmogorov, TableSaysDiscretisationAndCountsNoExcursions) {

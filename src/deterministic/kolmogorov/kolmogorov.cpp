@@ -285,7 +285,9 @@ void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
                                       "(`stickslip analytic`, white_noise_reference())");
     const double tau_prime = to_nondimensional(p).tau;
     const KolmogorovDiscretisation d = resolved_discretisation(p, s);
-    if (d == KolmogorovDiscretisation::Chain && tau_prime < kolmogorov_chain_min_tau_prime)
+    // Within rounding of the limit is at it: tau' = 0.04999999999999999 from
+    // SI units was refused as "0.05 is below 0.05".
+    if (d == KolmogorovDiscretisation::Chain && tau_prime < kolmogorov_chain_min_tau_prime * (1 - 1e-9))
         throw InvalidParameter("tau", "tau' = tau friction^2/noise = " + detail::format_number(tau_prime) +
                                           " is below " + detail::format_number(kolmogorov_chain_min_tau_prime) +
                                           ", where the upwind chain's x grid grows like 1/sqrt(tau') and its "
