@@ -26,7 +26,7 @@ namespace stickslip {
 /// Whether a diffusivity run uses the martingale control variate (theory.md,
 /// section 12): Auto uses it wherever a corrector exists (the PDMP, the
 /// inclusion engine's resolvent scheme, and its event scheme with coloured
-/// noise; tau' >= 0.05 or white noise); Off gives the plain estimator alone.
+/// noise; tau' >= 1e-6 or white noise); Off gives the plain estimator alone.
 enum class ControlVariateMode { Auto, Off };
 
 /// @name Text form of the control-variate mode as a setting
@@ -114,7 +114,7 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
                                  "--drift-table): the interpolation's effect, with its standard error"});
     v(r.control_variate, SettingInfo{"control-variate", "",
                                      "auto (default): estimate D and M0 with a martingale control variate wherever a "
-                                     "corrector exists (coloured noise with tau' >= 0.05, or white noise with the "
+                                     "corrector exists (coloured noise with tau' >= 1e-6, or white noise with the "
                                      "resolvent scheme), typically 20-60 times less variance; off: the "
                                      "plain estimator alone. The plain estimates are reported either way"});
 }

@@ -30,8 +30,8 @@ namespace stickslip {
 ///    approximation is the lattice, which converges to the OU noise as grid -> 0.
 ///  * Kolmogorov: no sampling: the Kolmogorov equations of (X, V) solved on a
 ///    grid (kolmogorov.hpp) for D, M0, P(V = 0) and the stationary density,
-///    each with an estimated discretisation error; coloured noise with tau' >=
-///    kolmogorov_min_tau_prime only. Not an engine that runs excursions: the
+///    each with an estimated discretisation error; coloured noise of every
+///    tau' > 0 (two discretisations, kolmogorov.hpp). Not an engine that runs excursions: the
 ///    quantities that can be solved choose it at their top (diffusivity,
 ///    density), every other one refuses it (prepare_engine).
 enum class Engine { Inclusion, Pdmp, Kolmogorov };

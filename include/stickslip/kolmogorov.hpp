@@ -115,13 +115,18 @@
 // degree 2 in v on cells graded to the layer at v = 0, so that the unknowns
 // stay bounded as tau' -> 0 and the limit is the white-noise quadrature.
 // solve_kolmogorov chooses (KolmogorovDiscretisation::Automatic): the
-// near-white discretisation below tau' = kolmogorov_near_white_below = 0.1,
-// the chain above it. Measured side by side on pure dry friction and on the
-// Fig. 2 law at tau' = 0.05 to 5 (docs/kolmogorov_measurements.md), the two
-// agree within their estimates everywhere; with drag the chain reached
-// smaller errors in the same time from tau' = 0.1 up, without drag the
-// near-white one (at tau' = 0.1 the chain stopped at its budget with 0.31%
-// where the near-white one gave 0.09% in 0.9 s). Below tau' =
+// near-white discretisation below tau' = kolmogorov_near_white_below = 0.1 and
+// for laws without drag, the chain for laws with drag above it. Measured side
+// by side on pure dry friction and on the Fig. 2 law at tau' = 0.05 to 5
+// (docs/kolmogorov_measurements.md), the two agree within their estimates
+// everywhere; with drag the chain reached smaller errors in the same time
+// from tau' = 0.1 up, without drag the near-white one (at tau' = 0.1 the chain
+// stopped at its budget with 0.31% where the near-white one gave 0.09% in
+// 0.9 s; at tau' = 1, 0.074% in 3 s against 0.034% in 2.8 s). A weakly
+// confining law with drag (weak drag, a bias near the friction) reaches
+// beyond the chain's velocity range: the mass at its coarsest grid's edges
+// says so, and the near-white discretisation, whose range follows the law,
+// takes over (solve_kolmogorov). Below tau' =
 // kolmogorov_white_limit_below = 1e-6 the grid's rates (up to 1/(tau' h^2))
 // cost the LU its digits, and the white-noise quadrature, whose distance to
 // the coloured D is bounded by what the grid measures at 1e-6, gives D and M0
@@ -136,6 +141,7 @@
 /// discretisation error. The comment at the top of this header explains the
 /// design.
 
+#include <atomic>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -258,11 +264,23 @@ struct KolmogorovSettings {
     /// Which discretisation (the chain alone has the PDMP lattice mode; band_intervals,
     /// v_cells, x_range, v_lower, v_upper, v_stretch and v_grading are the chain's).
     KolmogorovDiscretisation discretisation = KolmogorovDiscretisation::Automatic;
+    /// Optional stop flag (RunControl::stop: Ctrl-C, SIGTERM), polled between
+    /// rounds of grids: once set, the solve returns the estimates of the
+    /// rounds finished (at least the first), marked interrupted.
+    const std::atomic<bool>* stop = nullptr;
 };
 
 /// The discretisation that solve_kolmogorov runs for p (SI) and settings:
-/// Chain or NearWhite, never Automatic.
+/// Chain or NearWhite, never Automatic. Automatic takes the near-white one
+/// below tau' = kolmogorov_near_white_below or where the law has no drag at
+/// either end (has_drag_at_both_ends), the chain otherwise; solve_kolmogorov
+/// still turns from the chain to the near-white one when the chain's
+/// velocity range proves too short for the law (its note says so).
 KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const KolmogorovSettings& settings);
+
+/// Whether p's drift law pulls back with a negative slope beyond both ends
+/// (drag: the affine law with a finite relaxation, a law's outer pieces).
+bool has_drag_at_both_ends(const ModelParams& p);
 
 /// A value with its estimated discretisation error (an absolute error, in the
 /// value's unit).
@@ -293,6 +311,9 @@ struct KolmogorovResult : MethodResult {
     /// velocity_density is the stationary density reported.
     std::vector<KolmogorovGridSolution> levels;
     bool converged = false;              ///< whether D's estimated error is below rel_precision
+    /// Stopped by KolmogorovSettings::stop before the target: the estimates
+    /// of the rounds finished (the note says so).
+    bool interrupted = false;
     std::string note;                    ///< why not, or other remarks; empty when none
     double seconds = 0;                  ///< wall time [s]
 };

@@ -40,8 +40,14 @@ void add_totals(Cls& cls) {
             "how the thread count was chosen: 'option' (threads=N), else 'hardware', 'affinity', 'cpu-quota' or "
             "'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the blocks were fewer")
         .def_property_readonly(
-            "interrupted", [](const R& r) { return r.monte_carlo().totals.interrupted; },
-            "True when the run was stopped early (Ctrl-C): the result is of the blocks completed, in index order")
+            "interrupted",
+            [](const R& r) {
+                if constexpr (requires { r.solution; })
+                    if (r.solution) return r.solution->interrupted; // engine='kolmogorov': its rounds so far
+                return r.monte_carlo().totals.interrupted;
+            },
+            "True when the run was stopped early (Ctrl-C): the result is of the blocks completed, in index order "
+            "(engine='kolmogorov': of the rounds of grids finished)")
         .def_property_readonly(
             "resumed", [](const R& r) { return r.monte_carlo().totals.resumed; },
             "samples restored from a checkpoint (resume=) rather than computed");

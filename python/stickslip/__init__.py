@@ -159,7 +159,7 @@ D, mobility M0 and mean long-excursion duration E[t1] from N long excursions.
     on in batches until D's interval is that narrow (`.precision` says how it
     ended). With engine="kolmogorov" nothing is sampled: the Kolmogorov
     equations are solved on grids to the relative precision rel_precision of D
-    (default 1e-3), for coloured noise with tau' >= 0.05.""", """\
+    (default 1e-3), for coloured noise of every tau' > 0.""", """\
     DiffusivityResult
         .diffusivity [m^2/s], .mobility [m/s], .mean_duration [s] (Estimate:
         .value, .stderr, .ci), .completed, .capped, .warnings, .params;

@@ -48,7 +48,10 @@ PreparedEngine prepare_request(const DensityRequest& req_in) {
 } // namespace
 
 void validate(const DensityRequest& req) {
-    if (!samples(req.engine)) detail::validate_solved(req, 0.0);
+    if (!samples(req.engine)) {
+        detail::refuse_sampling_settings(req);
+        detail::validate_solved(req, 0.0);
+    }
     else prepare_request(req);
 }
 
@@ -197,6 +200,7 @@ namespace {
 /// The stationary density from the Kolmogorov solver's grid with the finest
 /// velocity cells: the method chosen at the top of compute_density.
 DensityResult solve_density(const DensityRequest& req) {
+    validate(req);
     DensityResult out;
     out.request = req;
     out.solution = detail::solve(req, 0.0, out.warnings);

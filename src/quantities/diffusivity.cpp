@@ -26,6 +26,7 @@ void check_rel_precision(const DiffusivityRequest& req) {
 /// The checks of a request with the Kolmogorov engine.
 void validate_solved(const DiffusivityRequest& req) {
     check_rel_precision(req);
+    detail::refuse_sampling_settings(req);
     if (req.check_dt)
         throw InvalidParameter("check-dt", "check-dt needs the inclusion engine (the kolmogorov engine estimates "
                                            "its discretisation error itself)");

@@ -11,6 +11,7 @@ KolmogorovSettings kolmogorov_settings(const RunSettings& r, double rel_precisio
     KolmogorovSettings s;
     if (rel_precision > 0) s.rel_precision = rel_precision;
     s.threads = r.control.threads == 1 ? 1 : 2;
+    s.stop = r.control.stop;
     return s;
 }
 

@@ -7,7 +7,11 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "stickslip/errors.hpp"
+#include "stickslip/setting.hpp"
 
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/run.hpp"
@@ -22,12 +26,41 @@ KolmogorovSettings kolmogorov_settings(const RunSettings& r, double rel_precisio
 
 /// Every check of a run with the Kolmogorov engine: the engine settings (a
 /// typo in an unused one is still reported) and validate_kolmogorov
-/// (InvalidParameter: white noise and tau' < kolmogorov_min_tau_prime name
-/// "tau" and say what to use instead).
+/// (InvalidParameter: white noise names "tau" and says what to use instead;
+/// a model beyond the grids' reach names the setting to change).
 void validate_solved(const RunSettings& r, double rel_precision);
 
 /// Solves the run's model (validated first). `notes` gets the solver's
 /// remarks: the budget reached before the precision, the drift law used.
 KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes);
+
+/// The settings that only sampling uses (the Kolmogorov engine samples
+/// nothing): given a value other than their default, they are refused, so
+/// that `--excursions 1e6 --engine kolmogorov` does not pass for a run of a
+/// million excursions.
+inline constexpr const char* sampling_settings[] = {
+    "scheme", "dt", "grid", "lattice-bound", "stop-rule", "white-level", "max-steps", "seed", "level",
+    "excursions", "allow-capped", "estimator", "max-excursions", "control-variate", "check-knots", "bins",
+    "sample-dt", "range", "first-index"};
+
+/// Throws InvalidParameter naming the first of sampling_settings that `r`
+/// gives a value other than a default Request's.
+template <class Request>
+void refuse_sampling_settings(const Request& r) {
+    Request given = r, defaults;
+    std::vector<std::pair<std::string, std::string>> values;
+    visit_settings(given, [&](auto&& field, const SettingInfo& info) { values.emplace_back(info.name, format_setting(field)); });
+    std::size_t k = 0;
+    visit_settings(defaults, [&](auto&& field, const SettingInfo& info) {
+        const auto& [name, value] = values[k++];
+        if (value == format_setting(field)) return;
+        for (const char* s : sampling_settings)
+            if (name == s)
+                throw InvalidParameter(info.name, std::string(info.name) + " is a setting of the Monte Carlo engines: "
+                                                  "the kolmogorov engine samples nothing (no excursions, seed, step, "
+                                                  "lattice or intervals), so --" + name + " " + value +
+                                                  " would change nothing; drop it, or use --engine inclusion or pdmp");
+    });
+}
 
 } // namespace stickslip::detail

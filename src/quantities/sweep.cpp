@@ -333,9 +333,14 @@ SweepResult compute_sweep(const SweepRequest& req) {
                 if (r.solution) {
                     p.work = grid_span(*r.solution).largest_states;
                     p.seconds = r.solution->seconds;
+                    const bool stopped = r.solution->interrupted; // its rounds finished so far
                     p.solution = std::move(r.solution);
                     out.points.push_back(std::move(p));
                     ++k;
+                    if (stopped) {
+                        out.interrupted = true;
+                        break;
+                    }
                     continue;
                 }
                 out.resumed += r.monte_carlo().totals.resumed;

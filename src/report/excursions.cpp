@@ -31,7 +31,7 @@ std::string solved_json(const DiffusivityResult& r, int indent) {
     j["nondimensional"] = nd;
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
-    add_report_tail(j, r.request, &work, r.warnings);
+    add_report_tail(j, r.request, &work, r.warnings, s.interrupted);
     return dump(j, indent);
 }
 

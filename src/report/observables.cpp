@@ -59,7 +59,7 @@ std::string solved_json(const DensityResult& r, int indent) {
     j["density"] = d;
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
-    add_report_tail(j, r.request, &work, r.warnings);
+    add_report_tail(j, r.request, &work, r.warnings, s.interrupted);
     return dump(j, indent);
 }
 

@@ -21,6 +21,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -177,6 +178,9 @@ bool tau_of(const std::string& noise, double& tau, bool& law) {
 /// Validates a command's request for an engine and a tau, with small, valid settings.
 using Validate = std::function<void(const EngineSettings&, double tau, bool law)>;
 
+/// The settings that make a run small are sampling settings, which the
+/// Kolmogorov engine refuses (it samples nothing): with it, `fill` is skipped
+/// but for the grid of a sweep.
 template <class R, class Fill>
 std::pair<std::string, Validate> simulated(Fill fill) {
     return {R::command, [fill](const EngineSettings& e, double tau, bool law) {
@@ -185,7 +189,11 @@ std::pair<std::string, Validate> simulated(Fill fill) {
                 r.params.tau = tau;
                 if (law) r.params.drift = kAnyLaw;
                 r.control.threads = 1;
-                fill(r);
+                if (e.engine != Engine::Kolmogorov) fill(r);
+                if constexpr (std::is_same_v<R, SweepRequest>) {
+                    r.noises = {r.params.noise};
+                    r.taus = {r.params.tau};
+                }
                 validate(r);
             }};
 }

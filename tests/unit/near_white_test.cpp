@@ -235,6 +235,16 @@ TEST(NearWhiteSolver, RefusesWhatIsNotItsOwn) {
     EXPECT_EQ(parameter_of([&] { ss::validate_kolmogorov(fig2(0.01), lattice); }), "pdmp_grid");
     EXPECT_EQ(parameter_of([&] { ss::validate_kolmogorov(dry(0.0), near_white()); }), "tau");
     EXPECT_EQ(parameter_of([&] { ss::validate_kolmogorov(dry(1e-30), near_white()); }), "(none)");
-    EXPECT_EQ(ss::resolved_discretisation(dry(0.0999), {}), ss::KolmogorovDiscretisation::NearWhite);
-    EXPECT_EQ(ss::resolved_discretisation(dry(0.1), {}), ss::KolmogorovDiscretisation::Chain);
+    // The automatic choice: near-white below tau' = 0.1 and without drag, the
+    // chain with drag from 0.1 up.
+    EXPECT_EQ(ss::resolved_discretisation(fig2(0.0999), {}), ss::KolmogorovDiscretisation::NearWhite);
+    EXPECT_EQ(ss::resolved_discretisation(fig2(0.11), {}), ss::KolmogorovDiscretisation::Chain);
+    EXPECT_EQ(ss::resolved_discretisation(dry(1.0), {}), ss::KolmogorovDiscretisation::NearWhite);
+    // Beyond what the grids resolve: the noise leaving the band (stuck for
+    // ever) or reaching it (never stuck) with probability below 1e-12.
+    EXPECT_EQ(parameter_of([&] { ss::validate_kolmogorov(dry(30.0), {}); }), "tau");
+    EXPECT_EQ(parameter_of([&] { ss::validate_kolmogorov(dry(20.0), {}); }), "(none)");
+    ss::ModelParams driven; // the Fig. 2 case
+    driven.bias = 100.0;    // 26 times the friction: the noise never brings the force back into the band
+    EXPECT_EQ(parameter_of([&] { ss::validate_kolmogorov(driven, {}); }), "bias");
 }

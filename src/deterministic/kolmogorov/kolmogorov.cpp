@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/format.hpp"
+#include "core/memory.hpp"
 #include "deterministic/kolmogorov/chain.hpp"
 #include "deterministic/near_white/near_white.hpp"
 #include "stickslip/drift_input.hpp"
@@ -268,13 +269,85 @@ void validate_settings(const KolmogorovSettings& s) {
             ">= 0 s^-1/2 (0: the engine's choice), got " + detail::format_number(s.pdmp_lattice_bound));
 }
 
+/// Bytes per state of the chain's first round before any is solved: its LU
+/// keeps about 60 nonzeros per state (16 bytes each), with the generator.
+constexpr double kChainBytesPerStateFirstRound = 1.5e3;
+
+/// The mass at the chain's range's edges above which the automatic choice
+/// takes the near-white discretisation (solve_kolmogorov).
+constexpr double kChainEdgeMass = 1e-8;
+
+/// The stationary probabilities that the noise lies inside the static band
+/// and beyond it (either side), each without cancellation.
+struct BandMasses {
+    double inside = 0, outside = 0;
+};
+BandMasses band_masses(const ModelParams& p) {
+    const double s = std::sqrt(p.tau / 2.0); // X has standard deviation 1/sqrt(tau): erfc(x s) is 2 P(Z > x sqrt(tau))
+    const double lo = p.lower_threshold() * s, hi = p.upper_threshold() * s;
+    BandMasses m;
+    m.outside = 0.5 * (std::erfc(hi) + std::erfc(-lo));
+    m.inside = lo >= 0 ? 0.5 * (std::erfc(lo) - std::erfc(hi))
+                       : (hi <= 0 ? 0.5 * (std::erfc(-hi) - std::erfc(-lo)) : 1.0 - m.outside);
+    return m;
+}
+
+/// The setting to name for a model beyond the solver's reach: the first of
+/// tau, friction, noise, bias that differs from the default model's.
+const char* setting_to_change(const ModelParams& p) {
+    const ModelParams defaults;
+    if (p.tau != defaults.tau) return "tau";
+    if (p.friction != defaults.friction) return "friction";
+    if (p.noise != defaults.noise) return "noise";
+    return "bias";
+}
+
+/// The grids resolve the rarer of the two phases, sliding (the noise beyond
+/// the static band) or stuck (inside it), down to a stationary probability of
+/// kRarestPhase: beyond, their rates and masses span more than double
+/// precision keeps (pure dry friction at tau' = 100, 3e-45 of the time
+/// sliding: D = -7.7e-23 "to 100%", E[t1] inf; --tau 1e6 and --bias 1e6 took
+/// 24 GB before they were killed).
+constexpr double kRarestPhase = 1e-12;
+void check_noise_band(const ModelParams& p) {
+    const BandMasses m = band_masses(p);
+    const char* name = setting_to_change(p);
+    auto probability = [](double x) { return x > 0 ? detail::format_number(x, 2) : std::string("below 1e-300"); };
+    if (!(m.outside >= kRarestPhase))
+        throw InvalidParameter(name, "the noise leaves the static band with probability " + probability(m.outside) +
+                                         " in the stationary state, below the " + detail::format_number(kRarestPhase) +
+                                         " the Kolmogorov engine's grids resolve: the object is stuck all but that "
+                                         "fraction of the time, so D and M0 vanish to double precision and a long "
+                                         "excursion practically never ends; change --" + std::string(name) +
+                                         " (tau' = tau friction^2/noise is " +
+                                         detail::format_number(to_nondimensional(p).tau, 3) + ")");
+    // Inside: a band far in the noise's tail (|b(0)| above the friction), not a
+    // narrow one about 0, which near-white noise has and the solver takes.
+    const bool band_holds_zero = p.lower_threshold() <= 0 && p.upper_threshold() >= 0;
+    if (!band_holds_zero && !(m.inside >= kRarestPhase))
+        throw InvalidParameter(name, "the noise is inside the static band with probability " + probability(m.inside) +
+                                         " in the stationary state, below the " + detail::format_number(kRarestPhase) +
+                                         " the Kolmogorov engine's grids resolve: the object practically never sticks, "
+                                         "so a long excursion (which ends stuck) practically never ends; change --" +
+                                         std::string(name));
+}
+
 } // namespace
 
 KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const KolmogorovSettings& s) {
     if (s.discretisation != KolmogorovDiscretisation::Automatic) return s.discretisation;
     if (s.pdmp_grid > 0) return KolmogorovDiscretisation::Chain; // the chain's own mode
-    return to_nondimensional(p).tau < kolmogorov_near_white_below ? KolmogorovDiscretisation::NearWhite
-                                                                    : KolmogorovDiscretisation::Chain;
+    if (to_nondimensional(p).tau < kolmogorov_near_white_below) return KolmogorovDiscretisation::NearWhite;
+    // Without drag at both ends the chain's velocity range is a guess from
+    // tau and the near-white discretisation reached smaller errors sooner
+    // (kolmogorov.hpp, top).
+    return has_drag_at_both_ends(p) ? KolmogorovDiscretisation::Chain : KolmogorovDiscretisation::NearWhite;
+}
+
+bool has_drag_at_both_ends(const ModelParams& p) {
+    if (!p.has_drift_law()) return std::isfinite(p.relaxation);
+    const DriftLaw b = make_drift_law(p);
+    return b.piece_slope(0) < 0 && b.piece_slope(b.pieces() - 1) < 0;
 }
 
 void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
@@ -297,15 +370,52 @@ void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
                                             "near-white discretisation");
     require_stationary_state(p);
     validate_settings(s);
+    check_noise_band(p);
 }
+
+namespace {
+/// solve_kolmogorov after its validation (below).
+KolmogorovResult solve_validated(const ModelParams& p, const KolmogorovSettings& settings);
+} // namespace
 
 KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings) {
     validate_kolmogorov(p, settings);
+    try {
+        return solve_validated(p, settings);
+    } catch (const std::bad_alloc&) {
+        throw std::runtime_error("out of memory in the Kolmogorov engine's sparse LU: its grids need more than the " +
+                                 detail::format_number(detail::usable_memory_bytes() / 1e9, 2) +
+                                 " GB this process may still take (a larger --rel-precision needs fewer grids; or raise the limit)");
+    }
+}
+
+namespace {
+
+KolmogorovResult solve_validated(const ModelParams& p, const KolmogorovSettings& settings) {
     const DriftLaw law = make_drift_law(p); // the run's law, made once for every grid of the solve
     if (resolved_discretisation(p, settings) == KolmogorovDiscretisation::NearWhite)
         return detail::near_white::solve(p, settings, law);
     namespace k = detail::kolmogorov;
     const KolmogorovDrift drift{law};
+    // The chain's velocity range comes from the terminal velocity of its end
+    // nodes' force, capped by a guess from tau: a weakly confining law (weak
+    // drag, or a bias near the friction) reaches far beyond it, and the
+    // chain then solved a cut problem with a tiny claimed error (issue 50: D
+    // 352 where Monte Carlo gives 919 +- 52, and 466 for about 4600). Its
+    // coarsest grid's mass at the range's edges tells (5e-12 on the Fig. 2
+    // case, 0.04-0.06 on those): above kChainEdgeMass, the automatic choice
+    // takes the near-white discretisation, whose range follows the law.
+    if (settings.discretisation == KolmogorovDiscretisation::Automatic && settings.pdmp_grid == 0) {
+        const double edge = k::solve_grid(p, k::make_kolmogorov_grid(p, settings, 0, drift), drift).tail_mass;
+        if (edge > kChainEdgeMass) {
+            KolmogorovResult r = detail::near_white::solve(p, settings, law);
+            const std::string why = "the upwind chain's velocity range held " + detail::format_number(edge, 2) +
+                                    " of the mass at its edges (its coarsest grid): solved with the near-white "
+                                    "discretisation, whose range follows the drift law";
+            r.note = r.note.empty() ? why : why + "; " + r.note;
+            return r;
+        }
+    }
     const auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
@@ -333,8 +443,10 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         return *best;
     };
     // Solves the grids not solved yet, largest first, on settings.threads
-    // threads (each grid is one sequential factorisation).
-    auto solve_missing = [&](const std::vector<GridKey>& keys) {
+    // threads (each grid is one sequential factorisation); a stop (when
+    // `stoppable`: after the first round, which any result needs) starts no
+    // further grid. Whether the round is complete.
+    auto solve_missing = [&](const std::vector<GridKey>& keys, bool stoppable) {
         std::vector<GridKey> todo;
         for (GridKey key : keys)
             if (!solved.count(key)) todo.push_back(key);
@@ -342,7 +454,10 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         std::vector<KolmogorovGridSolution> out(todo.size());
         std::atomic<std::size_t> next{0};
         auto work = [&] {
-            for (std::size_t i; (i = next++) < todo.size();) out[i] = k::solve_grid(p, make_grid(todo[i]), drift);
+            for (std::size_t i; (i = next++) < todo.size();) {
+                if (stoppable && settings.stop && settings.stop->load()) return; // a stop starts no further grid
+                out[i] = k::solve_grid(p, make_grid(todo[i]), drift);
+            }
         };
         if (settings.threads > 1 && todo.size() > 1) {
             std::future<void> second = std::async(std::launch::async, work);
@@ -352,11 +467,17 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
             work();
         }
         std::vector<double> sizes;
+        bool complete = true;
         for (std::size_t i = 0; i < todo.size(); ++i) {
+            if (out[i].states == 0) { // not started: a stop
+                complete = false;
+                continue;
+            }
             sizes.push_back(static_cast<double>(out[i].states));
             solved.emplace(todo[i], std::move(out[i]));
         }
         modelled += modelled_round(sizes);
+        return complete;
     };
 
     // The two directions are extrapolated separately, each on a sequence of
@@ -380,8 +501,36 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
     // times); 32 velocity cells at the corner, 14 s, fell short for D, M0
     // and E[t1] (up to 3 times).
     if (lattice) at.ax = 0, at.kv = 3; // v levels 0-3: the lattice is fine in x already
-    for (;;) {
-        solve_missing(grids_needed(at, lattice));
+    // Memory: the budget, or what this process may still take if less; the
+    // first round must fit (else one line before any work: under `ulimit -v`
+    // the LU died inside Eigen with "double free or corruption").
+    const double usable = detail::usable_memory_bytes();
+    const double memory_budget = std::min(settings.memory_budget, usable);
+    {
+        std::vector<double> first;
+        for (GridKey key : grids_needed(at, lattice)) first.push_back(states_of(key));
+        std::sort(first.rbegin(), first.rend());
+        const double bytes = kChainBytesPerStateFirstRound * (first[0] + (first.size() > 1 ? first[1] : 0.0));
+        if (bytes > usable)
+            throw std::runtime_error("out of memory: the Kolmogorov engine's first grids need about " +
+                                     detail::format_number(bytes / 1e9, 2) + " GB, more than the " +
+                                     detail::format_number(usable / 1e9, 2) + " GB this process may still take");
+    }
+    Levels finished; // the last round whose estimates are in result
+    auto interrupted = [&] {
+        result.interrupted = true;
+        result.note = "interrupted: the estimates are those of the rounds of grids finished before the stop "
+                      "(estimated relative error of D " +
+                      detail::format_number(result.diffusivity.error / std::abs(result.diffusivity.value), 3) +
+                      ", target " + detail::format_number(settings.rel_precision, 3) + ")";
+    };
+    for (bool first = true;; first = false) {
+        if (!solve_missing(grids_needed(at, lattice), !first)) {
+            at = finished;
+            interrupted();
+            break;
+        }
+        finished = at;
 
         auto value = [&](GridKey key, auto field) { return field(solved.at(key)); };
         double x_error = 0, v_error = 0, mixed_error = 0;
@@ -420,6 +569,10 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
         const double relative = result.diffusivity.error / std::abs(result.diffusivity.value);
         result.converged = relative <= settings.rel_precision;
         if (result.converged) break;
+        if (settings.stop && settings.stop->load()) {
+            interrupted();
+            break;
+        }
         // Refine every part whose error is above a third of the target, and
         // the largest in any case: one level finer in x (the x extrapolation's
         // error fell about 4-fold per level), in v (8- to 10-fold), or for the
@@ -459,7 +612,7 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
             else second_nonzeros = std::max(second_nonzeros, z);
         }
         const double round_bytes = kolmogorov_bytes_per_lu_nonzero * (largest_nonzeros + second_nonzeros);
-        const bool over_memory = round_bytes > settings.memory_budget;
+        const bool over_memory = round_bytes > memory_budget;
         if (modelled + modelled_round(sizes) > settings.time_budget || over_memory) {
             result.note = "the estimated error of D, " + detail::format_number(relative, 3) +
                           " relative, is above rel_precision " + detail::format_number(settings.rel_precision, 3) +
@@ -485,5 +638,7 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
     result.details = details;
     return result;
 }
+
+} // namespace
 
 } // namespace stickslip

@@ -9,12 +9,14 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <stdexcept>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/format.hpp"
+#include "core/memory.hpp"
 #include "deterministic/near_white/grid_solve.hpp"
 #include "stickslip/analytic.hpp"
 #include "stickslip/drift_law_quadrature.hpp"
@@ -75,6 +77,10 @@ double modelled_round(const std::vector<double>& states) {
     }
     return std::max(longest, sum / 2.0);
 }
+/// Bytes per unknown of the first round's grids, before any is solved: the
+/// LU's nonzeros (measured 70 to 180 per unknown, 16 bytes each) with the
+/// operator and its copies.
+constexpr double kBytesPerStateFirstRound = 3.5e3;
 /// Nonzeros of the LU factors predicted from the largest grid solved.
 double predicted_nonzeros(double n, double n_ref, double z_ref) { return z_ref * portable_pow(n / n_ref, 1.2); }
 
@@ -244,15 +250,34 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
     Problem pr = make_problem(p, law);
     const Scales sc = scales_of(p);
 
+    // Memory: the budget, or what this process may still take if less; the
+    // first round, which every result needs, must fit (else one line, before
+    // any work: under `ulimit -v` the LU died inside Eigen).
+    const double usable = usable_memory_bytes();
+    const double memory_budget = std::min(settings.memory_budget, usable);
+    {
+        std::vector<double> first;
+        for (GridKey key : grids_needed(Levels{})) first.push_back(states_of(pr, key));
+        std::sort(first.rbegin(), first.rend());
+        const double bytes = kBytesPerStateFirstRound * (first[0] + first[1]);
+        if (bytes > usable)
+            throw std::runtime_error("out of memory: the Kolmogorov engine's first grids need about " +
+                                     format_number(bytes / 1e9, 2) + " GB, more than the " +
+                                     format_number(usable / 1e9, 2) + " GB this process may still take");
+    }
+
     // The velocity range, checked on the coarsest grid: widened while the
     // mass in its outer cells or D's share from its outer tenth is not
     // negligible (a weakly confined law's slips reach far beyond white
-    // noise's range when tau' is large).
+    // noise's range when tau' is large); what is left is added to every
+    // estimated error below (the truncation's part).
     std::map<GridKey, GridSolution> solved;
+    double truncation = 0;
     for (int widen = 0;; ++widen) {
         GridSolution coarse = solve_level(pr, {0, 0});
         const bool holds = coarse.tail_mass < 1e-12 && coarse.tail_diffusivity < 1e-7;
         if (holds || widen == 6) {
+            if (!holds) truncation = std::max(coarse.tail_mass, coarse.tail_diffusivity);
             solved.emplace(GridKey{0, 0}, std::move(coarse));
             break;
         }
@@ -261,7 +286,10 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
     }
 
     double modelled = 0;
-    auto solve_missing = [&](const std::vector<GridKey>& keys) {
+    // Solves the grids of a round not solved yet, largest first, two at a
+    // time; a stop (when `stoppable`: every round after the first, which any
+    // result needs) starts no further grid. Whether the round is complete.
+    auto solve_missing = [&](const std::vector<GridKey>& keys, bool stoppable) {
         std::vector<GridKey> todo;
         for (GridKey key : keys)
             if (!solved.count(key)) todo.push_back(key);
@@ -270,7 +298,10 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         std::vector<GridSolution> out(todo.size());
         std::atomic<std::size_t> next{0};
         auto work = [&] {
-            for (std::size_t i; (i = next++) < todo.size();) out[i] = solve_level(pr, todo[i]);
+            for (std::size_t i; (i = next++) < todo.size();) {
+                if (stoppable && settings.stop && settings.stop->load()) return;
+                out[i] = solve_level(pr, todo[i]);
+            }
         };
         if (settings.threads > 1 && todo.size() > 1) {
             std::future<void> second = std::async(std::launch::async, work);
@@ -280,19 +311,37 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
             work();
         }
         std::vector<double> sizes;
+        bool complete = true;
         for (std::size_t i = 0; i < todo.size(); ++i) {
+            if (out[i].states == 0) { // not started: a stop
+                complete = false;
+                continue;
+            }
             sizes.push_back(static_cast<double>(out[i].states));
             solved.emplace(todo[i], std::move(out[i]));
         }
         modelled += modelled_round(sizes);
+        return complete;
     };
 
     KolmogorovResult result;
     result.params = p;
-    Levels at;
+    Levels at, finished; // the round being solved, the last one whose estimates are in result
     Parts d_parts;
-    for (;;) {
-        solve_missing(grids_needed(at));
+    auto interrupted = [&] {
+        result.interrupted = true;
+        result.note = "interrupted: the estimates are those of the rounds of grids finished before the stop "
+                      "(estimated relative error of D " +
+                      format_number(result.diffusivity.error / std::abs(result.diffusivity.value), 3) + ", target " +
+                      format_number(settings.rel_precision, 3) + ")";
+    };
+    for (bool first = true;; first = false) {
+        if (!solve_missing(grids_needed(at), !first)) {
+            at = finished;
+            interrupted();
+            break;
+        }
+        finished = at;
         auto parts = [&](auto field) {
             auto q = [&](int z, int v) { return field(solved.at({z, v})); };
             const Extrapolated in_z = second_order(q(at.kz - 2, at.av), q(at.kz - 1, at.av), q(at.kz, at.av));
@@ -305,8 +354,9 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
             out.estimate = {in_z.value + in_v.value - q(at.az, at.av), out.z_error + out.v_error + out.mixed_error};
             return out;
         };
-        auto scaled = [](Parts x, double unit) {
-            return KolmogorovEstimate{x.estimate.value * unit, x.estimate.error * unit};
+        auto scaled = [truncation](Parts x, double unit) {
+            return KolmogorovEstimate{x.estimate.value * unit,
+                                      (x.estimate.error + truncation * std::abs(x.estimate.value)) * unit};
         };
         d_parts = parts([](const GridSolution& s) { return s.diffusivity; });
         result.diffusivity = scaled(d_parts, sc.diffusivity);
@@ -318,6 +368,10 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         const double relative = result.diffusivity.error / std::abs(result.diffusivity.value);
         result.converged = relative <= settings.rel_precision;
         if (result.converged) break;
+        if (settings.stop && settings.stop->load()) {
+            interrupted();
+            break;
+        }
         // Refine the direction that holds the most of D's error (and any
         // above a third of the target); the mixed term by moving the corner
         // one level finer in z (it has been the smaller part).
@@ -345,7 +399,7 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
             if (z > largest) second = largest, largest = z;
             else second = std::max(second, z);
         }
-        const bool over_memory = kolmogorov_bytes_per_lu_nonzero * (largest + second) > settings.memory_budget;
+        const bool over_memory = kolmogorov_bytes_per_lu_nonzero * (largest + second) > memory_budget;
         if (modelled + modelled_round(sizes) > settings.time_budget || over_memory) {
             result.note = "the estimated error of D, " + format_number(relative, 3) + " relative, is above rel_precision " +
                           format_number(settings.rel_precision, 3) + ": the next refinement would exceed the " +
@@ -355,6 +409,13 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         at = next;
     }
 
+    if (truncation > 0) {
+        const std::string cut = "the velocity range [" + format_number(pr.v_lower * sc.velocity, 4) + ", " +
+                                format_number(pr.v_upper * sc.velocity, 4) + "] m/s still holds " +
+                                format_number(truncation, 2) +
+                                " of the mass or of D at its edges after widening: added to every error";
+        result.note = result.note.empty() ? cut : cut + "; " + result.note;
+    }
     // The grids solved, the v sequence's finest last (its density is reported).
     const GridKey finest_v{at.az, at.kv};
     auto published = [&](GridKey key, const GridSolution& s) {
