@@ -222,8 +222,45 @@ def main():
             print("  %-68s %7.1f   target %-7s %s" % (name, value, "-" if minimum is None else ">= %g" % minimum,
                                                      verdict))
         print()
+    near_white_targets(d)
     print("overall: %s" % ("FAIL" if failed else "PASS"))
     return 1 if failed else 0
+
+
+# Issue 43's targets for the Kolmogorov engine in the near-white regime: each
+# solve within 10 s on 2 cores and 2 GB with D's estimated error within 0.2%;
+# D within 0.1% of 5/4 at tau' = 1e-6; the Fig. 9 plane within 2 minutes, every
+# point within 0.2%. (That the estimates cover the actual errors is measured in
+# docs/validation.md, "Every correlation time", not here.)
+def near_white_targets(d):
+    path = os.path.join(d, "near_white_times.txt")
+    if not os.path.exists(path):
+        return
+    print("E. The Kolmogorov engine at small tau', 2 threads, one solve after the other")
+    print("  %-14s %14s %10s %9s %9s   %s" % ("case", "D [m^2/s]", "error", "wall [s]", "peak [GB]", "verdict"))
+    with open(path) as f:
+        for line in f:
+            name, t0, t1 = line.split()
+            seconds = float(t1) - float(t0)
+            j = load(os.path.join(d, "nw_%s.json" % name))
+            kb = os.path.join(d, "nw_%s.kb" % name)
+            peak = float(open(kb).read().strip().splitlines()[-1]) / 1e6 if os.path.exists(kb) else None
+            memory_ok = peak is None or peak <= 2.0
+            if name == "fig9_plane":
+                errors = [p["diffusivity"]["error"] / p["diffusivity"]["value"] for p in j["points"]]
+                ok = seconds <= 120 and max(errors) <= 0.002 and memory_ok
+                print("  %-14s %14s %9.3f%% %9.1f %9s   %s (20 points: <= 120 s, each <= 0.2%%)"
+                      % (name, "%d points" % len(errors), 100 * max(errors), seconds,
+                         "-" if peak is None else "%.2f" % peak, "met" if ok else "MISSED"))
+                continue
+            value, error = j["diffusivity"]["value"], j["diffusivity"]["error"]
+            ok = seconds <= 10 and error <= 0.002 * abs(value) and memory_ok
+            if name == "dry_1e-6":
+                ok = ok and abs(value - 1.25) + error <= 0.001 * 1.25
+            print("  %-14s %14.7g %9.4f%% %9.2f %9s   %s" % (name, value, 100 * error / abs(value), seconds,
+                                                           "-" if peak is None else "%.2f" % peak,
+                                                           "met" if ok else "MISSED"))
+    print()
 
 
 # Issue "event scheme", item 6, the headline: wall time to a D whose total error (95% half-width

@@ -372,38 +372,64 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
             interrupted();
             break;
         }
-        // Refine the direction that holds the most of D's error (and any
-        // above a third of the target); the mixed term by moving the corner
-        // one level finer in z (it has been the smaller part).
+        // Refine the direction that holds the most of D's error and any
+        // other above a third of the target; the mixed term by moving the
+        // corner one level finer in z or in v, whichever new grids cost less
+        // (the term shrinks in both). When that round would exceed a budget,
+        // the largest part alone (a tight target puts every part above its
+        // share, and refining all at once stopped solves early).
         const double share = settings.rel_precision * std::abs(d_parts.estimate.value) / 3.0;
         const double top = std::max({d_parts.z_error, d_parts.v_error, d_parts.mixed_error});
-        Levels next = at;
-        if (d_parts.z_error > share || d_parts.z_error == top) ++next.kz;
-        if (d_parts.v_error > share || d_parts.v_error == top) ++next.kv;
-        if (d_parts.mixed_error > share || d_parts.mixed_error == top) {
-            ++next.az;
-            ++next.av;
-            next.kz = std::max(next.kz, next.az + 2);
-            next.kv = std::max(next.kv, next.av + 2);
-        }
+        auto refined = [&](bool all) {
+            Levels next = at;
+            auto take = [&](double part) { return part == top || (all && part > share); };
+            if (take(d_parts.z_error)) ++next.kz;
+            if (take(d_parts.v_error)) ++next.kv;
+            if (take(d_parts.mixed_error)) {
+                Levels in_z = next, in_v = next;
+                ++in_z.az;
+                in_z.kz = std::max(in_z.kz, in_z.az + 2);
+                ++in_v.av;
+                in_v.kv = std::max(in_v.kv, in_v.av + 2);
+                auto cost = [&](const Levels& l) {
+                    double sum = 0;
+                    for (GridKey key : grids_needed(l))
+                        if (!solved.count(key)) sum += modelled_seconds(states_of(pr, key));
+                    return sum;
+                };
+                next = cost(in_z) <= cost(in_v) ? in_z : in_v;
+            }
+            return next;
+        };
         double n_ref = 0, z_ref = 0;
         for (const auto& [key, s] : solved)
             if (static_cast<double>(s.states) > n_ref) n_ref = static_cast<double>(s.states), z_ref = static_cast<double>(s.lu_nonzeros);
-        std::vector<double> sizes;
-        double largest = 0, second = 0;
-        for (GridKey key : grids_needed(next)) {
-            if (solved.count(key)) continue;
-            const double n = states_of(pr, key);
-            sizes.push_back(n);
-            const double z = predicted_nonzeros(n, n_ref, z_ref);
-            if (z > largest) second = largest, largest = z;
-            else second = std::max(second, z);
+        // Which budget a round of `next` would exceed: "" when none.
+        auto exceeds = [&](const Levels& next) -> std::string {
+            std::vector<double> sizes;
+            double largest = 0, second = 0;
+            for (GridKey key : grids_needed(next)) {
+                if (solved.count(key)) continue;
+                const double n = states_of(pr, key);
+                sizes.push_back(n);
+                const double z = predicted_nonzeros(n, n_ref, z_ref);
+                if (z > largest) second = largest, largest = z;
+                else second = std::max(second, z);
+            }
+            if (kolmogorov_bytes_per_lu_nonzero * (largest + second) > memory_budget) return "memory";
+            if (modelled + modelled_round(sizes) > settings.time_budget) return "time";
+            return "";
+        };
+        Levels next = refined(true);
+        std::string over = exceeds(next);
+        if (!over.empty()) {
+            next = refined(false);
+            over = exceeds(next);
         }
-        const bool over_memory = kolmogorov_bytes_per_lu_nonzero * (largest + second) > memory_budget;
-        if (modelled + modelled_round(sizes) > settings.time_budget || over_memory) {
+        if (!over.empty()) {
             result.note = "the estimated error of D, " + format_number(relative, 3) + " relative, is above rel_precision " +
-                          format_number(settings.rel_precision, 3) + ": the next refinement would exceed the " +
-                          (over_memory ? "memory" : "time") + " budget";
+                          format_number(settings.rel_precision, 3) + ": the next refinement would exceed the " + over +
+                          " budget";
             break;
         }
         at = next;

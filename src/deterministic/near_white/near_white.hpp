@@ -40,8 +40,10 @@
 // not trusted) with the size of its correction |Q2 - Q1|/(rho - 1) as error.
 // A ratio below 2, no convergence seen, is not extrapolated. The
 // mixed term is measured on one more grid (az + 1, av + 1) and charged three
-// times. Each error is added, and rounds refine the direction that holds the
-// largest part of D's error until it is below the target or a budget stops it.
+// times (it reached 1e-5 of D at tau' = 0.0015, 2e-7 at 0.01). Each error is
+// added, and rounds refine the direction that holds the largest part of D's
+// error (the mixed one by moving the corner in z or in v, the cheaper) until
+// it is below the target or a budget stops it.
 #pragma once
 
 #include "deterministic/near_white/discretisation.hpp"
