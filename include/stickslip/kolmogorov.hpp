@@ -197,6 +197,7 @@ struct KolmogorovGridSolution {
     double diffusivity = 0;         ///< D of the chain [m^2/s]
     double diffusivity_x = 0;       ///< the x moves' carre du champ of chi [m^2/s] (D less the upwind diffusion)
     double mobility = 0;            ///< M0 of the chain [m/s]
+    double velocity_variance = 0;   ///< the stationary Var(V) of the grid [m^2/s^2]
     double stuck_probability = 0;   ///< P(V = 0) of the chain
     /// E[t1] of the chain, the mean duration of a long excursion [s] (a +HLE
     /// from (x*, 0) until stuck at x-*, then the mirror image), by one more
@@ -296,6 +297,8 @@ struct KolmogorovResult : MethodResult {
     ModelParams params;                  ///< the model, SI units
     KolmogorovEstimate diffusivity;      ///< D [m^2/s]
     KolmogorovEstimate mobility;         ///< M0 [m/s]
+    /// The stationary Var(V) [m^2/s^2], extrapolated like D (the mean E[V] is M0).
+    KolmogorovEstimate velocity_variance;
     KolmogorovEstimate stuck_probability; ///< P(V = 0)
     /// E[t1], the mean duration of a long excursion [s], extrapolated like D
     /// (the continuum's; a time-stepping scheme's depends on its step and stop

@@ -73,16 +73,17 @@ template <class F> void fields(F& f, GridDetails& x) {
 template <class F> void fields(F& f, MethodResult& x) { f(x.details); }
 template <class F> void fields(F& f, KolmogorovGrid& x) {
     f(x.lower_threshold, x.upper_threshold, x.x_spacing, x.band_intervals, x.band_first, x.x_nodes, x.v_lower,
-      x.v_upper, x.v_cells_neg, x.v_cells_pos, x.v_stretch, x.v_grading, x.lattice_step, x.lattice_bound);
+      x.v_upper, x.v_cells_neg, x.v_cells_pos, x.v_stretch, x.v_grading, x.lattice_step, x.lattice_bound,
+      x.graded_x_lower, x.graded_x_upper);
 }
 template <class F> void fields(F& f, KolmogorovGridSolution& x) {
-    f(x.grid, x.states, x.lu_nonzeros, x.diffusivity, x.diffusivity_x, x.mobility, x.stuck_probability, x.mean_duration,
-      x.tail_mass,
+    f(x.grid, x.states, x.lu_nonzeros, x.diffusivity, x.diffusivity_x, x.mobility, x.velocity_variance,
+      x.stuck_probability, x.mean_duration, x.tail_mass,
       x.seconds, x.velocity_faces, x.velocity_density);
 }
 template <class F> void fields(F& f, KolmogorovResult& x) {
-    f(static_cast<MethodResult&>(x), x.params, x.diffusivity, x.mobility, x.stuck_probability, x.mean_duration,
-      x.diffusivity_x, x.levels, x.converged, x.note, x.seconds);
+    f(static_cast<MethodResult&>(x), x.params, x.diffusivity, x.mobility, x.velocity_variance, x.stuck_probability,
+      x.mean_duration, x.diffusivity_x, x.levels, x.converged, x.interrupted, x.note, x.seconds);
 }
 template <class F> void fields(F& f, VelocityHistogram& x) { f(x.edges, x.density, x.stuck, x.below, x.above); }
 template <class F> void fields(F& f, SamplePath& x) { f(x.t, x.x, x.mode, x.v, x.u); }

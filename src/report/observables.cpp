@@ -57,6 +57,8 @@ std::string solved_json(const DensityResult& r, int indent) {
     for (double x : fine.velocity_density) values.push_back(json_number(x));
     d["value"] = values;
     j["density"] = d;
+    j["mean"] = grid_estimate_json(s.mobility);
+    j["variance"] = grid_estimate_json(s.velocity_variance);
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
     add_report_tail(j, r.request, &work, r.warnings, s.interrupted);

@@ -79,6 +79,11 @@ TEST(CliKolmogorov, EveryTauDownToTheWhiteNoiseLimit) {
     EXPECT_NEAR(limit["exponent"]["value"].get<double>(), 1.0, 0.1) << limit;
     EXPECT_NEAR(limit["half_order"]["value"].get<double>(), 0.0, 0.05) << limit;
     EXPECT_GT(limit["tau_within_percent"].get<double>(), 1e-3) << limit;  // measured 0.0076 s
+    // The density's mean and variance of V, at the paths Monte Carlo uses.
+    const auto density = run_json({"density", "--engine", "kolmogorov", "--tau", "0.001", "--format", "json"});
+    ASSERT_TRUE(density);
+    EXPECT_NEAR((*density)["variance"]["value"].get<double>(), 0.1005, 0.002) << *density; // white: 0.1035
+    EXPECT_EQ((*density)["mean"]["value"], (*density)["mobility"]["value"]);
     EXPECT_LT(limit["tau_within_percent"].get<double>(), 1e-2) << limit;
 }
 

@@ -299,6 +299,10 @@ ChainSolution solve_chain(const Chain& chain) {
         sol.mobility += sol.stationary[s] * chain.velocity[s];
         if (chain.stuck[s]) sol.stuck_probability += sol.stationary[s];
     }
+    for (std::size_t s = 0; s < n; ++s) {
+        const double shift = chain.velocity[s] - sol.mobility;
+        sol.velocity_variance += sol.stationary[s] * (shift * shift + chain.width[s] * chain.width[s] / 12.0);
+    }
 
     // Q chi = -(g - M0) with chi_k = 0: drop row k (implied, as pi . (g - M0) = 0).
     Eigen::VectorXd rhs(static_cast<Eigen::Index>(n - 1));

@@ -114,6 +114,9 @@ struct ChainSolution {
     std::vector<double> stationary; ///< pi, sums to 1
     std::vector<double> chi;        ///< solution of Q chi = -(g - M0), chi[pinned] = 0
     double mobility = 0;            ///< M0 = pi . g [m/s]
+    /// Var(V) = pi . (g - M0)^2 plus each sliding cell's own width^2/12 (V
+    /// uniform within a cell) [m^2/s^2]
+    double velocity_variance = 0;
     double diffusivity = 0;         ///< D = 2 pi . ((g - M0) chi) [m^2/s]
     double diffusivity_x = 0;       ///< sum pi_i Q_ij (chi_j - chi_i)^2 over the x moves only [m^2/s]
     double stuck_probability = 0;   ///< pi(S)

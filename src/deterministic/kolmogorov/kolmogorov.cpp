@@ -142,6 +142,7 @@ KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& gr
     out.diffusivity = sol.diffusivity;
     out.diffusivity_x = sol.diffusivity_x;
     out.mobility = sol.mobility;
+    out.velocity_variance = sol.velocity_variance;
     out.stuck_probability = sol.stuck_probability;
     out.mean_duration = sol.mean_duration;
 
@@ -563,6 +564,7 @@ KolmogorovResult solve_validated(const ModelParams& p, const KolmogorovSettings&
         result.diffusivity = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity; }, true);
         result.diffusivity_x = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity_x; }, false);
         result.mobility = estimate([](const KolmogorovGridSolution& s) { return s.mobility; }, false);
+        result.velocity_variance = estimate([](const KolmogorovGridSolution& s) { return s.velocity_variance; }, false);
         result.stuck_probability = estimate([](const KolmogorovGridSolution& s) { return s.stuck_probability; }, false);
         result.mean_duration = estimate([](const KolmogorovGridSolution& s) { return s.mean_duration; }, false);
 

@@ -117,6 +117,14 @@ GridSolution solve_grid(const Layout& l, const DriftLaw& drift, double tau, std:
     const double total = dot(mass, p);
     for (double& x : p) x /= total;
     sol.mobility = dot(first_moment, p);
+    // E[V^2]: int_K v^2 p dv = h (mid^2 p0 + mid h p1/3 + h^2 (p0/3 + 2 p2/15)/4).
+    double second_moment = 0;
+    each_cell([&](std::size_t, std::size_t, double lo, double hi, std::size_t u) {
+        const double h = hi - lo, mid = 0.5 * (lo + hi);
+        second_moment += h * (mid * mid * p[u] + mid * h * p[u + 1] / 3.0 +
+                              0.25 * h * h * (p[u] / 3.0 + 2.0 * p[u + 2] / 15.0));
+    });
+    sol.velocity_variance = second_moment - sol.mobility * sol.mobility;
     for (std::size_t j = 0; j < nodes; ++j)
         if (g.in_band(j)) {
             sol.stuck_probability += p[l.stuck(j)];

@@ -27,6 +27,7 @@ namespace stickslip::detail::near_white {
 struct GridSolution {
     double diffusivity = 0;       ///< D
     double mobility = 0;          ///< M0
+    double velocity_variance = 0; ///< the stationary Var(V)
     double stuck_probability = 0; ///< P(V = 0)
     double mean_duration = 0;     ///< E[t1] (inf when a half excursion cannot end)
     /// Mass on the two end noise nodes and in the outermost cell of each half

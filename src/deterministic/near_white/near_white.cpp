@@ -226,6 +226,7 @@ KolmogorovResult white_limit(const ModelParams& p, const KolmogorovSettings& set
     r.diffusivity = bounded(r.diffusivity, white.diffusivity);
     r.diffusivity_x = bounded(r.diffusivity_x, white.diffusivity);
     r.mobility = bounded(r.mobility, white.mobility);
+    r.velocity_variance = bounded(r.velocity_variance, white.variance);
     r.stuck_probability = {0.0, r.stuck_probability.value + r.stuck_probability.error};
     const double duration = r.mean_duration.value / shrink;
     r.mean_duration = {duration, duration};
@@ -362,6 +363,8 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         result.diffusivity = scaled(d_parts, sc.diffusivity);
         result.diffusivity_x = scaled(parts([](const GridSolution& s) { return s.diffusivity_noise; }), sc.diffusivity);
         result.mobility = scaled(parts([](const GridSolution& s) { return s.mobility; }), sc.velocity);
+        result.velocity_variance =
+            scaled(parts([](const GridSolution& s) { return s.velocity_variance; }), sc.velocity * sc.velocity);
         result.stuck_probability = scaled(parts([](const GridSolution& s) { return s.stuck_probability; }), 1.0);
         result.mean_duration = scaled(parts([](const GridSolution& s) { return s.mean_duration; }), sc.time);
 
@@ -467,6 +470,7 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         out.diffusivity = s.diffusivity * sc.diffusivity;
         out.diffusivity_x = s.diffusivity_noise * sc.diffusivity;
         out.mobility = s.mobility * sc.velocity;
+        out.velocity_variance = s.velocity_variance * sc.velocity * sc.velocity;
         out.stuck_probability = s.stuck_probability;
         out.mean_duration = s.mean_duration * sc.time;
         out.tail_mass = s.tail_mass;
