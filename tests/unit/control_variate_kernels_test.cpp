@@ -187,6 +187,14 @@ TEST(ControlVariateCorrector, ColouredNeedsTheKolmogorovSolversRange) {
     EXPECT_EQ(near_white->source, "kolmogorov");
     EXPECT_NE(near_white->grid.find("near-white"), std::string::npos) << near_white->grid;
     EXPECT_NEAR(near_white->diffusivity, 1.2333, 0.01); // its coarse grid's D (1.23331 converged)
+    // A weakly confining law (no drag, bias 0.91 of the friction): the chain's
+    // velocity range is too short for it (its corrector removed no variance),
+    // so the near-white one serves at tau' = 1.5 too.
+    ss::ModelParams weak; // the Fig. 2 case's friction, noise, tau
+    weak.relaxation = INFINITY;
+    weak.bias = 3.5;
+    EXPECT_NE(ss::make_corrector(weak)->grid.find("near-white"), std::string::npos);
+    EXPECT_EQ(ss::make_corrector(ss::ModelParams{})->grid.find("near-white"), std::string::npos); // Fig. 2: the chain's
     const auto c = ss::make_corrector(pure_dry(1.0));
     EXPECT_EQ(c->source, "kolmogorov");
     // The coarse grid's D, with its upwind diffusion (0.437 at level 1; the

@@ -299,6 +299,14 @@ ChainSolution solve_chain(const Chain& chain) {
         sol.mobility += sol.stationary[s] * chain.velocity[s];
         if (chain.stuck[s]) sol.stuck_probability += sol.stationary[s];
     }
+    // The mass at the domain's edges: the end x nodes, and each half line's
+    // outermost cell (the first and the last state of a node).
+    const std::size_t nodes = chain.first.size() - 1;
+    for (std::size_t s = 0; s < n; ++s) {
+        const std::size_t j = chain.x_node[s];
+        const bool edge = j == 0 || j + 1 == nodes || s == chain.first[j] || s + 1 == chain.first[j + 1];
+        if (edge) sol.tail_mass += sol.stationary[s];
+    }
     for (std::size_t s = 0; s < n; ++s) {
         const double shift = chain.velocity[s] - sol.mobility;
         sol.velocity_variance += sol.stationary[s] * (shift * shift + chain.width[s] * chain.width[s] / 12.0);

@@ -120,7 +120,7 @@ struct ChainSolution {
     double diffusivity = 0;         ///< D = 2 pi . ((g - M0) chi) [m^2/s]
     double diffusivity_x = 0;       ///< sum pi_i Q_ij (chi_j - chi_i)^2 over the x moves only [m^2/s]
     double stuck_probability = 0;   ///< pi(S)
-    double tail_mass = 0;           ///< mass in the two end x nodes and the two outermost v cells of each half line
+    double tail_mass = 0;           ///< mass on the two end x nodes and in the outermost v cell of each half line
     /// E[t1] of the chain [s]: the mean time from plus_start to a +HLE's end
     /// plus the mean time from minus_start to a -HLE's end (solve_chain).
     double mean_duration = 0;

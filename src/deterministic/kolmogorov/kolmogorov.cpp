@@ -147,23 +147,19 @@ KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& gr
     out.mean_duration = sol.mean_duration;
 
     // The v-marginal density of the sliding states, and the mass at the ends.
-    const std::size_t mn = chain_grid.cells_neg(), mp = chain_grid.cells_pos(), nx = chain_grid.x.size();
+    const std::size_t mn = chain_grid.cells_neg(), mp = chain_grid.cells_pos();
     out.velocity_faces.resize(mn + mp + 1);
     for (std::size_t i = 0; i <= mn; ++i) out.velocity_faces[i] = chain_grid.faces_neg[mn - i];
     for (std::size_t i = 1; i <= mp; ++i) out.velocity_faces[mn + i] = chain_grid.faces_pos[i];
     out.velocity_density.assign(mn + mp, 0.0);
+    out.tail_mass = sol.tail_mass;
     for (std::size_t s = 0; s < chain.size(); ++s) {
-        const std::size_t j = chain.x_node[s];
-        const bool end_node = j == 0 || j + 1 == nx;
-        if (chain.stuck[s]) {
-            if (end_node) out.tail_mass += sol.stationary[s];
-            continue;
-        }
+        if (chain.stuck[s]) continue;
         // Column in the increasing order of velocity_faces.
+        const std::size_t j = chain.x_node[s];
         const std::size_t offset = s - chain.first[j];
         const std::size_t column = offset < mn ? offset : offset - (chain_grid.in_band(j) ? 1 : 0);
         out.velocity_density[column] += sol.stationary[s] / chain.width[s];
-        if (end_node || column == 0 || column + 1 == mn + mp) out.tail_mass += sol.stationary[s];
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
