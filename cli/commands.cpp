@@ -44,7 +44,7 @@ given --seed, whatever --threads. A run's settings can be kept in a file:
 1 I/O error while running or internal error, 2 bad input (an --output that
 cannot be created included), 3 untrustworthy run (runaway excursions, or every
 excursion shorter than one step),
-130/143 stopped by SIGINT/SIGTERM: the first signal lets the blocks in flight
+130/143/129 stopped by SIGINT/SIGTERM/SIGHUP: the first signal lets the blocks in flight
 finish and writes the result so far (marked "interrupted") and the checkpoint;
 a second one, a second or more later, aborts. --checkpoint FILE saves a run every --checkpoint-every
 seconds; --resume FILE continues it, with a result identical to an
@@ -142,7 +142,7 @@ constexpr bool resumable() {
 
 /// A subcommand for `Request`: the flags of its settings, --format/--output/
 /// --quiet, for a run through the block driver --checkpoint/--resume, and the
-/// run, which stops gracefully on the first SIGINT or SIGTERM (interrupt.hpp).
+/// run, which stops gracefully on the first SIGINT, SIGTERM or SIGHUP (interrupt.hpp).
 /// `customise(request, quiet)`, when given, is called just before computing
 /// (the sweep sets its per-point progress there).
 template <class Request, class Result>
@@ -165,6 +165,12 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                 state->flags.apply();
                 read_output_flags(state->output);
                 Request& req = state->request;
+                {
+                    std::vector<std::pair<std::string, std::string>> inputs{{"config", state->flags.config_path()}};
+                    if constexpr (requires { req.params.drift_table; })
+                        inputs.push_back({"drift-table", req.params.drift_table});
+                    refuse_output_over_inputs(state->output, inputs);
+                }
                 req.command_line = command_line; // the reports' provenance
                 if constexpr (resumable<Request>()) read_checkpoint_flags(state->checkpoint);
                 if (state->flags.print_config()) {

@@ -75,7 +75,10 @@ void end_finish_deadline() {
     }
 }
 
-constexpr int kSignals[] = {SIGINT, SIGTERM};
+// SIGHUP too: a closed terminal or an ssh session dropped is a request to
+// stop, and it lost the whole result (issue 50); nohup's ignored SIGHUP stays
+// ignored (only signals at their default action are taken).
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 struct sigaction g_previous[std::size(kSignals)];
 bool g_installed[std::size(kSignals)] = {};
 

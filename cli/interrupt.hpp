@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Ctrl-C keeps what was computed. While a run is in progress, the first
-// SIGINT or SIGTERM asks it to stop gracefully (RunControl::stop): no new
-// block is started, the blocks in flight finish, and the command writes the
-// result of the prefix of blocks completed, marked "interrupted", and the
+// SIGINT, SIGTERM or SIGHUP asks it to stop gracefully (RunControl::stop): no
+// new block is started, the blocks in flight finish, and the command writes
+// the result of the prefix of blocks completed, marked "interrupted", and the
 // checkpoint if one was asked for; it then exits 128 + the signal (130 for
-// SIGINT, 143 for SIGTERM). Blocks still in flight 5 s after the signal are
+// SIGINT, 143 for SIGTERM, 129 for SIGHUP). Blocks still in flight 5 s after the signal are
 // dropped (the result is of those finished before). A second signal at least a second after the
 // first aborts at once (one within the second is the same request delivered
 // again, to the process and to its group, as GNU timeout does): the temporary
@@ -20,7 +20,7 @@ namespace stickslip::cli {
 /// action: an ignored SIGINT, as in a background job, stays ignored), and for
 /// the rest of the process once a stop signal came (a repeat of it must not
 /// kill the process after its result is written). Install
-/// before CleanupOnSignals (output.hpp), so that its handlers leave these two
+/// before CleanupOnSignals (output.hpp), so that its handlers leave these three
 /// signals to it.
 class StopOnSignals {
 public:

@@ -248,4 +248,18 @@ void refuse_shared_paths(const OutputFlags& output, const CheckpointOptions& che
     }
 }
 
+void refuse_output_over_inputs(const OutputFlags& output,
+                               const std::vector<std::pair<std::string, std::string>>& inputs) {
+    if (output.output.empty()) return;
+    const detail::FileTarget out = detail::resolve_target(output.output);
+    if (out.error) return; // Output says what is wrong with it
+    for (const auto& [flag, path] : inputs) {
+        if (path.empty()) continue;
+        const detail::FileTarget in = detail::resolve_target(path);
+        if (!in.error && detail::same_file(out, in))
+            throw InvalidParameter("output", "'" + output.output + "' is also the --" + flag + " file '" + path +
+                                                 "': the result would replace it; give another --output");
+    }
+}
+
 } // namespace stickslip::cli

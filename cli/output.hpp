@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "stickslip/checkpoint.hpp"
@@ -75,6 +76,12 @@ private:
 /// the --checkpoint or the --resume file, however spelt (links, "./"): the
 /// result would replace the saved state of the run.
 void refuse_shared_paths(const OutputFlags& output, const CheckpointOptions& checkpoint);
+
+/// Refuses (InvalidParameter "output") an --output that is one of the run's
+/// input files (`inputs`: the flag that names each, and its path), or a link
+/// to one: the result would replace the file it was computed from.
+void refuse_output_over_inputs(const OutputFlags& output,
+                               const std::vector<std::pair<std::string, std::string>>& inputs);
 
 /// Removes the named temporary files of this process (the output's and a
 /// checkpoint's), if any; async-signal-safe (for a signal handler that is

@@ -51,6 +51,8 @@ public:
     /// True when --print-config was given (with no value, or a true one);
     /// known after apply().
     bool print_config() const { return print_config_; }
+    /// The --config file's path as given ("" without one); known after apply().
+    const std::string& config_path() const { return config_path_; }
     /// The effective settings as a config file: one `key = value  # [unit] help`
     /// line per setting, under a comment naming the command.
     std::string config_text(const std::string& command) const;

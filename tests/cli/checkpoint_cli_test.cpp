@@ -318,7 +318,8 @@ TEST_P(CliStop, WritesTheResultSoFarAndExits128PlusTheSignal) {
     EXPECT_GE(c.at("calls")[0].at("counts")[2].get<std::uint64_t>(), done);
 }
 
-INSTANTIATE_TEST_SUITE_P(Both, CliStop, ::testing::Values(Stop{SIGINT, 130, "INT"}, Stop{SIGTERM, 143, "TERM"}),
+INSTANTIATE_TEST_SUITE_P(Both, CliStop, ::testing::Values(Stop{SIGINT, 130, "INT"}, Stop{SIGTERM, 143, "TERM"},
+                                                           Stop{SIGHUP, 129, "HUP"}),
                          [](const ::testing::TestParamInfo<Stop>& p) { return std::string(p.param.name); });
 
 // Guards the way out when the graceful stop is not wanted: a second signal

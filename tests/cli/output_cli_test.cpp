@@ -434,3 +434,38 @@ TEST(CliOutputSignalIgnored, AnIgnoredSignalStaysIgnored) {
 }
 
 } // namespace
+
+namespace {
+
+// Issue 50, item 3: --output naming an input of the run (the --drift-table or
+// --config file, or a link to one) replaced it with the result, exit 0.
+TEST(CliOutputOverInput, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
+    const clitest::Scratch dir("over_input");
+    const std::string table = dir / "law.csv", other = dir / "other.csv", link = dir / "link.csv";
+    const std::string law = "v,b\n-10,3\n0,0.342\n10,-3\n";
+    { std::ofstream(table) << law; }
+    { std::ofstream(other) << law; }
+    ASSERT_EQ(::symlink(other.c_str(), link.c_str()), 0);
+    const clitest::Result print = clitest::run({"diffusivity", "--print-config"});
+    const std::string config = dir / "run.toml";
+    { std::ofstream(config) << print.out; }
+    struct Case {
+        clitest::Args args;
+        std::string kept, flag;
+    };
+    const std::vector<Case> cases{
+        {{"diffusivity", "--drift-table", table, "--excursions", "100", "--output", table}, table, "--drift-table"},
+        {{"diffusivity", "--drift-table", other, "--excursions", "100", "--output", link}, other, "--drift-table"},
+        {{"diffusivity", "--config", config, "--excursions", "100", "--output", config}, config, "--config"},
+        {{"diffusivity", "--config", config, "--print-config", "--output", config}, config, "--config"}};
+    for (const Case& c : cases) {
+        const std::string before = clitest::slurp(c.kept);
+        const clitest::Result r = clitest::run(c.args);
+        EXPECT_EQ(r.code, 2) << clitest::describe(c.args) << "\n" << r.err;
+        EXPECT_EQ(clitest::count_lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("is also the " + c.flag + " file"), std::string::npos) << r.err;
+        EXPECT_EQ(clitest::slurp(c.kept), before) << c.kept;
+    }
+}
+
+} // namespace
