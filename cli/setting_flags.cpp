@@ -160,6 +160,13 @@ void SettingFlags::apply() {
                                                    "constant force into it (e.g. --drift \"0.342 - v/0.067\")");
     if (given("drift") && given("drift-table"))
         throw InvalidParameter("drift-table", "cannot be combined with --drift: give the law once");
+    // An explicit empty law ran the default Fig. 2 law (a script with an
+    // unset variable got the wrong model, issue 50); a config file's
+    // `drift = ""` (--print-config writes it) still means none.
+    for (const char* law : {"drift", "drift-table"})
+        if (given(law) && find(law)->text.empty())
+            throw InvalidParameter(law, std::string("--") + law + " is empty; leave it out for the affine law of "
+                                                                "--relaxation and --bias");
     for (Setting& s : settings_) {
         if (s.option->count() == 0) continue;
         if (s.kind == SettingKind::Flag) s.parse(flag_value(*s.option, s.info.name) ? "true" : "false");

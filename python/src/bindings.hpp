@@ -34,6 +34,10 @@ std::string setting_text(const py::handle& v);
 /// json.loads(text).
 py::object json_loads(const std::string& text);
 
+/// Raises stickslip.UntrustworthyResultError with message `what` and the
+/// result attached as its `result` attribute.
+[[noreturn]] void raise_untrustworthy(const std::string& what, py::object result);
+
 /// A run of estimates with the same confidence level, shown to Python as
 /// arrays (`value`, `stderr`, `lo`, `hi`, `ci` of shape (n, 2)).
 struct EstimateSeries {

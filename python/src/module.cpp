@@ -109,16 +109,42 @@ void set_drift(ModelParams& p, const py::handle& value) {
         }
         return;
     }
+    const char* forms = "drift must be an expression (str), a callable b(v) or two arrays (v, b)";
+    if (!py::isinstance<py::sequence>(value)) throw InvalidParameter("drift", std::string(forms) + ", got " +
+                                                                                  py::str(py::type::of(value)).cast<std::string>());
     const auto pair = value.cast<py::sequence>();
-    if (pair.size() != 2)
-        throw InvalidParameter("drift", "drift must be an expression (str), a callable b(v) or two arrays (v, b)");
-    p.drift_table_v = pair[0].cast<std::vector<double>>();
-    p.drift_table_b = pair[1].cast<std::vector<double>>();
+    if (pair.size() != 2) throw InvalidParameter("drift", forms);
+    try {
+        p.drift_table_v = pair[0].cast<std::vector<double>>();
+        p.drift_table_b = pair[1].cast<std::vector<double>>();
+    } catch (const py::cast_error&) {
+        throw InvalidParameter("drift", "drift=(v, b): both must be sequences of numbers (m/s, m s^-2)");
+    }
+    // Two empty arrays left no law at all, and the affine default ran.
+    if (p.drift_table_v.empty() && p.drift_table_b.empty())
+        throw InvalidParameter("drift", "drift=(v, b) has no rows; a table needs at least two (drift=None: the "
+                                        "affine law of relaxation and bias)");
 }
 
 /// `base` with the fields given as keywords changed (each read by the
 /// library's parser, so a bad value gets the CLI's message), validated.
 ModelParams params_with(ModelParams base, const py::kwargs& kw, const char* function) {
+    // relaxation= or bias= beside a drift law would be dropped silently (the
+    // law replaces them): refused, as the CLI refuses --relaxation with --drift.
+    bool law_given = false;
+    for (auto item : kw) {
+        const auto key = item.first.cast<std::string>();
+        if ((key == "drift" || key == "drift_table") && !item.second.is_none() &&
+            !(py::isinstance<py::str>(item.second) && item.second.cast<std::string>().empty()))
+            law_given = true;
+    }
+    for (auto item : kw) {
+        const auto key = item.first.cast<std::string>();
+        if ((key == "relaxation" || key == "bias") && (law_given || (base.has_drift_law() && !kw.contains("drift") &&
+                                                                     !kw.contains("drift_table"))))
+            throw InvalidParameter(key, key + " cannot be combined with a drift law, which gives the whole b(v): put "
+                                              "the drag and the constant force into it (e.g. drift=\"0.342 - v/0.067\")");
+    }
     for (auto item : kw) {
         const auto key = item.first.cast<std::string>();
         bool found = false;
@@ -273,6 +299,13 @@ void add_series_access(py::class_<Series>& c, const std::string& name) {
 }
 
 } // namespace
+
+void raise_untrustworthy(const std::string& what, py::object result) {
+    py::object exc = py::reinterpret_borrow<py::object>(g_untrustworthy)(what);
+    exc.attr("result") = std::move(result);
+    PyErr_SetObject(g_untrustworthy, exc.ptr());
+    throw py::error_already_set();
+}
 
 void bind_core(py::module_& m) {
     // ---- exceptions -------------------------------------------------------------

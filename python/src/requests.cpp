@@ -43,6 +43,7 @@
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
+#include "stickslip/report.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -355,6 +356,21 @@ void detach(Result& r) {
     r.request.control.journal = nullptr;
 }
 
+/// The CLI's last check, before a result is returned: a number its JSON would
+/// print as null (NaN, inf) makes it untrustworthy (the command's exit 3;
+/// Python returned NaN, inf or a negative D silently, issue 50). The result
+/// goes with the exception, as e.result.
+template <class Result>
+Result checked(Result r) {
+    try {
+        check_finite_result(to_json(r));
+    } catch (const UntrustworthyResult& e) {
+        detach(r);
+        raise_untrustworthy(e.what(), py::cast(r));
+    }
+    return r;
+}
+
 template <class Request, class Result>
 Result run_request(Request req, Result (*compute)(const Request&), bool progress) {
     Monitor mon;
@@ -363,7 +379,7 @@ Result run_request(Request req, Result (*compute)(const Request&), bool progress
     req.control.cancel = &mon.cancel; // stops the workers within one sample
     Result r = run_interruptible<Result>([&req, compute] { return compute(req); }, mon, progress);
     detach(r);
-    return r;
+    return checked(std::move(r));
 }
 
 template <class Request, class Result>
@@ -378,7 +394,7 @@ Result run_resumable(Request req, Result (*compute)(const Request&), bool progre
     Result r = run_journaled<Request, Result>(req, [&req, compute] { return compute(req); }, mon, progress,
                                               journal.get());
     detach(r);
-    return r;
+    return checked(std::move(r));
 }
 
 SweepResult run_sweep(SweepRequest req, bool progress, const std::optional<std::string>& checkpoint,
@@ -398,7 +414,7 @@ SweepResult run_sweep(SweepRequest req, bool progress, const std::optional<std::
                                                              progress, journal.get());
     r.request.point_progress = nullptr; // it points to `mon`, about to go
     detach(r);
-    return r;
+    return checked(std::move(r));
 }
 
 /// Binds one request type: construction from the defaults, set/get, the

@@ -68,6 +68,20 @@ def _broadcast(*xs):
     return [_np.ascontiguousarray(a).ravel() for a in arrays], shape
 
 
+def _finite(values, what):
+    """values, or UntrustworthyResultError (with them as .result) if any is not a
+    finite number: the CLI refuses such a result (exit 3); a NaN returned quietly
+    would pass for a number (analytic.first_moment at t = 1e23 gave nan)."""
+    a = _np.asarray(values)
+    if a.dtype.kind == "f" and not _np.all(_np.isfinite(a)):
+        e = _core.UntrustworthyResultError(
+            "the result's %s is not a finite number: the arguments take it beyond what double precision "
+            "resolves" % what)
+        e.result = values
+        raise e
+    return values
+
+
 def _shaped(flat, shape):
     if shape == ():
         return float(flat[0])
@@ -149,13 +163,13 @@ def first_moment(params, t, v0=0.0):
     _check(params)
     (tt, vv), shape = _broadcast(t, v0)
     if _core._is_pure_dry_friction(params):
-        return _shaped(_core._first_moment(params, tt, vv), shape)
+        return _finite(_shaped(_core._first_moment(params, tt, vv), shape), "first moment")
     fp = _solver(params)
     out = _np.empty_like(tt)
     for v in _np.unique(vv):
         idx = _np.nonzero(vv == v)[0]
         out[idx] = fp.first_moment(float(v), tt[idx])
-    return _shaped(out, shape)
+    return _finite(_shaped(out, shape), "first moment")
 
 
 def autocorrelation(params, t):
@@ -167,8 +181,8 @@ def autocorrelation(params, t):
     _check(params)
     (tt,), shape = _broadcast(t)
     if _core._is_pure_dry_friction(params):
-        return _shaped(_core._autocorrelation(params, tt), shape)
-    return _shaped(_solver(params).autocorrelation(tt), shape)
+        return _finite(_shaped(_core._autocorrelation(params, tt), shape), "autocorrelation")
+    return _finite(_shaped(_solver(params).autocorrelation(tt), shape), "autocorrelation")
 
 
 def propagator(params, v, t, v0):
@@ -179,7 +193,7 @@ def propagator(params, v, t, v0):
     _check(params)
     (vv, tt, ww), shape = _broadcast(v, t, v0)
     if _core._is_pure_dry_friction(params):
-        return _shaped(_core._propagator(params, vv, tt, ww), shape)
+        return _finite(_shaped(_core._propagator(params, vv, tt, ww), shape), "propagator")
     fp = _solver(params)
     out = _np.empty_like(vv)
     for w in _np.unique(ww):
@@ -188,7 +202,7 @@ def propagator(params, v, t, v0):
         vs, v_index = _np.unique(vv[idx], return_inverse=True)
         table = fp.density(float(w), ts, vs)  # (times, velocities)
         out[idx] = table[t_index, v_index]
-    return _shaped(out, shape)
+    return _finite(_shaped(out, shape), "propagator")
 
 
 white_noise = command("white_noise", _core.WhiteNoiseRequest, """\

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -39,6 +40,7 @@ std::string trim(std::string s) {
 class Expression {
 public:
     Expression(const std::string& text, const std::string& params) {
+        refuse_statements(text);
         parse_params(params);
         try {
             parser_.DefineVar("v", &v_);
@@ -64,6 +66,27 @@ public:
     }
 
 private:
+    /// muParser also reads an assignment ("v=3" sets v and yields 3) and a
+    /// list ("-v,2*v" evaluates both and yields the last): neither is a law
+    /// b(v), so an '=' outside <=, >=, ==, != and a ',' outside a function's
+    /// parentheses are refused.
+    static void refuse_statements(const std::string& text) {
+        int depth = 0;
+        for (std::size_t i = 0; i < text.size(); ++i) {
+            const char c = text[i];
+            if (c == '(') ++depth;
+            else if (c == ')') --depth;
+            else if (c == ',' && depth <= 0)
+                fail("drift", "\"" + text + "\" is a list of expressions (a comma outside a function's "
+                              "arguments); the law is one expression of v");
+            else if (c == '=') {
+                const char before = i > 0 ? text[i - 1] : ' ', after = i + 1 < text.size() ? text[i + 1] : ' ';
+                const bool comparison = before == '<' || before == '>' || before == '=' || before == '!' || after == '=';
+                if (!comparison)
+                    fail("drift", "\"" + text + "\" assigns with '=': the law is an expression of v (compare with ==)");
+            }
+        }
+    }
     static double* unknown(const char* name, void* self) {
         auto* e = static_cast<Expression*>(self);
         e->unknown_.emplace_back(name);
@@ -82,6 +105,10 @@ private:
             double x;
             parse_setting(SettingInfo{"drift-params", "", ""}, value, x);
             if (!std::isfinite(x)) fail("drift-params", name + " must be finite, got " + value);
+            // The last of two values won before: which one was meant is unknowable.
+            if (constants_.count(name))
+                fail("drift-params", name + " is given twice (" + format_number(constants_[name]) + " and " + value +
+                                         "); give each constant once");
             constants_[name] = x;
         }
     }
@@ -181,6 +208,9 @@ double drift_time_scale(const ModelParams& p) {
 }
 
 void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        fail("drift-table", "'" + printable_text(path) + "' is a directory, not a file of v,b rows");
     std::ifstream in(path);
     if (!in) fail("drift-table", "cannot read '" + printable_text(path) + "'");
     v.clear();
@@ -200,6 +230,10 @@ void read_drift_table(const std::string& path, std::vector<double>& v, std::vect
         double x = 0, y = 0;
         try {
             std::size_t ia = 0, ic = 0;
+            // stod reads hexadecimal ("0x10" is 16): a table of numbers in
+            // another base is a mistake, not a law.
+            for (const std::string* cell : {&a, &c})
+                if (cell->find_first_of("xXpP") != std::string::npos) throw std::invalid_argument("hex");
             x = std::stod(a, &ia);
             y = std::stod(c, &ic);
             if (ia != a.size() || ic != c.size() || !extra.empty()) throw std::invalid_argument("row");

@@ -93,6 +93,15 @@ void validate(const ModelParams& p) {
                                    " outside double precision's range; rescale the units (SI multiples) so that "
                                    "both are nearer 1");
     }
+    // Settings of a drift law with no law to take them: they would change
+    // nothing, silently (issue 50).
+    if (!p.drift_params.empty() && p.drift.empty())
+        throw InvalidParameter("drift-params", "drift-params gives the constants of a --drift expression, and there is "
+                                               "none" + std::string(p.has_drift_law() ? " (a table's law has no "
+                                                                                         "constants)" : ""));
+    if (p.knots != ModelParams{}.knots && !p.has_drift_law())
+        throw InvalidParameter("knots", "knots sets the interpolant of a --drift or --drift-table law, and there is "
+                                        "none: the affine law of --relaxation and --bias has no knots");
     // A drift law is checked when it is given (parses, finite, confines).
     if (p.has_drift_law()) make_drift_law(p);
 }

@@ -103,9 +103,18 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
                                                           detail::format_number(x));
     }
     const std::size_t values = req.vary_values.empty() ? 1 : req.vary_values.size();
-    if (req.noises.size() * req.taus.size() * values > kMaxPoints)
-        throw InvalidParameter("noise", "at most 65536 sweep points (noises x taus" +
-                                            std::string(req.vary.empty() ? "" : " x vary-values") + ")");
+    if (req.noises.size() * req.taus.size() * values > kMaxPoints) {
+        // The longest list is the one to shorten (the limit was blamed on
+        // --noise whichever made it).
+        const char* longest = req.noises.size() >= req.taus.size() ? "noise" : "tau";
+        if (values > std::max(req.noises.size(), req.taus.size())) longest = "vary-values";
+        throw InvalidParameter(longest, "at most 65536 sweep points (noises x taus" +
+                                            std::string(req.vary.empty() ? "" : " x vary-values") + ": " +
+                                            std::to_string(req.noises.size()) + " x " +
+                                            std::to_string(req.taus.size()) +
+                                            (req.vary.empty() ? std::string() : " x " + std::to_string(values)) +
+                                            "); --" + longest + " has the most values");
+    }
     if (req.excursions > sweep_index_stride) throw InvalidParameter("excursions", "at most 2^40 excursions per point");
     if (req.control.first_index != 0) throw InvalidParameter("first-index", "a sweep starts at sample index 0");
     for (double g : req.noises)

@@ -59,7 +59,23 @@ TEST(CliDrift, BadLawsAreRefusedWithOneLine) {
     const std::string one = table_file("-1,1\n");
     expect_refused(with(kFast, {"--drift-table", one}), "--drift-table", "at least two rows");
     expect_refused(with(kFast, {"--drift-table", "/nonexistent/law.csv"}), "--drift-table", "cannot read");
-    for (const auto& f : {unsorted, dup, nan, one}) std::remove(f.c_str());
+    // Issue 50, item 5: drift input without surprises.
+    expect_refused(with(kFast, {"--drift", ""}), "--drift", "is empty"); // ran the Fig. 2 law
+    expect_refused(with(kFast, {"--drift-table", ""}), "--drift-table", "is empty");
+    expect_refused(with(kFast, {"--drift", "a*v", "--drift-params", "a=-1,a=-2"}), "--drift-params", "given twice");
+    expect_refused(with(kFast, {"--drift-params", "a=1"}), "--drift-params", "there is none");
+    expect_refused(with(kFast, {"--knots", "65"}), "--knots", "there is none");
+    expect_refused(with(kFast, {"--drift", "v=3"}), "--drift", "assigns");
+    expect_refused(with(kFast, {"--drift", "-v,2*v"}), "--drift", "list of expressions");
+    expect_refused(with(kFast, {"--drift-table", "/tmp"}), "--drift-table", "is a directory");
+    const std::string hex = table_file("v,b\n-0x10,3\n0,0\n0x10,-3\n");
+    expect_refused(with(kFast, {"--drift-table", hex}), "--drift-table", "is not two numbers");
+    expect_refused({"diffusivity", "--tau", "5e-324", "--excursions", "100"}, "--tau", "white to double precision");
+    expect_refused({"sweep", "--noise", "1:10:3", "--tau", "1:2:30000"}, "--tau", "has the most values");
+    // Comparisons and functions of several arguments still read.
+    EXPECT_EQ(run(with(kFast, {"--drift", "(v<=1)*(-v) + (v>1)*(-2*v)"})).code, 0);
+    EXPECT_EQ(run(with(kFast, {"--drift", "min(-v, 1-v)"})).code, 0);
+    for (const auto& f : {unsorted, dup, nan, one, hex}) std::remove(f.c_str());
 }
 
 TEST(CliDrift, JsonGivesTheLawAndTheRunRepeatsFromIt) {

@@ -56,8 +56,17 @@ ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSe
         c.f_z = c.h_amp * c.ou.l11;
         if (!(std::isfinite(c.ou.l11) && std::isfinite(c.ou.l21) && std::isfinite(c.ou.l22) &&
               std::isfinite(c.ou.mean_coef)))
+        {
+            // With the automatic step the step follows tau: tau itself is the
+            // setting to change (--tau 5e-324 was blamed on --dt).
+            if (s.dt_auto)
+                throw InvalidParameter("tau", "tau = " + detail::format_number(p.tau) + " s gives dt/tau = " +
+                                                  detail::format_number(s.dt / p.tau) +
+                                                  ", outside the range where the OU step is computable: the noise "
+                                                  "is white to double precision there; use --tau 0");
             throw InvalidParameter("dt", "dt/tau = " + detail::format_number(s.dt / p.tau) +
                                              " is outside the range where the OU step is computable");
+        }
         c.x_up = p.upper_threshold();
         c.x_down = p.lower_threshold();
         c.bridge_rate = p.tau * p.tau / s.dt;
