@@ -16,6 +16,7 @@
 #include "interrupt.hpp"
 #include "output.hpp"
 #include "progress.hpp"
+#include "stickslip/drift_input.hpp"
 #include "setting_flags.hpp"
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/checkpoint.hpp"
@@ -171,6 +172,9 @@ Action add_command(CLI::App& app, const char* description, Result (*compute)(con
                         inputs.push_back({"drift-table", req.params.drift_table});
                     refuse_output_over_inputs(state->output, inputs);
                 }
+                // The input files, read once for the whole command (its
+                // digest in the reports and the checkpoint).
+                if constexpr (requires { req.params.drift_table; }) read_drift_inputs(req.params);
                 req.command_line = command_line; // the reports' provenance
                 if constexpr (resumable<Request>()) read_checkpoint_flags(state->checkpoint);
                 if (state->flags.print_config()) {

@@ -3,6 +3,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <set>
@@ -137,6 +138,12 @@ void SettingFlags::apply() {
             for (std::size_t k = 0; k < item.inputs.size(); ++k) {
                 if (k) value += ',';
                 value += item.inputs[k];
+            }
+            // A relative table path in a config file names a file beside the
+            // config, not in the working directory (one config, two laws).
+            if (std::string(s->info.name) == "drift-table" && !value.empty() && value.front() != '/') {
+                const auto folder = std::filesystem::path(path).parent_path();
+                if (!folder.empty()) value = (folder / value).string();
             }
             try {
                 s->parse(value);

@@ -90,6 +90,11 @@ std::vector<std::pair<std::string, std::string>> checkpoint_identity(Request& re
     visit_settings(request, [&](auto&& field, const SettingInfo& info) {
         if (std::string(info.name) != "threads") out.emplace_back(info.name, format_setting(field));
     });
+    // The table file's contents, not only its path: a resume with a changed
+    // table ran another law (D 3.8 times off, issue 50).
+    if constexpr (requires { request.params.drift_table_digest; })
+        if (!request.params.drift_table_digest.empty())
+            out.emplace_back("drift-table-digest", request.params.drift_table_digest);
     return out;
 }
 

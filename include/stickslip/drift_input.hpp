@@ -20,6 +20,7 @@
 /// Making the run's drift law from the model's parameters. The comment at the
 /// top of this header explains the design.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -74,8 +75,26 @@ double drift_time_scale(const ModelParams& p);
 
 /// The rows of a table file: one "v,b" pair per line (SI: m/s, m s^-2), '#'
 /// comments, blank lines and one header line of non-numbers allowed. Throws
-/// InvalidParameter("drift-table", ...) when the file cannot be read or a row is
-/// not two numbers.
-void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b);
+/// InvalidParameter("drift-table", ...) when the file cannot be read, is larger
+/// than drift_table_max_bytes or holds more than drift_table_max_rows rows, or a
+/// row is not two numbers. With `digest`, it receives the digest of the bytes
+/// read (FNV-1a, 64 bits, as "fnv1a64:" and 16 hex digits).
+void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b,
+                      std::string* digest = nullptr);
+
+/// Most bytes a --drift-table file may have (read before anything else is
+/// done: `--drift-table /dev/zero` filled 1 GB in 3 s), and most rows (a
+/// 1e6-row table cost 29 s; the interpolant has at most 2049 knots anyway).
+inline constexpr std::size_t drift_table_max_bytes = 16u << 20;
+inline constexpr std::size_t drift_table_max_rows = 100000;
+
+/// Reads the model's input files once: a --drift-table path becomes its rows
+/// (p.drift_table_v, drift_table_b) and its digest (p.drift_table_digest), the
+/// path kept for the reports. Every later make_drift_law then uses the rows, so
+/// a command reads the file once however often it makes the law (it was
+/// opened 32 times in one run, and a table replaced meanwhile mixed two laws),
+/// and a pipe or /dev/stdin serves as a table. Does nothing when the rows are
+/// already there or there is no file. Throws as read_drift_table.
+void read_drift_inputs(ModelParams& p);
 
 } // namespace stickslip

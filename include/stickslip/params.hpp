@@ -41,6 +41,10 @@ struct ModelParams {
     std::string drift_table{}; ///< path of a file of "v,b" rows; "" = none
     std::vector<double> drift_table_v{}; ///< table rows given directly (Python arrays) [m/s]
     std::vector<double> drift_table_b{}; ///< their b [m s^-2]
+    /// The --drift-table file's contents as read (read_drift_inputs, once per
+    /// command): its digest, for the reports' provenance and the checkpoint's
+    /// identity; "" while the file is unread or there is none.
+    std::string drift_table_digest{};
     std::function<double(double)> drift_function{}; ///< b(v) as a callable (Python); empty = none
     int knots = 1025;          ///< knots of the interpolant of a non-affine law (odd, 3..2049)
     /// @}

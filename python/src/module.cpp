@@ -161,6 +161,14 @@ ModelParams params_with(ModelParams base, const py::kwargs& kw, const char* func
         });
         if (!found) throw py::type_error(std::string(function) + " got an unexpected keyword argument '" + key + "'");
     }
+    // A table file is read here, once: the Params hold its rows and digest
+    // from then on (a file changed later changes no run made from them).
+    if (kw.contains("drift_table")) {
+        base.drift_table_v.clear();
+        base.drift_table_b.clear();
+        base.drift_table_digest.clear();
+    }
+    read_drift_inputs(base);
     validate(base);
     return base;
 }
@@ -175,7 +183,8 @@ std::string params_repr(const ModelParams& p) {
     if (!p.drift.empty()) out += ", drift=" + py::repr(py::str(p.drift)).cast<std::string>();
     if (!p.drift_params.empty()) out += ", drift_params=" + py::repr(py::str(p.drift_params)).cast<std::string>();
     if (!p.drift_table.empty()) out += ", drift_table=" + py::repr(py::str(p.drift_table)).cast<std::string>();
-    if (!p.drift_table_v.empty()) out += ", drift=(<" + std::to_string(p.drift_table_v.size()) + " knots>)";
+    if (!p.drift_table_v.empty() && p.drift_table.empty())
+        out += ", drift=(<" + std::to_string(p.drift_table_v.size()) + " knots>)";
     if (p.has_drift_law()) out += ", knots=" + std::to_string(p.knots);
     return out + ")";
 }

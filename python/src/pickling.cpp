@@ -105,7 +105,7 @@ template <class F> void fields(F& f, WhiteNoiseReference& x) { f(x.mobility, x.d
 /// is sampled on them when given, so it is not needed afterwards).
 template <class F> void fields(F& f, ModelParams& x) {
     visit_settings(x, [&](auto&& setting, const SettingInfo&) { f(setting); });
-    f(x.drift_table_v, x.drift_table_b);
+    f(x.drift_table_v, x.drift_table_b, x.drift_table_digest);
 }
 
 /// A request: the whole model first (some requests leave parts of it out of

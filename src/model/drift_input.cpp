@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -207,12 +209,31 @@ double drift_time_scale(const ModelParams& p) {
     return lip > 0 ? 1.0 / lip : HUGE_VAL;
 }
 
-void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b) {
+void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b, std::string* digest) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         fail("drift-table", "'" + printable_text(path) + "' is a directory, not a file of v,b rows");
-    std::ifstream in(path);
-    if (!in) fail("drift-table", "cannot read '" + printable_text(path) + "'");
+    std::ifstream file(path, std::ios::binary);
+    if (!file) fail("drift-table", "cannot read '" + printable_text(path) + "'");
+    // The whole file, bounded, in one pass (it may be a pipe, read once).
+    std::string text;
+    char chunk[1 << 16];
+    while (file.read(chunk, sizeof chunk) || file.gcount() > 0) {
+        text.append(chunk, static_cast<std::size_t>(file.gcount()));
+        if (text.size() > drift_table_max_bytes)
+            fail("drift-table", "'" + printable_text(path) + "' is larger than " +
+                                    std::to_string(drift_table_max_bytes >> 20) +
+                                    " MiB: not a table of v,b rows (at most " + std::to_string(drift_table_max_rows) +
+                                    " rows are read)");
+    }
+    if (digest) {
+        std::uint64_t h = 0xcbf29ce484222325ull; // FNV-1a
+        for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ull;
+        char hex[17];
+        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+        *digest = std::string("fnv1a64:") + hex;
+    }
+    std::istringstream in(text);
     v.clear();
     b.clear();
     std::string line;
@@ -247,7 +268,16 @@ void read_drift_table(const std::string& path, std::vector<double>& v, std::vect
         }
         v.push_back(x);
         b.push_back(y);
+        if (v.size() > drift_table_max_rows)
+            fail("drift-table", "'" + printable_text(path) + "' has more than " + std::to_string(drift_table_max_rows) +
+                                    " rows: the law is interpolated on at most " +
+                                    std::to_string(DriftLaw::max_knots) + " knots; thin the table");
     }
+}
+
+void read_drift_inputs(ModelParams& p) {
+    if (p.drift_table.empty() || !p.drift_table_v.empty()) return;
+    read_drift_table(p.drift_table, p.drift_table_v, p.drift_table_b, &p.drift_table_digest);
 }
 
 DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report) {
@@ -273,13 +303,13 @@ DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report) {
     } else if (!p.drift_table.empty() || !p.drift_table_v.empty()) {
         auto t = std::make_shared<TableLaw>();
         setting = "drift-table";
-        if (!p.drift_table.empty()) {
-            read_drift_table(p.drift_table, t->v, t->b);
-            text = p.drift_table;
-        } else {
+        if (!p.drift_table_v.empty()) { // the rows read once (read_drift_inputs), or given directly
             t->v = p.drift_table_v;
             t->b = p.drift_table_b;
-            text = std::to_string(t->v.size()) + " rows given directly";
+            text = !p.drift_table.empty() ? p.drift_table : std::to_string(t->v.size()) + " rows given directly";
+        } else {
+            read_drift_table(p.drift_table, t->v, t->b);
+            text = p.drift_table;
         }
         check_table(t->v, t->b, setting);
         b = [t](double v) { return (*t)(v); };

@@ -62,8 +62,13 @@ void add_drift_law_json(ordered_json& j, const ModelParams& p) {
     // The law as given, so that the JSON reproduces the run exactly.
     if (!p.drift.empty()) j["drift"] = p.drift;
     if (!p.drift_params.empty()) j["drift_params"] = p.drift_params;
-    if (!p.drift_table.empty()) j["drift_table"] = p.drift_table;
-    if (!p.drift_table_v.empty()) j["drift_table"] = {{"v", p.drift_table_v}, {"b", p.drift_table_b}};
+    if (!p.drift_table.empty()) {
+        j["drift_table"] = p.drift_table;
+        // The file as it was read, once (read_drift_inputs).
+        if (!p.drift_table_digest.empty()) j["drift_table_digest"] = p.drift_table_digest;
+    } else if (!p.drift_table_v.empty()) {
+        j["drift_table"] = {{"v", p.drift_table_v}, {"b", p.drift_table_b}};
+    }
     j["knots"] = p.knots;
 }
 

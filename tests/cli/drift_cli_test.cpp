@@ -9,6 +9,10 @@
 #include <fstream>
 #include <string>
 
+#include <sys/stat.h>
+
+#include <thread>
+
 #include "cli_support.hpp"
 
 namespace {
@@ -76,6 +80,44 @@ TEST(CliDrift, BadLawsAreRefusedWithOneLine) {
     EXPECT_EQ(run(with(kFast, {"--drift", "(v<=1)*(-v) + (v>1)*(-2*v)"})).code, 0);
     EXPECT_EQ(run(with(kFast, {"--drift", "min(-v, 1-v)"})).code, 0);
     for (const auto& f : {unsorted, dup, nan, one, hex}) std::remove(f.c_str());
+}
+
+// Issue 50, item 2: a table is read once per command, bounded, from a pipe
+// too, its digest in the JSON and the checkpoint; a relative path in a config
+// names a file beside the config.
+TEST(CliDrift, ATableIsReadOnceAndRecorded) {
+    const Scratch dir("table_once");
+    const std::string law = "v,b\n-10,3\n0,0.342\n10,-3\n";
+    const std::string table = dir / "law.csv";
+    { std::ofstream(table) << law; }
+    // A pipe: read more than once, it gave "got 0 rows".
+    const std::string fifo = dir / "law.fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::thread writer([&] { std::ofstream(fifo) << law; });
+    const auto piped = run_json({"diffusivity", "--drift-table", fifo, "--excursions", "200", "--format", "json"});
+    writer.join();
+    ASSERT_TRUE(piped);
+    const auto filed = run_json({"diffusivity", "--drift-table", table, "--excursions", "200", "--format", "json"});
+    ASSERT_TRUE(filed);
+    EXPECT_EQ((*piped)["params"]["drift_table_digest"], (*filed)["params"]["drift_table_digest"]);
+    EXPECT_EQ((*piped)["diffusivity"], (*filed)["diffusivity"]);
+    // Bounded before it fills memory (/dev/zero reached 1 GB in 3 s).
+    const Result zero = run({"diffusivity", "--drift-table", "/dev/zero", "--excursions", "100"});
+    EXPECT_EQ(zero.code, 2);
+    EXPECT_NE(zero.err.find("larger than 16 MiB"), std::string::npos) << zero.err;
+    // A config's relative path is the config's folder's.
+    const std::string config = dir / "run.toml";
+    { std::ofstream(config) << "drift-table = \"law.csv\"\nexcursions = 200\n"; }
+    const auto configured = run_json({"diffusivity", "--config", config, "--format", "json"});
+    ASSERT_TRUE(configured);
+    EXPECT_EQ((*configured)["params"]["drift_table"], table);
+    // A resume whose table changed is refused (it ran the other law, D 3.8 times off).
+    const std::string ckpt = dir / "run.ckpt";
+    ASSERT_EQ(run({"diffusivity", "--drift-table", table, "--excursions", "200", "--checkpoint", ckpt, "--quiet"}).code, 0);
+    { std::ofstream(table) << "v,b\n-10,2\n0,0.1\n10,-2\n"; }
+    const Result resumed = run({"diffusivity", "--drift-table", table, "--excursions", "200", "--resume", ckpt});
+    EXPECT_EQ(resumed.code, 2) << resumed.err;
+    EXPECT_NE(resumed.err.find("drift-table-digest"), std::string::npos) << resumed.err;
 }
 
 TEST(CliDrift, JsonGivesTheLawAndTheRunRepeatsFromIt) {

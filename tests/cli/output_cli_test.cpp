@@ -377,9 +377,10 @@ struct Sig {
     const char* name;
 };
 
-// SIGINT and SIGTERM stop a run gracefully (it writes the result so far and
-// exits 130/143; a second one aborts like these): interrupt_cli_test.cpp.
-const Sig kTerminating[] = {{SIGHUP, "HUP"},   {SIGQUIT, "QUIT"}, {SIGUSR1, "USR1"},   {SIGUSR2, "USR2"},
+// SIGINT, SIGTERM and SIGHUP stop a run gracefully (it writes the result so
+// far and exits 130/143/129; a second one aborts like these): CliStop in
+// checkpoint_cli_test.cpp.
+const Sig kTerminating[] = {{SIGQUIT, "QUIT"}, {SIGUSR1, "USR1"},   {SIGUSR2, "USR2"},
                             {SIGPIPE, "PIPE"}, {SIGALRM, "ALRM"}, {SIGXCPU, "XCPU"},   {SIGXFSZ, "XFSZ"},
                             {SIGVTALRM, "VTALRM"}, {SIGPROF, "PROF"}};
 
