@@ -22,7 +22,7 @@ are built: no tests, benchmarks, docs, MPI or CUDA. Environment:
 Build requirements: pybind11 and numpy are declared in pyproject.toml; cmake
 (>= 3.20) and ninja are added by setup_requires only when none is on PATH, so
 that an isolated (networked) build uses the machine's own when it has them.
-The C++ libraries (Boost, Eigen, nlohmann-json, muParser, Random123, CLI11)
+The C++ libraries (Boost, Eigen, nlohmann-json, muParser, Random123, CLI11, toml++)
 and a C++20 compiler come from the system: docs/guide.md#installation-with-pip.
 """
 import os

@@ -1,14 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "setting_flags.hpp"
 
-#include <cerrno>
-#include <cstring>
+#include "config_file.hpp"
+
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <set>
-#include <sstream>
-#include <sys/stat.h>
 
 #include "stickslip/number_text.hpp"
 #include "stickslip/version.hpp"
@@ -25,48 +21,6 @@ bool flag_value(const CLI::Option& option, const char* name) {
     return value;
 }
 
-namespace {
-
-/// Line and column (from 1) of byte `at` of `text`.
-std::string place(const std::string& text, std::size_t at) {
-    std::size_t line = 1, column = 1;
-    for (std::size_t k = 0; k < at; ++k) {
-        if (text[k] == '\n') {
-            ++line;
-            column = 1;
-        } else {
-            ++column;
-        }
-    }
-    return "line " + std::to_string(line) + ", column " + std::to_string(column);
-}
-
-/// Refuses what is not a plain UTF-8 text file, with a message that names the
-/// problem and its place and quotes none of the bytes: CLI11's TOML reader
-/// would otherwise pass a BOM into the first key's name, stop at a NUL, or echo
-/// binary garbage into the error line.
-void check_text(const std::string& path, const std::string& text) {
-    if (text.rfind("\xEF\xBB\xBF", 0) == 0)
-        throw InvalidParameter("config", "'" + path +
-                                             "' starts with a byte-order mark (BOM); save it as UTF-8 without one");
-    for (std::size_t k = 0; k < text.size();) {
-        const auto c = static_cast<unsigned char>(text[k]);
-        if (c == 0)
-            throw InvalidParameter("config", "'" + path + "' contains a NUL byte (" + place(text, k) +
-                                                 "): not a text settings file");
-        if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f)
-            throw InvalidParameter("config", "'" + path + "' is not a text settings file: control byte 0x" +
-                                                 number_text::hex(c, 2) + " at " + place(text, k));
-        const std::size_t n = utf8_sequence_length(std::string_view(text).substr(k));
-        if (n == 0)
-            throw InvalidParameter("config", "'" + path + "' is not a text settings file: invalid UTF-8 at " +
-                                                 place(text, k));
-        k += n;
-    }
-}
-
-} // namespace
-
 void SettingFlags::register_options(CLI::App* app) {
     for (Setting& s : settings_) {
         std::string help = s.info.help;
@@ -82,7 +36,8 @@ void SettingFlags::register_options(CLI::App* app) {
     }
     config_ = app->add_option("--config", config_path_,
                               "read the settings from FILE (TOML: one `key = value` per line, keys spelled as the "
-                              "flags without '--'; what --print-config writes); flags given here override it")
+                              "flags without '--', text quoted, lists bracketed; what --print-config writes); "
+                              "flags given here override it")
                   ->type_name("FILE");
     print_config_option_ =
         app->add_flag("--print-config")
@@ -103,42 +58,20 @@ SettingFlags::Setting* SettingFlags::find(const std::string& key) {
 void SettingFlags::apply() {
     if (config_ && config_->count() > 0) {
         const std::string& path = config_path_;
-        std::ifstream file(path, std::ios::binary);
-        if (!file) throw InvalidParameter("config", "cannot read '" + path + "': " + std::strerror(errno));
-        // A folder opens, and reads as an empty file: refuse it rather than
-        // run the defaults (found by tests/fuzz/).
-        struct stat st {};
-        if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-            throw InvalidParameter("config", "cannot read '" + path + "': " + std::strerror(EISDIR));
-        const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-        check_text(path, text);
-        std::istringstream in(text);
-        std::vector<CLI::ConfigItem> items;
-        try {
-            items = CLI::ConfigTOML().from_config(in);
-        } catch (const CLI::Error& e) {
-            throw InvalidParameter("config", "'" + path + "' is not a settings file: " + printable_text(e.what()));
-        }
         std::set<std::string> seen;
-        for (const CLI::ConfigItem& item : items) {
-            if (item.name == "++" || item.name == "--") continue; // section markers
-            if (!item.parents.empty())
-                throw InvalidParameter("config", "'" + path + "': sections ([" + printable_text(item.parents.front()) +
-                                                     "]) are not read; write one `key = value` per line");
-            Setting* s = find(item.name);
+        for (const ConfigEntry& item : read_config_file(path)) {
+            Setting* s = find(item.key);
             if (!s)
-                throw InvalidParameter("config", "'" + path + "': unknown setting '" + printable_text(item.name) + "'");
-            // Two lines for one setting: which one the user meant is unknowable
-            // (TOML itself forbids it).
+                throw InvalidParameter("config", "'" + path + "': unknown setting '" + printable_text(item.key) +
+                                                     "' (line " + std::to_string(item.line) + ")");
+            // max-steps and max_steps: one setting given twice, which one
+            // the user meant is unknowable (TOML itself forbids a key twice).
             if (!seen.insert(s->info.name).second)
                 throw InvalidParameter("config", "'" + path + "': setting '" + std::string(s->info.name) +
-                                                     "' is given more than once; keep one line for it");
+                                                     "' is given more than once; keep one line for it (line " +
+                                                     std::to_string(item.line) + ")");
             if (s->option->count() > 0) continue; // the command line overrides the file
-            std::string value;
-            for (std::size_t k = 0; k < item.inputs.size(); ++k) {
-                if (k) value += ',';
-                value += item.inputs[k];
-            }
+            std::string value = item.value;
             // A relative table path in a config file names a file beside the
             // config, not in the working directory (one config, two laws).
             if (std::string(s->info.name) == "drift-table" && !value.empty() && value.front() != '/') {
@@ -148,7 +81,8 @@ void SettingFlags::apply() {
             try {
                 s->parse(value);
             } catch (const InvalidParameter& e) {
-                throw InvalidParameter(e.parameter(), std::string(e.what()) + " (in '" + path + "')");
+                throw InvalidParameter(e.parameter(), std::string(e.what()) + " (in '" + path + "', line " +
+                                                           std::to_string(item.line) + ")");
             }
         }
     }
@@ -186,7 +120,13 @@ std::string SettingFlags::config_text(const std::string& command) const {
     std::string out = "# stickslip " + command + ": the effective settings (stickslip " + version() +
                       "). Run them again with\n#   stickslip " + command +
                       " --config FILE\n# and override any of them with flags.\n";
-    for (const SettingEntry& entry : current_()) out += config_line(entry) + "\n";
+    for (SettingEntry entry : current_()) {
+        // A relative table path in the file would be read beside the file:
+        // write where it is, wherever the file is kept.
+        if (std::string(entry.info.name) == "drift-table" && !entry.text.empty() && entry.text.front() != '/')
+            entry.text = std::filesystem::absolute(entry.text).lexically_normal().string();
+        out += config_line(entry) + "\n";
+    }
     return out;
 }
 

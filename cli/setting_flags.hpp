@@ -2,8 +2,8 @@
 // The settings of a request (setting.hpp) as command-line flags and as the
 // keys of a config file: one flag per setting, generated from the request's
 // visit_settings(), with the default that --help shows taken from a
-// default-constructed request. --config FILE reads any of them from a TOML (or
-// INI) file, and flags on the command line override it; --print-config writes
+// default-constructed request. --config FILE reads any of them from a TOML file
+// (config_file.hpp), and flags on the command line override it; --print-config writes
 // the effective settings in that form, so that --config of its output
 // reproduces the run exactly.
 #pragma once

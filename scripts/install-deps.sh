@@ -18,6 +18,7 @@ PACKAGES=(
   libbenchmark-dev    # Google Benchmark: bench/ kernels
   librandom123-dev    # Random123: Philox counter-based generator (header-only)
   libcli11-dev        # CLI11: the command-line parser
+  libtomlplusplus-dev # toml++: --config files (TOML)
   nlohmann-json3-dev  # nlohmann/json: JSON reports
   libboost-dev        # Boost.Math (header-only): quadrature and distributions
   libmuparser-dev     # muParser: drift laws b(v) given as expressions (--drift)

@@ -82,10 +82,11 @@ double drift_time_scale(const ModelParams& p);
 void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b,
                       std::string* digest = nullptr);
 
-/// Most bytes a --drift-table file may have (read before anything else is
-/// done: `--drift-table /dev/zero` filled 1 GB in 3 s), and most rows (a
-/// 1e6-row table cost 29 s; the interpolant has at most 2049 knots anyway).
+/// Most bytes a --drift-table file may have (checked before anything else is
+/// done: `--drift-table /dev/zero` filled 1 GB in 3 s).
 inline constexpr std::size_t drift_table_max_bytes = 16u << 20;
+/// Most rows a --drift-table file may have (a 1e6-row table cost 29 s; the
+/// interpolant has at most 2049 knots anyway).
 inline constexpr std::size_t drift_table_max_rows = 100000;
 
 /// Reads the model's input files once: a --drift-table path becomes its rows

@@ -59,6 +59,7 @@ private:
     template <class F>
     double integrate(double a, double b, F&& f) const;
     DriftLaw law_;
+    DriftPotential potential_{law_}; // int_0^v b, O(1) a call
     double friction_ = 0, noise_ = 0, phi_max_ = 0, inv_z_ = 0, lo_ = 0, hi_ = 0;
     std::vector<double> cuts_; // panel ends, increasing, from lo_ to hi_
     std::vector<double> breaks_; // 0 and the knots: where Phi changes its quadratic

@@ -48,8 +48,8 @@ struct RunCancelled : std::runtime_error {
 /// any, still holds the run's state; the command line writes a report that
 /// says no estimate exists (to_json(const RunInterrupted&...), report.hpp).
 struct RunInterrupted : std::runtime_error {
-    /// Stopped before the run proper (a pilot run): nothing counted.
-    RunInterrupted() : std::runtime_error("interrupted before any result") {}
+    /// Stopped before the run proper (preparing it, a pilot run): nothing counted.
+    RunInterrupted() : std::runtime_error("stopped before the run had any result (while preparing it)") {}
     /// Stopped with `completed` of `requested` samples done (fewer than 2);
     /// `samples` names them ("excursions", "trajectories").
     RunInterrupted(std::uint64_t done, std::uint64_t asked, std::string what)

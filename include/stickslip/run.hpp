@@ -12,6 +12,8 @@
 // visit_settings() beside it (setting.hpp).
 #pragma once
 
+#include <atomic>
+
 /// \file
 /// The settings every run shares and the engine prepared for a run. The comment
 /// at the top of this header explains the design.
@@ -146,7 +148,10 @@ R with_resolved_engine(R r, PathUse use = PathUse::Events) {
 /// Validates the model and the engine settings together (InvalidParameter on
 /// the first problem) and builds the engine's constants (resolving the scheme
 /// and --dt auto first, for PathUse::Events: `settings` holds what was used).
-PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s);
+/// A set `stop` (RunControl::stop) ends a long construction (a knots law's
+/// pieces) with RunInterrupted.
+PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& s,
+                              const std::atomic<bool>* stop = nullptr);
 
 /// The resolved details alone: prepare_engine(p, s).resolved.
 ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s);

@@ -156,13 +156,39 @@ std::string format_setting(const NumberRange& x) {
 
 // ---- config lines ----------------------------------------------------------------
 
+namespace {
+
+/// `text` as a TOML basic string: quoted, with '"', '\\' and control
+/// characters escaped (a Windows path or a quote in a drift expression
+/// otherwise made --print-config write a file --config refused).
+std::string toml_string(const std::string& text) {
+    std::string out = "\"";
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (u < 0x20 || u == 0x7f) {
+            static const char digits[] = "0123456789ABCDEF";
+            out += "\\u00";
+            out += digits[u >> 4];
+            out += digits[u & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+
+} // namespace
+
 std::string config_line(const SettingEntry& s, bool help) {
     const std::string& v = s.text;
     std::string line = s.info.name + std::string(" = ");
     if (v.empty() && s.kind != SettingKind::Text) {
         line = "# " + line; // unset: its default depends on other settings
     } else if (s.kind == SettingKind::Text) {
-        line += "\"" + v + "\"";
+        line += toml_string(v);
     } else if (s.kind == SettingKind::List && v.find(':') != std::string::npos) {
         line += "\"" + v + "\""; // lo:hi:n
     } else if (s.kind == SettingKind::List) {
@@ -171,6 +197,9 @@ std::string config_line(const SettingEntry& s, bool help) {
         line += "]";
     } else if (v == "auto") {
         line += "\"auto\""; // a NumberOrAuto left to the library
+    } else if (v.size() >= 19 && v.find_first_not_of("0123456789") == std::string::npos &&
+               (v.size() > 19 || v > "9223372036854775807")) {
+        line += toml_string(v); // a seed above TOML's 64-bit signed integers
     } else {
         line += v;
     }

@@ -37,7 +37,7 @@ constexpr double kDomainDrop = 60; // Phi below its maximum where the domain end
 } // namespace
 
 double DriftLawWhiteNoise::phi(double v) const {
-    return 2.0 / noise_ * (drift_potential(law_, v) - friction_ * std::fabs(v)) - phi_max_;
+    return 2.0 / noise_ * (potential_(v) - friction_ * std::fabs(v)) - phi_max_;
 }
 
 template <class F>
@@ -56,13 +56,14 @@ DriftLawWhiteNoise::DriftLawWhiteNoise(const ModelParams& given) {
     p.tau = 0.0;
     validate(p);
     law_ = make_drift_law(p);
+    potential_ = DriftPotential(law_);
     friction_ = p.friction;
     noise_ = p.noise;
     build();
 }
 
 DriftLawWhiteNoise::DriftLawWhiteNoise(const DriftLaw& law, double friction, double noise)
-    : law_(law), friction_(friction), noise_(noise) {
+    : law_(law), potential_(law_), friction_(friction), noise_(noise) {
     build();
 }
 

@@ -36,7 +36,7 @@ EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, P
     return s;
 }
 
-PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given) {
+PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given, const std::atomic<bool>* stop) {
     // Every Monte Carlo path prepares its engine here: the grid solver is
     // chosen above, by the quantities that it can compute.
     if (!samples(given))
@@ -59,7 +59,7 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
         r.jump_rate = c.rate;
     } else if (s.scheme == Scheme::Event) {
         std::shared_ptr<const std::vector<EventDriftPiece>> pieces;
-        const EventConstants c = make_event_constants(p, s, &pieces);
+        const EventConstants c = make_event_constants(p, s, &pieces, stop);
         e.constants = c;
         e.storage = pieces;
         r.stop_rule = c.white ? "velocity-levels" : "exact";
@@ -94,7 +94,7 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given)
 ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s) { return prepare_engine(p, s).resolved; }
 
 PreparedEngine prepare(const RunSettings& r) {
-    PreparedEngine e = prepare_engine(r.params, r.engine);
+    PreparedEngine e = prepare_engine(r.params, r.engine, r.control.stop);
     normal_quantile_two_sided(r.level); // validates the level
     check_run_control(r.control);
     detail::check_step(e, e.notes);

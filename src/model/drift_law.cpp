@@ -24,18 +24,73 @@ double lipschitz_constant(const DriftLaw& b) {
     return l;
 }
 
+namespace {
+
+/// int_a^c of piece j's line (a <= c, both within the piece).
+double piece_integral(const DriftLaw& b, int j, double a, double c) {
+    const double s = b.piece_slope(j), k = b.piece_intercept(j);
+    return 0.5 * s * (c * c - a * a) + k * (c - a);
+}
+
+} // namespace
+
 double drift_potential(const DriftLaw& b, double v) {
-    // Sum the exact integral of each piece's line between 0 and v.
+    // Sum the exact integral of each piece's line between 0 and v, from the
+    // piece at 0 outward.
     if (b.affine()) return 0.5 * b.slope * v * v + b.intercept * v;
-    const double lo = std::min(0.0, v), hi = std::max(0.0, v);
     double sum = 0.0;
-    for (int j = b.piece(lo); j <= b.piece(hi); ++j) {
-        const double a = std::max(lo, b.piece_lower(j)), c = std::min(hi, b.piece_upper(j));
-        if (!(c > a)) continue;
-        const double s = b.piece_slope(j), k = b.piece_intercept(j);
-        sum += 0.5 * s * (c * c - a * a) + k * (c - a);
+    if (v >= 0) {
+        for (int j = b.piece(0.0); j <= b.piece(v); ++j) {
+            const double a = std::max(0.0, b.piece_lower(j)), c = std::min(v, b.piece_upper(j));
+            if (c > a) sum += piece_integral(b, j, a, c);
+        }
+        return sum;
     }
-    return v >= 0 ? sum : -sum;
+    for (int j = b.piece(0.0); j >= b.piece(v); --j) {
+        const double a = std::max(v, b.piece_lower(j)), c = std::min(0.0, b.piece_upper(j));
+        if (c > a) sum += piece_integral(b, j, a, c);
+    }
+    return -sum;
+}
+
+DriftPotential::DriftPotential(const DriftLaw& b) : law_(b) {
+    if (b.affine()) return;
+    zero_piece_ = b.piece(0.0);
+    before_.assign(static_cast<std::size_t>(b.pieces()), 0.0);
+    // The same sums, in the same order, as drift_potential's loops stopped
+    // before piece j.
+    double sum = 0.0;
+    for (int j = zero_piece_; j < b.pieces(); ++j) {
+        before_[static_cast<std::size_t>(j)] = sum;
+        const double a = std::max(0.0, b.piece_lower(j)), c = b.piece_upper(j);
+        if (c > a && std::isfinite(c)) sum += piece_integral(b, j, a, c);
+    }
+    sum = 0.0;
+    for (int j = zero_piece_; j >= 0; --j) {
+        if (j < zero_piece_) before_[static_cast<std::size_t>(j)] = sum;
+        const double a = b.piece_lower(j), c = std::min(0.0, b.piece_upper(j));
+        if (c > a && std::isfinite(a)) sum += piece_integral(b, j, a, c);
+    }
+}
+
+double DriftPotential::operator()(double v) const {
+    const DriftLaw& b = law_;
+    if (b.affine()) return 0.5 * b.slope * v * v + b.intercept * v;
+    // piece() rounds: v just below a knot may be given the piece above it,
+    // whose term drift_potential's loop skips (and the reverse for v < 0).
+    int j = b.piece(v);
+    if (v >= 0) {
+        while (j > zero_piece_ && v < b.piece_lower(j)) --j;
+        double sum = before_[static_cast<std::size_t>(j)];
+        const double a = std::max(0.0, b.piece_lower(j)), c = std::min(v, b.piece_upper(j));
+        if (c > a) sum += piece_integral(b, j, a, c);
+        return sum;
+    }
+    while (j < zero_piece_ && v > b.piece_upper(j)) ++j;
+    double sum = j == zero_piece_ ? 0.0 : before_[static_cast<std::size_t>(j)];
+    const double a = std::max(v, b.piece_lower(j)), c = std::min(0.0, b.piece_upper(j));
+    if (c > a) sum += piece_integral(b, j, a, c);
+    return -sum;
 }
 
 bool confines(const DriftLaw& b, double friction) {

@@ -129,6 +129,10 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
     for (double c : out.varied)
         for (double t : out.taus)
             for (double g : out.noises) {
+                // Preparing 65536 points of a knots law takes hours: a
+                // signal is obeyed between them (and within one, while its
+                // laws are built).
+                if (req.control.stop && req.control.stop->load()) throw RunInterrupted();
                 try {
                     // A solved point has no engine to prepare: its checks are the solver's.
                     const DiffusivityRequest point = point_request(req, c, g, t, k++);

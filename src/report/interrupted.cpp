@@ -34,9 +34,12 @@ std::string to_json(const RunInterrupted& e, const char* command, const std::vec
 
 std::string to_table(const RunInterrupted& e, const char* command, const std::vector<std::string>& warnings) {
     std::ostringstream os = detail::report_stream();
-    os << command << ": interrupted: " << what_completed(e) << " (" << e.completed << " of " << e.requested << " "
-       << e.samples << "), so there is no estimate\n"
-       << detail::notes(warnings);
+    os << command << ": interrupted: " << what_completed(e);
+    // requested 0: stopped while it prepared (or in a pilot run), before the
+    // run proper had a size.
+    if (e.requested > 0) os << " (" << e.completed << " of " << e.requested << " " << e.samples << ")";
+    else os << " (stopped while preparing the run)";
+    os << ", so there is no estimate\n" << detail::notes(warnings);
     return os.str();
 }
 

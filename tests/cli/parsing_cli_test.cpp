@@ -139,7 +139,7 @@ TEST(CliParsing, ConfigFileWithADuplicateKeyIsRefused) {
     // The second line used to win silently.
     const std::string path = write_bytes("excursions = 64\ndt = 1e-3\nexcursions = 128\n");
     expect_refused({"diffusivity", "--config", path},
-                   "--config: '" + path + "': setting 'excursions' is given more than once");
+                   "--config: '" + path + "': setting 'excursions' is given more than once; keep one line for it (line 3");
     std::remove(path.c_str());
     const std::string spelt = write_bytes("max-steps = 1000000\nmax_steps = 2000000\n");
     expect_refused({"diffusivity", "--config", spelt}, "setting 'max-steps' is given more than once");
@@ -168,6 +168,50 @@ TEST(CliParsing, ConfigFileOfBinaryGarbageIsRefusedWithoutEchoingIt) {
     const Result r = run({"diffusivity", "--config", utf8, "--print-config"});
     EXPECT_EQ(r.code, 0) << r.err;
     std::remove(utf8.c_str());
+}
+
+// Issue 50, item 7: the hand-written reader took a '#' inside a quoted value
+// for a comment, so --print-config then --config failed for a table path
+// with a '#'; quotes and backslashes were written unescaped. toml++ reads the
+// file now: what --print-config writes reads back to the same run, numbers
+// to the same bits.
+TEST(CliParsing, PrintConfigThenConfigIsTheSameRun) {
+    const Scratch dir("config_round_trip");
+    const std::string table = dir / "law #1 \"b\\v\".csv";
+    { std::ofstream(table) << "v,b\n-10,3\n0,0.342\n10,-3\n"; }
+    const Args settings{"diffusivity", "--drift-table", table, "--friction", "3.8400000000000003",
+                        "--tau", "0.30000000000000004", "--seed", "18446744073709551615", "--excursions", "300"};
+    Args print = settings;
+    for (const char* a : {"--print-config", "--output"}) print.push_back(a);
+    print.push_back(dir / "run.toml");
+    const Result printed = run(print);
+    ASSERT_EQ(printed.code, 0) << printed.err;
+    Args direct = settings;
+    for (const char* a : {"--format", "json", "--quiet"}) direct.push_back(a);
+    const auto expected = run_json(direct);
+    const auto configured = run_json({"diffusivity", "--config", dir / "run.toml", "--format", "json", "--quiet"});
+    ASSERT_TRUE(expected && configured);
+    EXPECT_EQ((*configured)["params"], (*expected)["params"]);
+    EXPECT_EQ((*configured)["diffusivity"], (*expected)["diffusivity"]);
+}
+
+TEST(CliParsing, ConfigFileThatIsNotTomlIsRefusedWithItsPlace) {
+    // An unquoted text value was taken as text by the old reader.
+    const std::string bare = write_bytes("excursions = 64\ndrift = -v\n");
+    expect_refused({"diffusivity", "--config", bare}, "is not TOML: ");
+    expect_refused({"diffusivity", "--config", bare}, "(line 2, column 9); write `key = value` lines, text quoted");
+    std::remove(bare.c_str());
+    const std::string section = write_bytes("[run]\nnoise = 1\n");
+    expect_refused({"diffusivity", "--config", section}, "sections ([run], line 1) are not read");
+    std::remove(section.c_str());
+    const std::string date = write_bytes("noise = 1979-05-27\n");
+    expect_refused({"diffusivity", "--config", date}, "setting 'noise' (line 1) takes a number, a quoted text");
+    std::remove(date.c_str());
+    const std::string bad = write_bytes("excursions = 64\ntau = \"x\"\n");
+    expect_refused({"diffusivity", "--config", bad}, "--tau: tau must be a number, got 'x' (in '" + bad + "', line 2)");
+    std::remove(bad.c_str());
+    // Bounded before it fills memory.
+    expect_refused({"diffusivity", "--config", "/dev/zero"}, "'/dev/zero' is larger than 1 MiB");
 }
 
 // --- --resume and --print-config ---------------------------------------------------------

@@ -13,6 +13,7 @@
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -93,6 +94,27 @@ TEST(DriftLaw, PotentialIsTheIntegralOfTheLaw) {
     }
     const ss::DriftLaw a = ss::affine_drift_law(0.5, 0.2);
     EXPECT_DOUBLE_EQ(ss::drift_potential(a, 2.0), -0.5 * 4.0 / 0.5 + 0.4);
+}
+
+// The O(1) potential of the white-noise quadratures is drift_potential's
+// sums in drift_potential's order: the same bits at every velocity, knots, 0
+// and the outer pieces included.
+TEST(DriftLaw, FastPotentialIsTheSameBits) {
+    const ss::DriftLaw b = ss::make_drift_law(with_law("3.5 - 0.01*v + 0.4*tanh(v/0.1)"));
+    const ss::DriftPotential fast(b);
+    std::vector<double> vs{0.0, -0.0, 1e-300, -1e-300, 1e9, -1e9};
+    for (int k = 0; k < b.knots; k += 3) {
+        vs.push_back(b.knot(k));
+        vs.push_back(b.knot(k) + 0.37 * b.spacing);
+        vs.push_back(std::nextafter(b.knot(k), -HUGE_VAL));
+        vs.push_back(std::nextafter(b.knot(k), HUGE_VAL));
+    }
+    for (double v : vs) {
+        const double slow = ss::drift_potential(b, v), quick = fast(v);
+        EXPECT_EQ(std::memcmp(&slow, &quick, sizeof slow), 0) << "v = " << v << ": " << slow << " vs " << quick;
+    }
+    const ss::DriftLaw a = ss::affine_drift_law(0.5, 0.2);
+    EXPECT_EQ(ss::DriftPotential(a)(2.0), ss::drift_potential(a, 2.0));
 }
 
 TEST(DriftLaw, CoarseningKeepsTheKnotAtZero) {

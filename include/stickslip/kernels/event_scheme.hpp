@@ -60,6 +60,7 @@
 /// events placed at their times. The comment at the top of this header explains
 /// the design.
 
+#include <atomic>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
@@ -204,9 +205,11 @@ struct EventConstants {
 /// A knots drift law (coloured noise) also needs the laws of every piece:
 /// they are built into *pieces, which must outlive the constants (they point
 /// into it); without `pieces` such a law is refused (InvalidParameter
-/// "scheme"), as is a knots law with white noise.
+/// "scheme"), as is a knots law with white noise. A set `stop` (a signal)
+/// ends the pieces' construction with RunInterrupted.
 EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s,
-                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces = nullptr);
+                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces = nullptr,
+                                    const std::atomic<bool>* stop = nullptr);
 
 /// The piece of the knots law of c that holds velocity v [m/s] for an object
 /// sliding in direction s (+1 or -1): at v = 0 the piece on s's side.

@@ -145,10 +145,11 @@ double white_spread(const DriftLaw& b, double lower, double upper) {
     constexpr int cells = 4096;
     const double h = (upper - lower) / cells;
     std::vector<double> phi(cells);
+    const DriftPotential potential(b);
     double top = -HUGE_VAL;
     for (int i = 0; i < cells; ++i) {
         const double v = lower + (i + 0.5) * h;
-        phi[static_cast<std::size_t>(i)] = 2.0 * (drift_potential(b, v) - std::abs(v));
+        phi[static_cast<std::size_t>(i)] = 2.0 * (potential(v) - std::abs(v));
         top = std::max(top, phi[static_cast<std::size_t>(i)]);
     }
     double m0 = 0, m1 = 0, m2 = 0;

@@ -7,6 +7,7 @@
 
 #include "core/format.hpp"
 #include "stickslip/drift_input.hpp"
+#include "stickslip/errors.hpp"
 #include "stickslip/kernels/resolvent.hpp"
 
 namespace stickslip {
@@ -14,9 +15,13 @@ namespace stickslip {
 namespace {
 
 /// The laws of every piece of the knots law b and every depth (steps h / 2^d).
-std::vector<EventDriftPiece> drift_pieces(const DriftLaw& b, const ModelParams& p, double h, double amp) {
+/// A set `stop` ends it (RunInterrupted) between pieces: a 2049-knot law of a
+/// wide range takes seconds, and a signal is to be obeyed within one.
+std::vector<EventDriftPiece> drift_pieces(const DriftLaw& b, const ModelParams& p, double h, double amp,
+                                          const std::atomic<bool>* stop) {
     std::vector<EventDriftPiece> out(static_cast<std::size_t>(b.pieces()));
     for (int j = 0; j < b.pieces(); ++j) {
+        if (stop && stop->load(std::memory_order_relaxed)) throw RunInterrupted();
         EventDriftPiece& q = out[static_cast<std::size_t>(j)];
         const double slope = b.piece_slope(j);
         q.inv_relaxation = -slope;
@@ -36,7 +41,8 @@ std::vector<EventDriftPiece> drift_pieces(const DriftLaw& b, const ModelParams& 
 } // namespace
 
 EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s,
-                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces) {
+                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces,
+                                    const std::atomic<bool>* stop) {
     validate(p);
     validate(s);
     require_stationary_state(p);
@@ -99,7 +105,7 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
             // b(0) sets the static band (c.bias, as the thresholds); the
             // slope and intercept of each piece replace the affine law's.
             const DriftLaw b = make_drift_law(p);
-            auto table = std::make_shared<const std::vector<EventDriftPiece>>(drift_pieces(b, p, s.dt, c.amp));
+            auto table = std::make_shared<const std::vector<EventDriftPiece>>(drift_pieces(b, p, s.dt, c.amp, stop));
             c.bias = b(0.0);
             c.inv_relaxation = 0.0;
             c.relaxation = HUGE_VAL;
