@@ -2,6 +2,7 @@
 #include "config_file.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -105,8 +106,30 @@ std::vector<ConfigEntry> read_config_file(const std::string& path) {
                 refuse(path, ": setting '" + printable_text(what.substr(open + 1, close - open - 1)) +
                                  "' is given more than once; keep one line for it" + at);
         }
-        refuse(path, " is not TOML: " + printable_text(what) + at +
-                         "; write `key = value` lines, text quoted (drift = \"-v\"), lists bracketed (noise = [1, 2])");
+        // Name the setting whose value broke the line (`grid = fast`: "saw 'fas'").
+        std::string setting;
+        {
+            std::size_t begin = 0;
+            for (std::size_t n = 1; n < e.source().begin.line && begin != std::string::npos; ++n) {
+                const std::size_t newline = text.find('\n', begin);
+                begin = newline == std::string::npos ? newline : newline + 1;
+            }
+            if (begin != std::string::npos) {
+                const std::string line = text.substr(begin, text.find('\n', begin) - begin);
+                std::size_t k = line.find_first_not_of(" \t"), end = k;
+                while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '-' ||
+                                             line[end] == '_'))
+                    ++end;
+                const std::size_t eq = line.find_first_not_of(" \t", end);
+                if (k != std::string::npos && end > k && eq != std::string::npos && line[eq] == '=')
+                    setting = "the value of '" + line.substr(k, end - k) + "' (--" + line.substr(k, end - k) + "): ";
+            }
+        }
+        const bool wide = what.find("not representable in 64 bits") != std::string::npos;
+        refuse(path, " is not TOML: " + setting + printable_text(what) + at +
+                         (wide ? "; a seed above 2^63 - 1 is written quoted (seed = \"12345678901234567890\")"
+                               : "; write `key = value` lines, text quoted (drift = \"-v\"), lists bracketed "
+                                 "(noise = [1, 2])"));
     }
 
     std::vector<ConfigEntry> entries;

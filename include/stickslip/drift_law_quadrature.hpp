@@ -48,6 +48,13 @@ public:
     double density(double v) const;
     /// P(a < V < b) [1].
     double probability(double a, double b) const;
+    /// The mean time [s] for V to go from velocity a to b > a [m/s] and back:
+    /// (2/noise) int_a^b dv/p(v), the commute-time identity of a diffusion (the
+    /// scale measure of [a, b] times the whole speed measure). With a = -c,
+    /// b = c it is E[t1] of the white-noise runs' excursions (velocity levels
+    /// +-c, theory.md section 6): the run-time prediction uses it. Infinite
+    /// where [a, b] reaches past where the density has fallen e^-60 from its peak.
+    double commute_time(double a, double b) const;
     /// M0, D and Var(V) (SI).
     const WhiteNoiseReference& reference() const { return reference_; }
     /// The law integrated (SI).

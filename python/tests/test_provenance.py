@@ -48,6 +48,8 @@ def toml_value(v):
         return json.dumps(v)
     if isinstance(v, list):
         return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    if isinstance(v, int) and v > 2**63 - 1:
+        return json.dumps(str(v))  # TOML's integers are 64-bit signed: a larger seed is quoted
     return repr(v)
 
 

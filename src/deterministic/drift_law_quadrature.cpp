@@ -192,6 +192,12 @@ void DriftLawWhiteNoise::build() {
 
 double DriftLawWhiteNoise::density(double v) const { return std::exp(phi(v)) * inv_z_; }
 
+double DriftLawWhiteNoise::commute_time(double a, double b) const {
+    if (!(b > a)) return 0.0;
+    if (a < lo_ || b > hi_) return INFINITY;
+    return 2.0 / noise_ * integrate(a, b, [&](double v) { return 1.0 / density(v); });
+}
+
 double DriftLawWhiteNoise::probability(double a, double b) const {
     if (!(b > a)) return 0.0;
     return std::clamp(integrate(std::max(a, lo_), std::min(b, hi_), [&](double v) { return density(v); }), 0.0, 1.0);

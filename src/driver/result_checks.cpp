@@ -46,7 +46,7 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
     }
     // What each engine notes of its own numerics (engines/<engine>/<engine>_engine.hpp).
     const auto [lattice, duration, coarse] = visit_engine(e, [&](const auto& engine) {
-        return std::tuple{engine.lattice_note(resolved, true), engine.mean_duration_note(p),
+        return std::tuple{engine.lattice_note(resolved, e.settings, p, true), engine.mean_duration_note(p),
                           engine.coarse_against_tau(p)};
     });
     if (!lattice.empty()) warnings.push_back(lattice);

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/format.hpp"
+#include "stickslip/drift_law_quadrature.hpp"
 #include "stickslip/threads.hpp"
 #include "engines/event/event_steps.hpp"
 #include "engines/resolvent/resolvent_steps.hpp"
@@ -160,6 +161,14 @@ RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const 
     if (!p.white()) {
         const double tau_nd = to_nondimensional(p).tau;
         r.excursion_seconds = std::max(r.excursion_seconds, 1.67 * friction_time * std::pow(tau_nd / 0.003, -0.79));
+    } else if (e.resolved.white_level > 0) {
+        // White noise: E[t1] exactly, the commute time between the levels -c
+        // and +c (the pure dry friction's 2.028 friction times at c' = 0.35
+        // against 2.030 +- 0.005 measured). A law that rarely brings V back
+        // to 0 (--tau 0 --drift '10-v': 7500 s, 3e9 resolvent steps an
+        // excursion) was predicted at one friction time and started unnoted.
+        const double c = e.resolved.white_level;
+        r.excursion_seconds = DriftLawWhiteNoise(p).commute_time(-c, c);
     }
     const double t = r.excursion_seconds + sampling.continued;
     const double steps = visit_engine(e, [t](const auto& engine) { return engine.work_for(t); });
@@ -183,7 +192,7 @@ RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const 
     const bool long_without_samples = steps * static_cast<double>(samples) / rate / r.threads > hopeless_seconds;
     if (sampled > steps && !long_without_samples) r.cause = sampling.interval > 0 ? "sample-dt" : "lags";
     else if (r.work / rate < 1.0 && samples > 1000) r.cause = "excursions";
-    else if (resolution_chosen) r.cause = resolution;
+    else if (resolution_chosen || p.white()) r.cause = resolution; // (white noise: tau = 0 is the model)
     else if (p.tau != model_defaults.tau) r.cause = "tau";
     else if (p.friction != model_defaults.friction) r.cause = "friction";
     else if (p.noise != model_defaults.noise) r.cause = "noise";

@@ -348,17 +348,22 @@ TEST(CliStop, ASecondSignalAbortsAndLeavesNoFile) {
 // Guards every command honouring the signals, not only the runs that poll
 // the stop flag: outside such a run the first SIGINT or SIGTERM ends the
 // process at once, by that signal, and leaves no file. `analytic` with 1e5
-// times (a minute), a config read from /dev/zero and a result written to a
+// times (a minute), a config read from /dev/zero (a FIFO now) and a result written to a
 // FIFO nobody reads each ignored the first signal, and the second within
 // the one-second grace.
 TEST(CliStop, EveryCommandHonoursTheFirstSignal) {
     const Scratch dir("every");
     const std::string fifo = dir / "fifo";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir / "config.fifo").c_str(), 0600), 0);
+    // (A config from /dev/zero is now refused after 1 MiB, before a signal.)
+    const Result zero = run({"diffusivity", "--config", "/dev/zero"});
+    EXPECT_EQ(zero.code, 2) << zero.err;
+    EXPECT_NE(zero.err.find("larger than 1 MiB"), std::string::npos) << zero.err;
     const std::vector<std::pair<std::string, Args>> cases{
         {"analytic", {"analytic", "--friction", "1", "--noise", "1", "--relaxation", "1", "--bias", "0.3", "--times",
                       "1e-3:1e3:100000", "--format", "json", "--output", dir / "analytic.json"}},
-        {"config from /dev/zero", {"diffusivity", "--config", "/dev/zero"}},
+        {"config from a FIFO without a writer", {"diffusivity", "--config", dir / "config.fifo"}},
         {"output to a FIFO without a reader", {"diffusivity", "--excursions", "200", "--quiet", "--output", fifo}},
     };
     for (const auto& [name, args] : cases)

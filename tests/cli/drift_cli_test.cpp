@@ -141,6 +141,17 @@ TEST(CliDrift, ASignalWhilePreparingStopsAtOnce) {
     EXPECT_NE(slurp(dir / "err.txt").find("while preparing"), std::string::npos) << slurp(dir / "err.txt");
 }
 
+// Issue 50, item 6: a stiff law's automatic step follows the noise and the
+// friction, not the law's 1/L (it was 1.25e-7 s, 3.5 h; docs/validation.md,
+// "Choosing the step": D the same at dt = 1e-3 s).
+TEST(CliDrift, AStiffLawsAutomaticStepIsNotNeedlesslyFine) {
+    const auto j = run_json({"diffusivity", "--drift", "-v*1e6", "--excursions", "200", "--format", "json"});
+    ASSERT_TRUE(j);
+    const double friction_time = 5.0 / (3.84 * 3.84);
+    EXPECT_DOUBLE_EQ((*j)["params"]["dt"].get<double>(), friction_time / 256) << (*j)["params"];
+    EXPECT_EQ((*j)["warnings"].dump().find("long run"), std::string::npos) << (*j)["warnings"];
+}
+
 TEST(CliDrift, JsonGivesTheLawAndTheRunRepeatsFromIt) {
     const Args args = with(kFast, {"--drift", "a*v - 0.5*v^3", "--drift-params", "a=0.8", "--check-knots"});
     const auto j = run_json(args);

@@ -118,6 +118,10 @@ TEST(HopelessCli, RunsPredictedToLastDaysAreRefusedNamingTheSetting) {
         {{"diffusivity", "--noise", "1e9"}, "--noise"},
         {{"diffusivity", "--noise", "1e15"}, "--noise"},
         {{"density", "--noise", "1e9"}, "--noise"},
+        // White noise with a law that rarely brings V back to 0: E[t1] 2.1 h
+        // (measured 7490 +- 270 s), 3.4e9 resolvent steps an excursion, 3.9
+        // days; it started unnoted, predicted at one friction time (issue 50).
+        {{"diffusivity", "--tau", "0", "--drift", "10-v"}, "--dt"},
     };
     for (const auto& c : cases) {
         const auto r = run(with(c.args, {"--threads", "2"}));
@@ -128,6 +132,16 @@ TEST(HopelessCli, RunsPredictedToLastDaysAreRefusedNamingTheSetting) {
         EXPECT_EQ(clitest::count_lines(r.err), 1) << r.err;
         EXPECT_TRUE(r.out.empty()) << describe(c.args);
     }
+}
+
+// Issue 50, item 6: a lattice cut by --lattice-bound says to raise it (the
+// note told the user to refine the grid, which changes nothing there).
+TEST(HopelessCli, ALatticeCutByItsBoundNamesTheBound) {
+    const auto r = run({"diffusivity", "--engine", "pdmp", "--lattice-bound", "3", "--excursions", "200"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    const std::string said = r.out + r.err; // (the notes come after the table)
+    EXPECT_NE(said.find("raise --lattice-bound (the mass is below 1e-9 from L = 8.49"), std::string::npos) << said;
+    EXPECT_EQ(said.find("use a finer grid"), std::string::npos) << said;
 }
 
 TEST(HopelessCli, AnUnreachablePrecisionIsRefused) {

@@ -134,7 +134,9 @@ TEST(CliKolmogorov, ModelsBeyondTheGridsAreRefusedAtOnce) {
 // drag too weak to stop the slips within the chain's range) was solved on a
 // cut velocity range with a tiny claimed error (D 466 and 352, M0 4.24 and
 // 3.78). Monte Carlo (docs/validation.md, "The Kolmogorov engine's domain"):
-// D 4590 +- 50, M0 5.848 +- 0.004 for the first; D 960 +- 30 for the second.
+// D 4721 +- 85 (inclusion) and 4631 +- 108 (PDMP), M0 5.862 +- 0.008 for the
+// first (the engine: 4591.6, 5.8484); D 950 +- 6 (956 +- 8 plain), M0 4.3237
+// +- 0.0026 for the second (the engine: 963.5, 4.32827).
 TEST(CliKolmogorov, WeaklyConfinedLawsAreSolvedOnTheRangeTheyNeed) {
     const auto bias = run_json({"diffusivity", "--engine", "kolmogorov", "--relaxation", "inf", "--bias", "3.5",
                                 "--rel-precision", "0.01", "--format", "json"});

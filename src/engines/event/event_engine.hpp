@@ -183,7 +183,9 @@ public:
 
     /// Work [steps] of a path of duration t [s].
     double work_for(double t) const { return t / c_.h; }
-    static std::string lattice_note(const ResolvedEngine&, bool) { return {}; }
+    static std::string lattice_note(const ResolvedEngine&, const EngineSettings&, const ModelParams&, bool) {
+        return {};
+    }
     static std::string mean_duration_note(const ModelParams&) { return {}; }
     /// The step against the scheme's measured reach (driver/step_check.hpp).
     void check_step(const ModelParams& p, std::vector<std::string>& notes) const { check_event_step(p, c_.h, notes); }

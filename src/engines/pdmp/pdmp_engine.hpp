@@ -183,14 +183,22 @@ public:
     /// Whether its step blurs the noise at the scale of tau: no step.
     bool coarse_against_tau(const ModelParams&) const { return false; }
     /// A note when the lattice is truncated (stationary noise mass beyond +-L
-    /// above 1e-9); `detailed`: with that mass, as the long-excursion reports say.
-    static std::string lattice_note(const ResolvedEngine& r, bool detailed) {
+    /// above 1e-9); `detailed`: with that mass, as the long-excursion reports
+    /// say. The cure names what set L: --lattice-bound when given (its note
+    /// blamed the grid), else the grid (tau*grid*L < 2 bounds the lattice).
+    static std::string lattice_note(const ResolvedEngine& r, const EngineSettings& s, const ModelParams& p,
+                                    bool detailed) {
         if (!(r.truncated_mass > 1e-9)) return {};
-        return detailed ? "the pdmp lattice is truncated at L = " + format_number(r.lattice_bound) +
-                              " s^-1/2 (tau*grid*L < 2): stationary noise mass beyond +-L is " +
-                              format_number(r.truncated_mass) + "; use a finer grid"
-                        : "the pdmp lattice is truncated at L = " + format_number(r.lattice_bound) +
-                              " s^-1/2; use a finer grid";
+        // erfc(L sqrt(tau/2)) = 1e-9 at L sqrt(tau/2) = 4.2452.
+        const std::string cure =
+            s.lattice_bound > 0 ? "raise --lattice-bound (the mass is below 1e-9 from L = " +
+                                      format_number(4.2452 * std::sqrt(2.0 / p.tau), 3) +
+                                      " s^-1/2 on; tau*grid*L must stay below 2, so a finer --grid may be needed too)"
+                                : "use a finer grid";
+        return "the pdmp lattice is truncated at L = " + format_number(r.lattice_bound) + " s^-1/2" +
+               (detailed ? " (tau*grid*L < 2): stationary noise mass beyond +-L is " + format_number(r.truncated_mass)
+                         : std::string()) +
+               "; " + cure;
     }
     /// What E[t1] of this engine means, for coloured noise.
     static std::string mean_duration_note(const ModelParams& p) {

@@ -161,7 +161,9 @@ public:
 
     /// Work [steps] of a path of duration t [s].
     double work_for(double t) const { return t / c_.h; }
-    static std::string lattice_note(const ResolvedEngine&, bool) { return {}; }
+    static std::string lattice_note(const ResolvedEngine&, const EngineSettings&, const ModelParams&, bool) {
+        return {};
+    }
     static std::string mean_duration_note(const ModelParams&) { return {}; }
     /// The step against the scheme's measured bias law (driver/step_check.hpp).
     void check_step(const ModelParams& p, std::vector<std::string>& notes) const {
