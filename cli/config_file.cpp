@@ -19,6 +19,25 @@ namespace stickslip::cli {
 
 namespace {
 
+/// The key of line `number` (1-based) of `text` when it reads `key = ...`
+/// (letters, digits, '-' and '_'), else "".
+std::string key_on_line(const std::string& text, std::size_t number) {
+    std::size_t begin = 0;
+    for (std::size_t n = 1; n < number; ++n) {
+        const std::size_t newline = text.find('\n', begin);
+        if (newline == std::string::npos) return {};
+        begin = newline + 1;
+    }
+    const std::string line = text.substr(begin, text.find('\n', begin) - begin);
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos) return {};
+    std::size_t end = first;
+    while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '-' || line[end] == '_'))
+        ++end;
+    const std::size_t equals = line.find_first_not_of(" \t", end);
+    return end > first && equals != std::string::npos && line[equals] == '=' ? line.substr(first, end - first) : "";
+}
+
 [[noreturn]] void refuse(const std::string& path, const std::string& why) {
     throw InvalidParameter("config", "'" + path + "'" + why);
 }
@@ -107,24 +126,8 @@ std::vector<ConfigEntry> read_config_file(const std::string& path) {
                                  "' is given more than once; keep one line for it" + at);
         }
         // Name the setting whose value broke the line (`grid = fast`: "saw 'fas'").
-        std::string setting;
-        {
-            std::size_t begin = 0;
-            for (std::size_t n = 1; n < e.source().begin.line && begin != std::string::npos; ++n) {
-                const std::size_t newline = text.find('\n', begin);
-                begin = newline == std::string::npos ? newline : newline + 1;
-            }
-            if (begin != std::string::npos) {
-                const std::string line = text.substr(begin, text.find('\n', begin) - begin);
-                std::size_t k = line.find_first_not_of(" \t"), end = k;
-                while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '-' ||
-                                             line[end] == '_'))
-                    ++end;
-                const std::size_t eq = line.find_first_not_of(" \t", end);
-                if (k != std::string::npos && end > k && eq != std::string::npos && line[eq] == '=')
-                    setting = "the value of '" + line.substr(k, end - k) + "' (--" + line.substr(k, end - k) + "): ";
-            }
-        }
+        const std::string key = key_on_line(text, e.source().begin.line);
+        const std::string setting = key.empty() ? "" : "the value of '" + key + "' (--" + key + "): ";
         const bool wide = what.find("not representable in 64 bits") != std::string::npos;
         refuse(path, " is not TOML: " + setting + printable_text(what) + at +
                          (wide ? "; a seed above 2^63 - 1 is written quoted (seed = \"12345678901234567890\")"
