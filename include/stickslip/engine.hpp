@@ -189,4 +189,27 @@ const char* setting_form(const StopRule&);
 const char* setting_form(const Scheme&);
 /// @}
 
+/// Engine details resolved for a run, reported alongside the estimates.
+struct ResolvedEngine {
+    /// How the run ends a half long excursion; "none" for runs that have no
+    /// excursions (brute force, transient moments).
+    std::string stop_rule;   ///< "bridge" | "stuck" | "velocity-levels" (white) | "exact" (PDMP, event scheme)
+    double lattice_bound = 0; ///< PDMP: L [s^-1/2]
+    int lattice_points = 0;   ///< PDMP: 2N+1
+    double truncated_mass = 0;///< PDMP: stationary Gaussian mass of X beyond +-L
+    double jump_rate = 0;     ///< PDMP: Lambda [s^-1]
+    double white_level = 0;   ///< white noise: regeneration level c [m/s]
+    /// @{
+    /// Coloured noise: the noise thresholds x* (upper) and x-* (lower)
+    /// [s^-1/2] between which a stuck object stays stuck
+    /// (ModelParams::upper_threshold, lower_threshold); 0 for white noise.
+    double upper_threshold = 0, lower_threshold = 0; ///< x*, x-* [s^-1/2] (colored)
+    /// @}
+};
+
+/// Steps of the inclusion engine in a brute-force trajectory of length
+/// horizon [s] (time rounded to whole steps of dt); InvalidParameter ("time")
+/// outside 1 .. 1e13 steps.
+std::uint64_t bruteforce_steps(double horizon, double dt);
+
 } // namespace stickslip

@@ -78,24 +78,6 @@ void visit_settings(ExcursionSettings& e, Visitor&& v) {
                                   "report a result even if some excursions hit --max-steps (they are dropped; biased)"});
 }
 
-/// Engine details resolved for a run, reported alongside the estimates.
-struct ResolvedEngine {
-    /// How the run ends a half long excursion; "none" for runs that have no
-    /// excursions (brute force, transient moments).
-    std::string stop_rule;   ///< "bridge" | "stuck" | "velocity-levels" (white) | "exact" (PDMP, event scheme)
-    double lattice_bound = 0; ///< PDMP: L [s^-1/2]
-    int lattice_points = 0;   ///< PDMP: 2N+1
-    double truncated_mass = 0;///< PDMP: stationary Gaussian mass of X beyond +-L
-    double jump_rate = 0;     ///< PDMP: Lambda [s^-1]
-    double white_level = 0;   ///< white noise: regeneration level c [m/s]
-    /// @{
-    /// Coloured noise: the noise thresholds x* (upper) and x-* (lower)
-    /// [s^-1/2] between which a stuck object stays stuck
-    /// (ModelParams::upper_threshold, lower_threshold); 0 for white noise.
-    double upper_threshold = 0, lower_threshold = 0; ///< x*, x-* [s^-1/2] (colored)
-    /// @}
-};
-
 /// The step [s] that --dt auto chooses for the inclusion engine's `scheme` on
 /// model p: the largest step at which the project's measurements show the
 /// scheme's bias of D below 0.1% (docs/validation.md, "Choosing the step").

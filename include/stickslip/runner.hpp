@@ -160,11 +160,6 @@ bool engine_has_martingale(const PreparedEngine& e, std::string* why = nullptr);
 RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,
                               const RunControl& ctl);
 
-/// Steps of the inclusion engine in a brute-force trajectory of length
-/// horizon [s] (time rounded to whole steps of dt); InvalidParameter ("time")
-/// outside 1 .. 1e13 steps.
-std::uint64_t bruteforce_steps(double horizon, double dt);
-
 /// N brute-force trajectories on [0, horizon] from noise x0 [s^-1/2] and
 /// velocity v0 [m/s], of a prepared engine. Moments are of (U(horizon), horizon).
 RunTotals run_bruteforce(const PreparedEngine& e, double horizon, double x0, double v0, std::uint64_t trajectories,

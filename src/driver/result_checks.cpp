@@ -7,7 +7,7 @@
 
 #include "core/format.hpp"
 #include "driver/step_check.hpp"
-#include "engines/visit_engine.hpp"
+#include "driver/visit_engine.hpp"
 #include "stickslip/errors.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/prepared_engine.hpp"

@@ -8,7 +8,7 @@
 #include "driver/block_driver.hpp"
 #include "driver/result_checks.hpp"
 
-#include "engines/visit_engine.hpp"
+#include "driver/visit_engine.hpp"
 #include "stickslip/prepared_engine.hpp"
 
 namespace stickslip {
@@ -93,14 +93,6 @@ RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std
                               const RunControl& ctl) {
     check_run_control(ctl);
     return run_long_excursions(prepare_engine(p, s), excursions, ctl);
-}
-
-std::uint64_t bruteforce_steps(double horizon, double dt) {
-    if (!(horizon / dt >= 1)) throw InvalidParameter("time", "time must be at least one step dt");
-    const double nsteps = std::nearbyint(horizon / dt);
-    if (nsteps > 1e13) // a stream holds 2^47 random blocks
-        throw InvalidParameter("time", "time/dt must be between 1 and 1e13 steps");
-    return static_cast<std::uint64_t>(nsteps);
 }
 
 RunTotals run_bruteforce(const PreparedEngine& e, double horizon, double x0, double v0, std::uint64_t trajectories,

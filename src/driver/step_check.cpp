@@ -12,7 +12,7 @@
 #include "stickslip/threads.hpp"
 #include "engines/event/event_steps.hpp"
 #include "engines/resolvent/resolvent_steps.hpp"
-#include "engines/visit_engine.hpp"
+#include "driver/visit_engine.hpp"
 
 namespace stickslip::detail {
 

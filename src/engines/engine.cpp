@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/format.hpp"
+#include "stickslip/errors.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/random/rng.hpp"
 
@@ -112,6 +113,14 @@ std::string more_accurate_scheme_advice(const EngineSettings& s, double tau) {
 
 bool samples_on_grid(const EngineSettings& s, double tau) {
     return !(s.engine == Engine::Inclusion && s.scheme == Scheme::Event && tau == 0);
+}
+
+std::uint64_t bruteforce_steps(double horizon, double dt) {
+    if (!(horizon / dt >= 1)) throw InvalidParameter("time", "time must be at least one step dt");
+    const double nsteps = std::nearbyint(horizon / dt);
+    if (nsteps > 1e13) // a stream holds 2^47 random blocks
+        throw InvalidParameter("time", "time/dt must be between 1 and 1e13 steps");
+    return static_cast<std::uint64_t>(nsteps);
 }
 
 } // namespace stickslip

@@ -13,7 +13,7 @@
 #include "driver/block_driver.hpp"
 #include "driver/result_checks.hpp"
 #include "driver/step_check.hpp"
-#include "engines/visit_engine.hpp"
+#include "driver/visit_engine.hpp"
 #include "quantities/path_sampling.hpp"
 #include "quantities/solved.hpp"
 #include "stickslip/prepared_engine.hpp"

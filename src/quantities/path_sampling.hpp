@@ -6,7 +6,7 @@
 // path functional accumulated by an observer passed to the engines' own
 // kernels, so the excursions are exactly those of `diffusivity`; each command
 // is written once, over the engine adapter that detail::visit_engine hands it
-// (engines/visit_engine.hpp).
+// (driver/visit_engine.hpp).
 #pragma once
 
 #include <algorithm>

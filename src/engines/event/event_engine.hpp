@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal: the inclusion engine's event scheme behind the one engine
-// interface (EngineAdapter, engines/visit_engine.hpp). Exact Gaussian steps
+// interface (EngineAdapter, driver/visit_engine.hpp). Exact Gaussian steps
 // within a phase, events at their times: its paths are pieces whose ends are
 // exact, sampled on a grid by the one grid sampler through the scheme's own
 // cubic of each piece; its clock counts leaves (dt / 2^event_depth).

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal: the PDMP engine behind the one engine interface (EngineAdapter,
-// engines/visit_engine.hpp). Exact event-driven paths: between events the
+// driver/visit_engine.hpp). Exact event-driven paths: between events the
 // state follows a closed-form flow, so the path is known at any time and is
 // sampled on a grid by the one grid sampler; there is no time step, and the
 // work is counted in events.
@@ -16,7 +16,7 @@
 #include "engines/grid_sampler.hpp"
 #include "engines/path_point.hpp"
 #include "stickslip/kernels/pdmp.hpp"
-#include "stickslip/run.hpp"
+#include "stickslip/engine.hpp"
 #include "stickslip/random/rng.hpp"
 #include "stickslip/random/rng_batch.hpp"
 

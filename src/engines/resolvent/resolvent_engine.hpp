@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal: the inclusion engine's resolvent scheme behind the one engine
-// interface (EngineAdapter, engines/visit_engine.hpp). The paper's Algorithm
+// interface (EngineAdapter, driver/visit_engine.hpp). The paper's Algorithm
 // 3, corrected: the state is known at the steps only, so its paths are
 // sampled at every step (its own grid: a --sample-dt does not apply) and its
 // clock is the step dt.
@@ -21,7 +21,7 @@
 #include "stickslip/kernels/resolvent_lanes.hpp"
 #include "stickslip/random/rng.hpp"
 #include "stickslip/random/rng_batch.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/engine.hpp"
 
 namespace stickslip::detail {
 
