@@ -16,6 +16,7 @@
 #include "stickslip/kernels/resolvent.hpp"
 #include "stickslip/random/rng_batch.hpp"
 #include "stickslip/run.hpp"
+#include "model_cases.hpp"
 
 namespace ss = stickslip;
 
@@ -84,15 +85,7 @@ Stats stats_of(const std::vector<Sample>& xs) {
     return r;
 }
 
-ss::ModelParams pure_dry(double tau) {
-    ss::ModelParams p;
-    p.friction = 1.0;
-    p.noise = 1.0;
-    p.tau = tau;
-    p.relaxation = INFINITY;
-    p.bias = 0.0;
-    return p;
-}
+ss::ModelParams pure_dry(double tau) { return ss::test::pure_dry_friction(tau); }
 
 /// n long excursions, excursion k by plain(k) and with the corrector by
 /// with(k) on the same streams, checking that U and t are the plain kernel's

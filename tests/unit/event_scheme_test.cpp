@@ -15,6 +15,7 @@
 #include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/random/rng_batch.hpp"
 #include "stickslip/runner.hpp"
+#include "model_cases.hpp"
 
 namespace ss = stickslip;
 
@@ -94,15 +95,7 @@ TEST(EventScheme, CappedExcursionsAreCounted) {
     EXPECT_EQ(t.capped + t.moments.count(), 64u);
 }
 
-ss::ModelParams dry_white() {
-    ss::ModelParams p; // pure dry friction, white noise, friction = noise = 1
-    p.friction = 1;
-    p.noise = 1;
-    p.tau = 0;
-    p.relaxation = INFINITY;
-    p.bias = 0;
-    return p;
-}
+ss::ModelParams dry_white() { return ss::test::pure_dry_friction(0.0); } // white noise
 
 TEST(EventScheme, WhiteNoiseStepFarFromZeroIsTheExactGaussianStep) {
     // Far from both levels no touch is possible: the step is the exact law of

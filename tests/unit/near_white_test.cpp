@@ -16,6 +16,7 @@
 #include "stickslip/drift_law.hpp"
 #include "stickslip/errors.hpp"
 #include "stickslip/kolmogorov.hpp"
+#include "model_cases.hpp"
 
 namespace ss = stickslip;
 namespace nw = stickslip::detail::near_white;
@@ -23,15 +24,7 @@ namespace nw = stickslip::detail::near_white;
 namespace {
 
 /// Pure dry friction at friction = noise = 1 (tau = tau').
-ss::ModelParams dry(double tau) {
-    ss::ModelParams p;
-    p.friction = 1.0;
-    p.noise = 1.0;
-    p.tau = tau;
-    p.relaxation = INFINITY;
-    p.bias = 0.0;
-    return p;
-}
+ss::ModelParams dry(double tau) { return ss::test::pure_dry_friction(tau); }
 
 /// The Fig. 2 law (relaxation 0.067 s, bias 0.342 m/s^2, friction 3.84, noise
 /// 5) at a given tau' (tau' = tau * 2.9491).
