@@ -140,7 +140,7 @@ TEST(HopelessCli, ALatticeCutByItsBoundNamesTheBound) {
     const auto r = run({"diffusivity", "--engine", "pdmp", "--lattice-bound", "3", "--excursions", "200"});
     EXPECT_EQ(r.code, 0) << r.err;
     const std::string said = r.out + r.err; // (the notes come after the table)
-    EXPECT_NE(said.find("raise --lattice-bound (the mass is below 1e-9 from L = 8.49"), std::string::npos) << said;
+    EXPECT_NE(said.find("raise --lattice-bound (the mass is below 1e-9 from L = 8.64"), std::string::npos) << said;
     EXPECT_EQ(said.find("use a finer grid"), std::string::npos) << said;
 }
 

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <boost/math/special_functions/erf.hpp>
+
 #include "core/format.hpp"
 #include "engines/grid_sampler.hpp"
 #include "engines/path_point.hpp"
@@ -188,11 +190,11 @@ public:
     /// blamed the grid), else the grid (tau*grid*L < 2 bounds the lattice).
     static std::string lattice_note(const ResolvedEngine& r, const EngineSettings& s, const ModelParams& p,
                                     bool detailed) {
-        if (!(r.truncated_mass > 1e-9)) return {};
-        // erfc(L sqrt(tau/2)) = 1e-9 at L sqrt(tau/2) = 4.2452.
+        constexpr double negligible = 1e-9; // stationary mass beyond +-L: erfc(L sqrt(tau/2))
+        if (!(r.truncated_mass > negligible)) return {};
         const std::string cure =
             s.lattice_bound > 0 ? "raise --lattice-bound (the mass is below 1e-9 from L = " +
-                                      format_number(4.2452 * std::sqrt(2.0 / p.tau), 3) +
+                                      format_number(boost::math::erfc_inv(negligible) * std::sqrt(2.0 / p.tau), 3) +
                                       " s^-1/2 on; tau*grid*L must stay below 2, so a finer --grid may be needed too)"
                                 : "use a finer grid";
         return "the pdmp lattice is truncated at L = " + format_number(r.lattice_bound) + " s^-1/2" +
