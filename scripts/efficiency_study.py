@@ -113,7 +113,7 @@ def run_cli(binary, args):
 def le_run(binary, case, n, seed):
     d = run_cli(binary, ["diffusivity"] + case["model"] + ["--dt", repr(case["dt"]),
                                                            "--excursions", str(n), "--seed", str(seed)])
-    return {"seed": seed, "value": d["diffusivity"]["value"], "stderr": d["diffusivity"]["stderr"],
+    return {"seed": seed, "value": d["diffusivity"]["value"], "stderr": d["diffusivity"]["error"],
             "mobility": d["mobility"]["value"], "steps": d["work"]["steps"], "seconds": d["work"]["seconds"],
             "stop_rule": d.get("stop_rule")}
 
@@ -121,7 +121,7 @@ def le_run(binary, case, n, seed):
 def bf_run(binary, case, horizon, n, seed):
     d = run_cli(binary, ["bruteforce"] + case["model"] + ["--dt", repr(case["dt"]), "--time", repr(horizon),
                                                           "--trajectories", str(n), "--seed", str(seed)])
-    return {"seed": seed, "value": d["diffusivity"]["value"], "stderr": d["diffusivity"]["stderr"],
+    return {"seed": seed, "value": d["diffusivity"]["value"], "stderr": d["diffusivity"]["error"],
             "steps": d["work"]["steps"], "seconds": d["work"]["seconds"]}
 
 

@@ -194,8 +194,14 @@ class Runner:
 
 # Helpers ---------------------------------------------------------------------------
 def est(d):
-    """(value, stderr) of an estimate object."""
-    return float(d["value"]), float(d.get("stderr", 0.0))
+    """(value, error) of an estimate object (the report's "error": a standard
+    error when sampled, 0 when exact; 0 where a solver has none)."""
+    return float(d["value"]), float(d.get("error") or 0.0)
+
+
+def values(series):
+    """The values of a series of estimates (a list of {time|lag, value, ...})."""
+    return np.array([p["value"] for p in series], float)
 
 
 def rnd(x, n=4):
@@ -259,8 +265,8 @@ def make_table1(R, cfg, out, written, summary, seed):
     if not np.allclose(got_t, TABLE1_TIMES, rtol=1e-9, atol=1e-12):
         raise StickslipFailure(f"moments returned times {got_t}, expected {TABLE1_TIMES}")
     ours = np.array([p["value"] for p in mc["first_moment"]])
-    se = np.array([p["stderr"] for p in mc["first_moment"]])
-    efv = np.array(ef["first_moment"], float)
+    se = np.array([p["error"] for p in mc["first_moment"]])
+    efv = values(ef["first_moment"])
     pmc = np.array(TABLE1_PAPER_MC)
     z_ef = (ours - efv) / se
     z_pmc = (ours - pmc) / se
@@ -296,7 +302,7 @@ def make_table1(R, cfg, out, written, summary, seed):
 
     fig, (ax, axr) = plt.subplots(2, 1, figsize=(7, 6.4), sharex=True,
                                   gridspec_kw={"height_ratios": [2.2, 1]})
-    ax.plot(fine["times"], fine["first_moment"], "r-", lw=1.4, label="EF: formula (2.11), white noise")
+    ax.plot(fine["times"], values(fine["first_moment"]), "r-", lw=1.4, label="EF: formula (2.11), white noise")
     ax.errorbar(TABLE1_TIMES, ours, yerr=1.96 * se, fmt="ko", ms=4, capsize=3,
                 label=f"ours: colored noise, tau' = {c['tau']:g} (95% CI)")
     ax.plot(TABLE1_TIMES, pmc, "bx", ms=8, label="paper's MC (Table I)")
@@ -368,7 +374,7 @@ def make_fig23(R, cfg, out, written, summary, seed, only):
                         label=f"trajectory {name} --index {chosen}", fig="fig2")
         info[name] = {"index": chosen, "seed": seed, "duration": rnd(trajs[name]["duration"], 5),
                       "displacement": rnd(trajs[name]["displacement"], 4),
-                      "mean_duration": rnd(mean, 4), "mean_duration_stderr": rnd(d["mean_duration"]["stderr"], 2),
+                      "mean_duration": rnd(mean, 4), "mean_duration_stderr": rnd(d["mean_duration"]["error"], 2),
                       "excursions_for_mean": n}
         sp = hle_split(trajs[name])
         p = trajs[name]["paths"][0]
@@ -530,7 +536,7 @@ def make_fig5(R, cfg, out, written, summary, seed):
             nc = d["normalised_covariance"]
             r = np.array([p["lag"] for p in nc])
             h = np.array([p["value"] for p in nc])
-            s = np.array([p["stderr"] for p in nc])
+            s = np.array([p["error"] for p in nc])
             pos = h > 0
             ax.plot(r[pos], h[pos], ls, color=col, lw=1.6 if ls == "-" else 2.0,
                     label=f"tau = {tau:g} s (tau' = {tau * DELTA ** 2 / c['noise']:.2f}), "
@@ -577,8 +583,8 @@ def make_fig6(R, cfg, out, written, summary, seed):
     bins = d["histogram"]["bins"]
     blo = np.array([b["lo"] for b in bins])
     bhi = np.array([b["hi"] for b in bins])
-    dens = np.array([b["density"] for b in bins])
-    se = np.array([b["stderr"] for b in bins])
+    dens = np.array([b["value"] for b in bins])
+    se = np.array([b["error"] for b in bins])
     mid = 0.5 * (blo + bhi)
     _, pbar = bin_average(R, model, float(blo[0]), float(bhi[-1]), len(bins), fig="fig6")
     curve = R("analytic", model + [f"--velocities={even_grid(lo, hi, 481)}"], threads=False,
@@ -586,7 +592,7 @@ def make_fig6(R, cfg, out, written, summary, seed):
     paths = R("trajectory", model + ["--tau", c["tau"], "--scheme", "resolvent", "--dt", c["path_dt"], "--paths", c["paths"],
                                      "--time", c["path_time"], "--every", c["path_time"] / 1000],
               seed=seed + 1, threads=False, label="trajectory --paths", fig="fig6")
-    stuck = est(d["histogram"]["stuck"])
+    stuck = est(d["stuck_probability"])
     z = zscores(dens, se, pbar)
     zs = zsummary(z[se > 0])
     ref = R("analytic", model, threads=False, label="analytic", fig="fig6")
@@ -620,7 +626,7 @@ def make_fig6(R, cfg, out, written, summary, seed):
     ax2.set_xlabel("t [s]")
     ax2.set_ylabel("displacement U(t) [m]")
     ax2.set_title(f"Fig. 6 right: {len(paths['paths'])} paths of U(t) from (X, V) = (x*, 0), dt = {c['path_dt']:g} s;\n"
-                  f"white-noise mean drift M0 = {ref['mobility']:.2e} m/s", fontsize=9)
+                  f"white-noise mean drift M0 = {ref['mobility']['value']:.2e} m/s", fontsize=9)
     ax2.grid(alpha=0.3)
     fig.suptitle("Fig. 6: tau = 1e-5 s, Gamma = 0.16 m$^2$/s$^3$, Delta = 3.84 m/s$^2$, %s (tau' = %.2g)"
                  % (B_TEXT, c["tau"] * DELTA ** 2 / c["noise"]), fontsize=10)
@@ -634,9 +640,9 @@ def make_fig6(R, cfg, out, written, summary, seed):
         "histogram_vs_hayakawa": zs,
         "mean": rnd(est(d["mean"])[0]), "mean_se": rnd(est(d["mean"])[1], 2),
         "variance": rnd(est(d["variance"])[0]), "variance_se": rnd(est(d["variance"])[1], 2),
-        "white_noise_mobility": rnd(ref["mobility"]), "white_noise_variance": rnd(ref["variance"]),
-        "z_mean": rnd(float(zscores(est(d["mean"])[0], est(d["mean"])[1], ref["mobility"])), 3),
-        "z_variance": rnd(float(zscores(est(d["variance"])[0], est(d["variance"])[1], ref["variance"])), 3),
+        "white_noise_mobility": rnd(ref["mobility"]["value"]), "white_noise_variance": rnd(ref["variance"]["value"]),
+        "z_mean": rnd(float(zscores(est(d["mean"])[0], est(d["mean"])[1], ref["mobility"]["value"])), 3),
+        "z_variance": rnd(float(zscores(est(d["variance"])[0], est(d["variance"])[1], ref["variance"]["value"])), 3),
         "paths_U_at_end": [rnd(float(u), 3) for u in u_end],
     }
 
@@ -665,17 +671,17 @@ def make_fig7(R, cfg, out, written, summary, seed):
         for j, h in enumerate(m["density"]):
             bl = np.array([b["lo"] for b in h["bins"]])
             bh = np.array([b["hi"] for b in h["bins"]])
-            dens = np.array([b["density"] for b in h["bins"]])
-            se = np.array([b["stderr"] for b in h["bins"]])
+            dens = np.array([b["value"] for b in h["bins"]])
+            se = np.array([b["error"] for b in h["bins"]])
             ax.plot(curve["velocities"], curve["transient_density"][j], "r-", lw=1.1,
                     label="(2.10), white noise" if j == 0 else None)
             ax.stairs(dens, np.append(bl, bh[-1]), color=tcols[j], lw=1.2,
-                      label=f"t' = {h['time']:g}, P(stuck) = {h['stuck']['value']:.3f}")
+                      label=f"t' = {h['time']:g}, P(stuck) = {h['stuck_probability']['value']:.3f}")
             ok = se > 0
             z = zscores(dens[ok], se[ok], pbar[j][ok])
             l1 = float(np.sum(np.abs(dens - pbar[j]) * (bh - bl)))
-            per_t.append({"time": h["time"], "stuck": rnd(h["stuck"]["value"]),
-                          "stuck_se": rnd(h["stuck"]["stderr"], 2), "l1_distance": rnd(l1, 3), **zsummary(z)})
+            per_t.append({"time": h["time"], "stuck": rnd(h["stuck_probability"]["value"]),
+                          "stuck_se": rnd(h["stuck_probability"]["error"], 2), "l1_distance": rnd(l1, 3), **zsummary(z)})
         fm = m["first_moment"]
         ax.set_title(f"tau' = {tau:g}  (dt' = {c['dt']:g}, N = {c['trajectories']})", fontsize=10)
         ax.set_xlim(lo, hi)
@@ -687,7 +693,7 @@ def make_fig7(R, cfg, out, written, summary, seed):
             ax.set_ylabel("p(v', t' | v'_i = 1)")
         res[f"{tau:g}"] = {"per_time": per_t,
                            "first_moment": [rnd(p["value"], 4) for p in fm],
-                           "first_moment_se": [rnd(p["stderr"], 2) for p in fm]}
+                           "first_moment_se": [rnd(p["error"], 2) for p in fm]}
     fig.suptitle("Fig. 7: transient velocity density from v'_i = 1, X(0) ~ N(0, 1/tau'), pure dry friction "
                  "(nondimensional)\nred: formula (2.10) (white noise); steps: colored-noise histograms "
                  "(the atom at v' = 0 is left out of the histogram)", fontsize=10)
@@ -703,7 +709,7 @@ def make_fig8(R, cfg, out, written, summary, seed):
     fine_t = ",".join(fmt(x) for x in np.linspace(0, c["max_lag"], 201))
     curve = R("analytic", ND + ["--times", fine_t], threads=False, label="analytic curve", fig="fig8")
     fig, (ax, axr) = plt.subplots(2, 1, figsize=(8, 8), sharex=True, gridspec_kw={"height_ratios": [2.2, 1]})
-    ax.plot(curve["times"], curve["autocorrelation"], "r-", lw=1.6, label="(2.13), white noise", zorder=5)
+    ax.plot(curve["times"], values(curve["autocorrelation"]), "r-", lw=1.6, label="(2.13), white noise", zorder=5)
     res = {}
     markers = ["o", "s", "^", "v"]
     for k, (tau, n) in enumerate(c["taus"].items()):
@@ -713,10 +719,10 @@ def make_fig8(R, cfg, out, written, summary, seed):
         ac = d["autocorrelation"]
         r = np.array([p["lag"] for p in ac])
         v = np.array([p["value"] for p in ac])
-        s = np.array([p["stderr"] for p in ac])
+        s = np.array([p["error"] for p in ac])
         ref = R("analytic", ND + ["--times", ",".join(fmt(x) for x in r)], threads=False,
                 label=None, fig="fig8")
-        cref = np.array(ref["autocorrelation"])
+        cref = values(ref["autocorrelation"])
         pos = v > 0
         ax.errorbar(r[pos], v[pos], yerr=1.96 * s[pos], fmt=markers[k], color=col, ms=3.5, capsize=1.5, lw=0.7,
                     label=f"tau' = {tau:g}, N = {n}")
@@ -753,7 +759,7 @@ def make_fig9(R, cfg, out, written, summary, seed):
             ("b=0", ZERO_B, "b(v) = 0"),
             ("paper_b", PAPER_B, B_TEXT))):
         ax, axr = axes[0, bi], axes[1, bi]
-        white = np.array([R("analytic", bargs + ["--noise", g], threads=False, label=None, fig="fig9")["diffusivity"]
+        white = np.array([R("analytic", bargs + ["--noise", g], threads=False, label=None, fig="fig9")["diffusivity"]["value"]
                           for g in gw])
         wfit = np.polyfit(np.log(gw), np.log(white), 1)[0]
         ax.plot(gw, white, "k--", lw=1.3, label=f"white noise (quadrature), slope {wfit:.2f}")
@@ -776,7 +782,7 @@ def make_fig9(R, cfg, out, written, summary, seed):
                     label=f"tau = {tau:g} s: long excursions (N = {n}), alpha = {alpha:.2f} ± {salpha:.2f}")
             ax.fill_between(g, D - 1.96 * sD, D + 1.96 * sD, color=col, alpha=0.2, lw=0)
             white_at = np.array([R("analytic", bargs + ["--noise", gg], threads=False, label=None,
-                                   fig="fig9")["diffusivity"] for gg in g])
+                                   fig="fig9")["diffusivity"]["value"] for gg in g])
             shift = np.exp((k - (ntau - 1) / 2) * 0.012)  # small horizontal offsets in the ratio panel
             axr.errorbar(g * shift, D / white_at, yerr=1.96 * sD / white_at, fmt="-", color=col, lw=1.2,
                          capsize=2)

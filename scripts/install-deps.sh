@@ -38,6 +38,7 @@ PACKAGES=(
   python3-nbconvert   # examples/quickstart.ipynb: notebook tooling (jupyter nbconvert)
   python3-nbclient    # runs the notebook in its test (python/tests/test_notebook.py)
   python3-ipykernel   # the Python kernel the notebook runs in
+  python3-jsonschema  # the JSON reports checked against schema/report.schema.json (ctest -R reports_match_schema)
 )
 
 if [[ "${STICKSLIP_SKIP_DEPS:-0}" == 1 ]]; then

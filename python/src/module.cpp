@@ -231,9 +231,10 @@ std::string estimate_repr(const Estimate& e) {
 py::dict estimate_dict(const Estimate& e) {
     py::dict d;
     d["value"] = e.value;
-    d["stderr"] = e.std_error;
+    d["error"] = e.std_error;
     d["ci"] = py::make_tuple(e.lo, e.hi);
     d["level"] = e.level;
+    d["kind"] = "sampled";
     return d;
 }
 
@@ -463,13 +464,18 @@ void bind_core(py::module_& m) {
                          "value/(1 +- q*stderr/value), never negative (hi = inf when q*stderr >= value). float(e) "
                          "is e.value.")
         .def_readonly("value", &Estimate::value)
-        .def_readonly("stderr", &Estimate::std_error)
+        .def_readonly("stderr", &Estimate::std_error, "the standard error")
+        .def_readonly("error", &Estimate::std_error,
+                      "the uncertainty every estimate has under this name (GridEstimate.error too): here the "
+                      "standard error")
+        .def_property_readonly("kind", [](const Estimate&) { return "sampled"; },
+                               "'sampled': error is a standard error, ci an interval at level")
         .def_readonly("lo", &Estimate::lo)
         .def_readonly("hi", &Estimate::hi)
         .def_readonly("level", &Estimate::level)
         .def_property_readonly("ci", [](const Estimate& e) { return py::make_tuple(e.lo, e.hi); },
                                "(lo, hi): the confidence interval at `level`")
-        .def("to_dict", &estimate_dict, "{'value', 'stderr', 'ci': (lo, hi), 'level'}")
+        .def("to_dict", &estimate_dict, "{'value', 'error', 'ci': (lo, hi), 'level', 'kind'}: as in the CLI's JSON")
         .def("__float__", [](const Estimate& e) { return e.value; })
         .def("__repr__", &estimate_repr);
 
@@ -479,12 +485,15 @@ void bind_core(py::module_& m) {
                                    "interval, which a solver does not have. float(e) is e.value.")
         .def_readonly("value", &KolmogorovEstimate::value)
         .def_readonly("error", &KolmogorovEstimate::error, "estimated discretisation error (absolute)")
+        .def_property_readonly("kind", [](const KolmogorovEstimate&) { return "solved"; },
+                               "'solved': error is the estimated discretisation error")
         .def("to_dict", [](const KolmogorovEstimate& e) {
             py::dict d;
             d["value"] = e.value;
             d["error"] = e.error;
+            d["kind"] = "solved";
             return d;
-        }, "{'value', 'error'}: as in the CLI's JSON")
+        }, "{'value', 'error', 'kind'}: as in the CLI's JSON")
         .def("__float__", [](const KolmogorovEstimate& e) { return e.value; })
         .def("__repr__", [](const KolmogorovEstimate& e) {
             return "GridEstimate(value=" + number_text::general(e.value, 6) + ", error=" +
@@ -510,9 +519,10 @@ void bind_core(py::module_& m) {
                  py::dict d;
                  d["value"] = series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
                  d["error"] = series_column(s, [](const KolmogorovEstimate& e) { return e.error; });
+                 d["kind"] = "solved";
                  return d;
              },
-             "{'value', 'error'} arrays")
+             "{'value', 'error'} arrays and 'kind'")
         .def("__repr__", [](const GridEstimateSeries& s) {
             return series_repr("GridEstimateSeries(n=" + std::to_string(s.items.size()), s);
         });
@@ -527,7 +537,10 @@ void bind_core(py::module_& m) {
         })
         .def_property_readonly("stderr", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.std_error; });
-        })
+        }, "the standard errors")
+        .def_property_readonly("error", [](const EstimateSeries& s) {
+            return series_column(s, [](const Estimate& e) { return e.std_error; });
+        }, "the uncertainties under the name every series has (GridEstimateSeries.error too): here the standard errors")
         .def_property_readonly("lo", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.lo; });
         })
@@ -554,13 +567,14 @@ void bind_core(py::module_& m) {
              [](const EstimateSeries& s) {
                  py::dict d;
                  d["value"] = series_column(s, [](const Estimate& e) { return e.value; });
-                 d["stderr"] = series_column(s, [](const Estimate& e) { return e.std_error; });
+                 d["error"] = series_column(s, [](const Estimate& e) { return e.std_error; });
                  d["lo"] = series_column(s, [](const Estimate& e) { return e.lo; });
                  d["hi"] = series_column(s, [](const Estimate& e) { return e.hi; });
                  d["level"] = s.level;
+                 d["kind"] = "sampled";
                  return d;
              },
-             "{'value', 'stderr', 'lo', 'hi'} arrays and 'level'")
+             "{'value', 'error', 'lo', 'hi'} arrays, 'level' and 'kind'")
         .def("__repr__", [](const EstimateSeries& s) {
             return series_repr("EstimateSeries(n=" + std::to_string(s.items.size()) + ", level=" + float_repr(s.level), s);
         });

@@ -214,8 +214,9 @@ void bind_results(py::module_& m) {
                     if (!r.discretisation) return py::none();
                     return json_loads(to_json(r, -1))["discretisation"]; // the JSON's layout, defined once
                 },
-                "check_dt=True: {'dt', 'check_dt', 'excursions', 'steps', 'diffusivity': {'difference', "
-                "'stderr'}, 'mobility': {...}}, the values at 2 dt minus those at dt [m^2/s, m/s]; None "
+                "check_dt=True: {'dt', 'check_dt', 'excursions', 'steps', 'diffusivity': {'value', "
+                "'error', 'kind'}, 'mobility': {...}}, the values at 2 dt minus those at dt [m^2/s, m/s] "
+                "with their standard errors; None "
                 "otherwise")
             .def_property_readonly(
                 "control_variate",

@@ -59,7 +59,11 @@ version that wrote it.
 
 Results are objects with NumPy-array attributes; estimates are ``Estimate``
 (``.value``, ``.stderr``, ``.ci``) or, along an axis, ``EstimateSeries``
-(arrays ``.value``, ``.stderr``, ``.lo``, ``.hi``, ``.ci`` of shape (n, 2)).
+(arrays ``.value``, ``.stderr``, ``.lo``, ``.hi``, ``.ci`` of shape (n, 2));
+the Kolmogorov engine's are ``GridEstimate`` (``.value``, ``.error``). Every
+estimate has ``.value``, ``.error`` (the standard error, or the estimated
+discretisation error) and ``.kind`` (``'sampled'``, ``'solved'``), as in the
+CLI's JSON.
 Invalid input raises ``InvalidParameterError`` (a ValueError) whose text is
 the CLI's: ``--<parameter>: <message>``. Runs whose excursions hit the runaway
 guard raise ``CappedExcursionsError`` unless ``allow_capped=True``; it is an

@@ -82,6 +82,10 @@ class Estimate:
     @property
     def stderr(self) -> float: ...
     @property
+    def error(self) -> float: ...  # the standard error, under the name every estimate has
+    @property
+    def kind(self) -> str: ...     # 'sampled'
+    @property
     def lo(self) -> float: ...
     @property
     def hi(self) -> float: ...
@@ -97,6 +101,8 @@ class GridEstimate:
     def value(self) -> float: ...
     @property
     def error(self) -> float: ...  # estimated discretisation error (absolute)
+    @property
+    def kind(self) -> str: ...     # 'solved'
     def to_dict(self) -> dict[str, Any]: ...
     def __float__(self) -> float: ...
 
@@ -107,6 +113,8 @@ class EstimateSeries:
     def value(self) -> FloatArray: ...   # (n,); a sweep: (n_tau, n_noise)
     @property
     def stderr(self) -> FloatArray: ...  # (n,)
+    @property
+    def error(self) -> FloatArray: ...   # (n,): the standard errors, under the name every series has
     @property
     def lo(self) -> FloatArray: ...      # (n,)
     @property

@@ -121,8 +121,8 @@ class DiffusivityTest(unittest.TestCase):
         r = stickslip.diffusivity(P, scheme="event", dt=0.03, excursions=2048, check_dt=True, threads=1)
         c = r.discretisation
         self.assertEqual((c["dt"], c["check_dt"], c["excursions"]), (0.03, 0.06, 2048))
-        self.assertGreater(c["diffusivity"]["stderr"], 0)
-        self.assertEqual(r.to_dict()["discretisation"]["mobility"]["difference"], c["mobility"]["difference"])
+        self.assertGreater(c["diffusivity"]["error"], 0)
+        self.assertEqual(r.to_dict()["discretisation"]["mobility"]["value"], c["mobility"]["value"])
         self.assertIsNone(stickslip.diffusivity(P, dt=0.03, excursions=64, threads=1).discretisation)
 
     def test_dt_auto(self):

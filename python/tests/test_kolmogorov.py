@@ -24,11 +24,12 @@ class KolmogorovEngineTest(unittest.TestCase):
         self.assertEqual(r.method, "kolmogorov")
         self.assertEqual(float(r.diffusivity), r.diffusivity.value)
 
-    def test_json_has_value_and_error_and_no_stderr(self):
+    def test_json_has_value_and_error_of_kind_solved(self):
         d = self.r.to_dict()
         self.assertEqual(d["engine"], "kolmogorov")
         for key in ("diffusivity", "mobility", "stuck_probability", "mean_duration"):
-            self.assertEqual(set(d[key]), {"value", "error"})
+            self.assertEqual(set(d[key]), {"value", "error", "kind"})
+            self.assertEqual(d[key]["kind"], "solved")
             self.assertEqual(d[key], getattr(self.r, key).to_dict())
         self.assertTrue(d["precision"]["reached"])
         self.assertNotIn("completed", d)

@@ -114,7 +114,7 @@ class CliProvenance(unittest.TestCase):
         header, row = body.splitlines()[:2]
         cells = dict(zip(header.split(","), row.split(",")))
         self.assertEqual(float(cells["diffusivity"]), d["diffusivity"]["value"])  # the same double, bit for bit
-        self.assertEqual(float(cells["diffusivity_stderr"]), d["diffusivity"]["stderr"])
+        self.assertEqual(float(cells["diffusivity_stderr"]), d["diffusivity"]["error"])
         self.assertEqual(float(cells["mobility_lo"]), d["mobility"]["ci"][0])
 
 

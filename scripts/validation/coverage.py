@@ -67,14 +67,14 @@ def run_cli(binary, command, flags, n, seed):
 
 
 def est(e):
-    """[value, stderr, lo, hi] of one JSON estimate; lo, hi None when it prints no interval."""
+    """[value, error, lo, hi] of one JSON estimate; lo, hi None when it prints no interval."""
     ci = e.get("ci")
     if not ci:
-        return [e["value"], e["stderr"], None, None]
+        return [e["value"], e["error"], None, None]
     # JSON has no infinity: an unbounded end is printed as null (or "inf")
     lo = -math.inf if ci[0] in (None, "-inf") else ci[0]
     hi = math.inf if ci[1] in (None, "inf") else ci[1]
-    return [e["value"], e["stderr"], lo, hi]
+    return [e["value"], e["error"], lo, hi]
 
 
 def one_run(binary, case, n, seed):
@@ -89,9 +89,9 @@ def one_run(binary, case, n, seed):
             rec["T"] = n * j["mean_duration"]["value"]
         elif c == "density":
             h = j["histogram"]
-            rec["stuck"] = est(h["stuck"])
+            rec["stuck"] = est(j["stuck_probability"])
             b = h["bins"][DENSITY_BIN]
-            rec["bin"] = [b["density"], b["stderr"], None, None]
+            rec["bin"] = [b["value"], b["error"], None, None]
             rec["h0"] = est(j["variance"])
             rec["Vmean"] = est(j["mean"])
             # density and diffusivity share their excursions bit for bit

@@ -36,7 +36,7 @@ def run(argv):
     if r.returncode != 0:
         sys.exit(f"{argv}: {r.stderr.strip()}")
     j = json.loads(r.stdout)
-    return {k: (j[k]["value"], j[k].get("stderr", 0.0)) for k in ("diffusivity", "mobility", "mean_duration")}
+    return {k: (j[k]["value"], j[k].get("error", 0.0)) for k in ("diffusivity", "mobility", "mean_duration")}
 
 
 def cell(a, ref):

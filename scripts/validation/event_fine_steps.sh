@@ -65,11 +65,11 @@ def run(name, argv):
 
 
 def quantities(j):
-    q = {k: (j[k]["value"], j[k].get("stderr", 0.0)) for k in ("diffusivity", "mobility", "mean_duration")}
+    q = {k: (j[k]["value"], j[k].get("error", 0.0)) for k in ("diffusivity", "mobility", "mean_duration")}
     if "histogram" in j:
-        q["p0"] = (j["histogram"]["stuck"]["value"], j["histogram"]["stuck"]["stderr"])
+        q["p0"] = (j["stuck_probability"]["value"], j["stuck_probability"]["error"])
         m, v = j["mean"]["value"], j["variance"]["value"]
-        q["v2"] = (v + m * m, j["variance"]["stderr"])
+        q["v2"] = (v + m * m, j["variance"]["error"])
     return q
 
 

@@ -33,10 +33,10 @@ def load(n): return json.load(open(f"{out}/{n}.json"))
 for n in ["tau0.1_event_0.01", "tau0.1_event_0.5", "tau0.1_resolvent_1e-4", "tau1_event_0.01", "tau1_resolvent_1e-3"]:
     j = load(n)
     D, M = j["diffusivity"], j["mobility"]
-    print(f"{n}: D {D['value']:.5g} +- {D['stderr']:.2g}, M0 {M['value']:.3g} +- {M['stderr']:.2g}, "
-          f"E[t1] {j['mean_duration']['value']:.5g} +- {j['mean_duration']['stderr']:.2g}, {j['work']['seconds']:.1f} s")
+    print(f"{n}: D {D['value']:.5g} +- {D['error']:.2g}, M0 {M['value']:.3g} +- {M['error']:.2g}, "
+          f"E[t1] {j['mean_duration']['value']:.5g} +- {j['mean_duration']['error']:.2g}, {j['work']['seconds']:.1f} s")
 for n in ["stuck_event_1e-3", "stuck_resolvent_1e-4", "stuck_resolvent_5e-5", "stuck_resolvent_2.5e-5"]:
     j = load(n)
-    print(f"{n}: P(stuck) {j['histogram']['stuck']['value']:.5f} +- {j['histogram']['stuck']['stderr']:.2g}, var {j['variance']['value']:.5g} +- "
-          f"{j['variance']['stderr']:.2g}, {j['work']['seconds']:.1f} s")
+    print(f"{n}: P(stuck) {j['stuck_probability']['value']:.5f} +- {j['stuck_probability']['error']:.2g}, var {j['variance']['value']:.5g} +- "
+          f"{j['variance']['error']:.2g}, {j['work']['seconds']:.1f} s")
 PY

@@ -36,8 +36,8 @@ for m, (relax, bias) in models.items():
             j = json.load(open(f"{out}/{m}_{scheme}_{dt}.json"))
             D, M, T = j["diffusivity"], j["mobility"], j["mean_duration"]
             def rel(e, x):
-                return f"{100 * (e['value'] - x) / x:+.2f}% (z = {(e['value'] - x) / e['stderr']:+.1f})" if x else f"z = {e['value'] / e['stderr']:+.1f}"
+                return f"{100 * (e['value'] - x) / x:+.2f}% (z = {(e['value'] - x) / e['error']:+.1f})" if x else f"z = {e['value'] / e['error']:+.1f}"
             print(f"| {m} (relaxation {relax}, bias {bias}) | {scheme} | {j['params']['dt']:g}{' (auto)' if dt == 'auto' else ''} | "
-                  f"{D['value']:.5g} ± {D['stderr']:.2g} | {rel(D, d0)} | {M['value']:.5g} ± {M['stderr']:.2g} | {rel(M, m0)} | "
+                  f"{D['value']:.5g} ± {D['error']:.2g} | {rel(D, d0)} | {M['value']:.5g} ± {M['error']:.2g} | {rel(M, m0)} | "
                   f"{T['value']:.4f} | {j['work']['seconds']:.1f} s |")
 PY

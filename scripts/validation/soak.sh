@@ -51,7 +51,7 @@ a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for j in (a, b):
     j.pop("work")
 d = a["diffusivity"]
-print(f"D = {d['value']!r} +- {d['stderr']:.3g} (95% interval {d['ci'][0]:.6g} to {d['ci'][1]:.6g}), "
+print(f"D = {d['value']!r} +- {d['error']:.3g} (95% interval {d['ci'][0]:.6g} to {d['ci'][1]:.6g}), "
       f"M0 = {a['mobility']['value']:.3g}, E[t1] = {a['mean_duration']['value']!r}, completed {a['completed']}")
 if a != b:
     print("FAIL: one process and mpirun -np 2 differ")

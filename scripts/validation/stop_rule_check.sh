@@ -32,14 +32,14 @@ out, t1, t2 = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
 ld = lambda n: json.load(open(f"{out}/{n}.json"))
 b1, b2 = ld("sr_bf_t1")["diffusivity"], ld("sr_bf_t2")["diffusivity"]
 ext = (t2 * b2["value"] - t1 * b1["value"]) / (t2 - t1)
-ext_se = math.hypot(t2 * b2["stderr"], t1 * b1["stderr"]) / (t2 - t1)
-print(f"brute force D_t1 = {b1['value']:.5g} +- {b1['stderr']:.2g} (t' = {t1:g}), D_t2 = {b2['value']:.5g} +- {b2['stderr']:.2g} (t' = {t2:g})")
+ext_se = math.hypot(t2 * b2["error"], t1 * b1["error"]) / (t2 - t1)
+print(f"brute force D_t1 = {b1['value']:.5g} +- {b1['error']:.2g} (t' = {t1:g}), D_t2 = {b2['value']:.5g} +- {b2['error']:.2g} (t' = {t2:g})")
 print(f"extrapolated in 1/t: D = {ext:.5g} +- {ext_se:.2g}")
 print("| rule | D' | stderr | vs extrapolated brute force | z |")
 print("|---|---|---|---|---|")
 for name in ("bridge", "stuck"):
     d = ld(f"sr_{name}")["diffusivity"]
     diff = d["value"] / ext - 1
-    z = (d["value"] - ext) / math.hypot(d["stderr"], ext_se)
-    print(f"| {name} | {d['value']:.5g} | {d['stderr']:.2g} | {100*diff:+.2f}% | {z:+.2f} |")
+    z = (d["value"] - ext) / math.hypot(d["error"], ext_se)
+    print(f"| {name} | {d['value']:.5g} | {d['error']:.2g} | {100*diff:+.2f}% | {z:+.2f} |")
 PY

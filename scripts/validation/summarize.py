@@ -25,10 +25,10 @@ def fmt(x, se):
 
 def row_le(label, j, ref=None, ref_label=""):
     d, m, t = j["diffusivity"], j["mobility"], j["mean_duration"]
-    cells = [label, fmt(d["value"], d["stderr"]), fmt(m["value"], m["stderr"]), fmt(t["value"], t["stderr"]),
+    cells = [label, fmt(d["value"], d["error"]), fmt(m["value"], m["error"]), fmt(t["value"], t["error"]),
              f"{j['completed']}", j["stop_rule"]]
     if ref is not None:
-        z = (d["value"] - ref) / d["stderr"]
+        z = (d["value"] - ref) / d["error"]
         cells += [f"{100 * (d['value'] / ref - 1):+.2f}%", f"{z:+.2f}"]
     return "| " + " | ".join(cells) + " |"
 
@@ -67,15 +67,15 @@ for case, le_name in [("fig2", "pdmp_0.125"), ("drv", "le_drv_renewal")]:
         j = load(f"bf_{case}_{t}")
         if j:
             d = j["diffusivity"]
-            print(f"| {case} | brute force t = {t} s | {fmt(d['value'], d['stderr'])} | {j['params']['trajectories']} |")
+            print(f"| {case} | brute force t = {t} s | {fmt(d['value'], d['error'])} | {j['params']['trajectories']} |")
     a, b = load(f"bf_{case}_10"), load(f"bf_{case}_20")
     if a and b:
         da, db = a["diffusivity"], b["diffusivity"]
         ext = 2 * db["value"] - da["value"]
-        se = math.hypot(2 * db["stderr"], da["stderr"])
+        se = math.hypot(2 * db["error"], da["error"])
         print(f"| {case} | brute force extrapolated in 1/t | {fmt(ext, se)} | |")
     for nm in ([le_name] if case == "fig2" else ["le_drv_renewal", "le_drv_paper"]):
         j = load(nm)
         if j:
             d = j["diffusivity"]
-            print(f"| {case} | long excursions, {j['estimator']} | {fmt(d['value'], d['stderr'])} | {j['completed']} |")
+            print(f"| {case} | long excursions, {j['estimator']} | {fmt(d['value'], d['error'])} | {j['completed']} |")

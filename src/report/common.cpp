@@ -22,11 +22,28 @@ ordered_json json_number(double x) {
 ordered_json estimate_json(const Estimate& e, bool with_ci) {
     ordered_json j;
     j["value"] = e.value;
-    j["stderr"] = e.std_error;
+    j["error"] = e.std_error;
     if (with_ci) {
         j["ci"] = {json_number(e.lo), json_number(e.hi)}; // D's upper end is "inf" when se >= D / q
         j["level"] = e.level;
     }
+    j["kind"] = estimate_kind_sampled;
+    return j;
+}
+
+ordered_json solved_estimate_json(double value, double error) {
+    ordered_json j;
+    j["value"] = json_number(value);
+    j["error"] = json_number(error);
+    j["kind"] = estimate_kind_solved;
+    return j;
+}
+
+ordered_json exact_estimate_json(double value) {
+    ordered_json j;
+    j["value"] = json_number(value);
+    j["error"] = 0.0;
+    j["kind"] = estimate_kind_exact;
     return j;
 }
 
@@ -34,8 +51,9 @@ ordered_json series_point(const char* key, double where, const Estimate& e) {
     ordered_json j;
     j[key] = where;
     j["value"] = json_number(e.value);
-    j["stderr"] = json_number(e.std_error);
+    j["error"] = json_number(e.std_error);
     j["ci"] = {json_number(e.lo), json_number(e.hi)};
+    j["kind"] = estimate_kind_sampled;
     return j;
 }
 
@@ -353,6 +371,9 @@ std::string first_null(const nlohmann::json& j, const std::string& path) {
                                  it.key() == "command"))
                 continue;
             if (it.key() == "slope" || it.key() == "exponents" || it.key() == "white_limits") continue;
+            // A solver's value may have no error estimate (a density cell):
+            // null is its "none".
+            if (it.key() == "error" && j.value("kind", "") == std::string(detail::estimate_kind_solved)) continue;
             if (std::string bad = first_null(*it, path + "." + it.key()); !bad.empty()) return bad;
         }
     } else if (j.is_array()) {

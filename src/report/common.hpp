@@ -23,9 +23,26 @@ using nlohmann::ordered_json;
 
 /// A number, "inf"/"-inf" for infinities, null for NaN (JSON has neither).
 ordered_json json_number(double x);
-/// {value, stderr[, ci, level]}.
+/// Every estimate of every report, whatever the method, is a JSON object with
+/// the same paths: "value", "error" (its uncertainty in the value's unit) and
+/// "kind", which says what "error" is: "sampled" (a standard error, with "ci"
+/// [lo, hi] at "level" beside it), "solved" (the estimated discretisation
+/// error of a solver, null where it has none) or "exact" (a closed form to
+/// rounding: error 0). A script reads value and error under every engine.
+/// @{
+inline constexpr const char* estimate_kind_sampled = "sampled";
+inline constexpr const char* estimate_kind_solved = "solved";
+inline constexpr const char* estimate_kind_exact = "exact";
+/// @}
+/// {value, error, ci, level, kind: "sampled"} (without ci and level when
+/// !with_ci); error is the standard error.
 ordered_json estimate_json(const Estimate& e, bool with_ci = true);
-/// {key: where, value, stderr, ci}: one point of a series (null for NaN).
+/// {value, error, kind: "solved"}: a solver's value and its estimated
+/// discretisation error (NaN, written null, where it has none).
+ordered_json solved_estimate_json(double value, double error);
+/// {value, error: 0, kind: "exact"}.
+ordered_json exact_estimate_json(double value);
+/// {key: where, value, error, ci, kind: "sampled"}: one point of a series (null for NaN).
 ordered_json series_point(const char* key, double where, const Estimate& e);
 /// {diffusivity, mobility, mean_duration, completed}.
 ordered_json long_excursion_json(const LongExcursionEstimates& e);

@@ -22,7 +22,7 @@ std::string solved_json(const DiffusivityResult& r, int indent) {
     const auto& q = r.request;
     const KolmogorovResult& s = *r.solution;
     const KolmogorovSettings settings = kolmogorov_settings(q, q.rel_precision);
-    ordered_json j = solved_head(nullptr, q, s);
+    ordered_json j = solved_head("diffusivity", q);
     auto nd = nondimensional_json(q);
     const Scales sc = scales_of(q.params);
     nd["diffusivity"] = s.diffusivity.value / sc.diffusivity;
@@ -65,13 +65,12 @@ std::string solved_csv(const DiffusivityResult& r) {
 } // namespace
 
 namespace {
-/// The D and M0 differences of a --check-dt or --check-knots run, with their
-/// standard errors, into j.
+/// The D and M0 differences of a --check-dt or --check-knots run into j, as
+/// sampled estimates {value, error, kind} (error: the difference's standard
+/// error; no interval).
 void add_differences(ordered_json& j, const DiscretisationCheck& c) {
-    j["diffusivity"] = {{"difference", json_number(c.diffusivity_difference)},
-                        {"stderr", json_number(c.diffusivity_stderr)}};
-    j["mobility"] = {{"difference", json_number(c.mobility_difference)},
-                     {"stderr", json_number(c.mobility_stderr)}};
+    j["diffusivity"] = estimate_json(Estimate{c.diffusivity_difference, c.diffusivity_stderr}, false);
+    j["mobility"] = estimate_json(Estimate{c.mobility_difference, c.mobility_stderr}, false);
 }
 } // namespace
 
@@ -79,7 +78,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     if (r.solution) return solved_json(r, indent);
     const auto& q = r.request;
     const std::string estimator = to_string(q.estimator);
-    ordered_json j = report_head(nullptr, q.engine, estimator.c_str(), &r.monte_carlo().engine.stop_rule);
+    ordered_json j = report_head("diffusivity", q.engine, estimator.c_str(), &r.monte_carlo().engine.stop_rule);
     auto params = params_json(q);
     params["excursions"] = q.excursions;
     params["level"] = q.level;
@@ -223,7 +222,7 @@ std::string to_csv(const DiffusivityResult& r) {
 
 std::string to_json(const BruteForceResult& r, int indent) {
     const auto& q = r.request;
-    ordered_json j = report_head(nullptr, q.engine, "bruteforce", &r.monte_carlo().engine.stop_rule);
+    ordered_json j = report_head("finite_time_diffusivity", q.engine, "bruteforce", &r.monte_carlo().engine.stop_rule);
     auto params = params_json(q);
     params["time"] = q.horizon;
     params["trajectories"] = q.trajectories;

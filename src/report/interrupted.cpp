@@ -21,8 +21,11 @@ std::string what_completed(const RunInterrupted& e) {
 
 std::string to_json(const RunInterrupted& e, const char* command, const std::vector<std::string>& warnings,
                     int indent) {
+    // "quantity" as every report has it, here saying there is none; the
+    // subcommand under its own key ("command" is a command line elsewhere).
     ordered_json j;
-    j["command"] = command;
+    j["quantity"] = "interrupted";
+    j["subcommand"] = command;
     j["result"] = what_completed(e);
     j["completed"] = e.completed;
     j["requested"] = e.requested;

@@ -23,13 +23,11 @@ ordered_json histogram_json(const VelocityHistogram& h) {
         ordered_json b;
         b["lo"] = h.edges[k];
         b["hi"] = h.edges[k + 1];
-        b["density"] = h.density[k].value;
-        b["stderr"] = h.density[k].std_error;
+        append_members(b, estimate_json(h.density[k], false));
         bins.push_back(b);
     }
     ordered_json j;
     j["bins"] = bins;
-    j["stuck"] = estimate_json(h.stuck);
     j["below"] = estimate_json(h.below, false);
     j["above"] = estimate_json(h.above, false);
     return j;
@@ -49,14 +47,25 @@ std::string solved_json(const DensityResult& r, int indent) {
     const KolmogorovResult& s = *r.solution;
     const KolmogorovSettings settings = kolmogorov_settings(q, 0.0);
     const KolmogorovGridSolution& fine = s.levels.back();
-    ordered_json j = solved_head("stationary_density", q, s);
+    ordered_json j = solved_head("stationary_density", q);
     j["nondimensional"] = nondimensional_json(q);
-    ordered_json d;
-    d["edges"] = fine.velocity_faces;
-    ordered_json values = ordered_json::array();
-    for (double x : fine.velocity_density) values.push_back(json_number(x));
-    d["value"] = values;
-    j["density"] = d;
+    // The same paths as a sampled histogram's: a grid value has no error
+    // estimate (null), and the grid spans the velocities that hold mass, so
+    // the mass below and above it is 0 to within the grid's tail mass.
+    ordered_json bins = ordered_json::array();
+    for (std::size_t k = 0; k < fine.velocity_density.size(); ++k) {
+        ordered_json b;
+        b["lo"] = fine.velocity_faces[k];
+        b["hi"] = fine.velocity_faces[k + 1];
+        append_members(b, solved_estimate_json(fine.velocity_density[k], std::nan("")));
+        bins.push_back(b);
+    }
+    const double tail_mass = grid_span(s).tail_mass;
+    ordered_json h;
+    h["bins"] = bins;
+    h["below"] = solved_estimate_json(0.0, tail_mass);
+    h["above"] = solved_estimate_json(0.0, tail_mass);
+    j["histogram"] = h;
     j["mean"] = grid_estimate_json(s.mobility);
     j["variance"] = grid_estimate_json(s.velocity_variance);
     add_solved_estimates(j, s, settings);
@@ -113,6 +122,7 @@ std::string to_json(const DensityResult& r, int indent) {
     j["params"] = params;
     j["nondimensional"] = nondimensional_json(q);
     j["histogram"] = histogram_json(r.histogram);
+    j["stuck_probability"] = estimate_json(r.histogram.stuck);
     j["mean"] = estimate_json(r.mean);
     j["variance"] = estimate_json(r.variance);
     append_members(j, long_excursion_json(r.estimates));
@@ -177,11 +187,12 @@ std::string to_json(const MomentsResult& r, int indent) {
     }
     j["first_moment"] = m1;
     j["second_moment"] = m2;
-    j["stuck"] = st;
+    j["stuck_probability"] = st;
     if (!r.density.empty()) {
         ordered_json d = ordered_json::array();
         for (std::size_t k = 0; k < r.time.size(); ++k) {
             ordered_json h = histogram_json(r.density[k]);
+            h["stuck_probability"] = estimate_json(r.density[k].stuck);
             h["time"] = r.time[k];
             d.push_back(h);
         }

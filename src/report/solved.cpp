@@ -13,12 +13,7 @@
 
 namespace stickslip::detail {
 
-ordered_json grid_estimate_json(const KolmogorovEstimate& e) {
-    ordered_json j;
-    j["value"] = json_number(e.value);
-    j["error"] = json_number(e.error);
-    return j;
-}
+ordered_json grid_estimate_json(const KolmogorovEstimate& e) { return solved_estimate_json(e.value, e.error); }
 
 namespace {
 
@@ -34,9 +29,8 @@ double relative_error(const KolmogorovResult& s) { return s.diffusivity.error / 
 
 } // namespace
 
-ordered_json solved_head(const char* quantity, const RunSettings& r, const KolmogorovResult& s) {
+ordered_json solved_head(const char* quantity, const RunSettings& r) {
     ordered_json j = report_head(quantity, r.engine, nullptr, nullptr);
-    j["method"] = s.grid().solver;
     j["params"] = params_json(r);
     return j;
 }
@@ -51,6 +45,8 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
     pr["relative_error"] = json_number(relative_error(s));
     pr["reached"] = s.converged;
     j["precision"] = pr;
+    ordered_json details;
+    details["method"] = s.grid().solver;
     const KolmogorovGridSpan span = grid_span(s);
     const KolmogorovGrid& fine = s.levels.back().grid;
     ordered_json g;
@@ -64,7 +60,8 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
     g["grids_solved"] = s.levels.size();
     g["tail_mass"] = json_number(span.tail_mass);
     g["diffusivity_x"] = grid_estimate_json(s.diffusivity_x);
-    j["grid"] = g;
+    details["grid"] = g;
+    j["engine_details"] = details;
 }
 
 ordered_json solved_work_json(const KolmogorovResult& s, const KolmogorovSettings& settings) {

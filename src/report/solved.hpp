@@ -13,17 +13,18 @@
 
 namespace stickslip::detail {
 
-/// {value, error}: a value and its estimated discretisation error.
+/// solved_estimate_json of e: {value, error, kind: "solved"}.
 ordered_json grid_estimate_json(const KolmogorovEstimate& e);
 
-/// The head of a solved report: "quantity" (when given), "engine", "method"
-/// (the solver) and "params" (the model, no step or seed).
-ordered_json solved_head(const char* quantity, const RunSettings& r, const KolmogorovResult& s);
+/// The head of a solved report: "quantity" (when given), "engine" and
+/// "params" (the model, no step or seed).
+ordered_json solved_head(const char* quantity, const RunSettings& r);
 /// "diffusivity", "mobility", "stuck_probability", "mean_duration" (E[t1])
 /// as {value, error};
-/// "precision" {target, relative_error, reached}; "grid" (the finest grid,
-/// the grids solved, the stationary mass at the domain's ends, and D from the
-/// x moves' carre du champ, the solver's check).
+/// "precision" {target, relative_error, reached}; "engine_details" {"method"
+/// (the solver), "grid" (the finest grid, the grids solved, the stationary
+/// mass at the domain's ends, and D from the x moves' carre du champ, the
+/// solver's check)}.
 void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const KolmogorovSettings& settings);
 /// {seconds, threads}: the solver's wall time and threads.
 ordered_json solved_work_json(const KolmogorovResult& s, const KolmogorovSettings& settings);

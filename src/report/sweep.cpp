@@ -82,7 +82,8 @@ ordered_json white_limits_json(const SweepResult& r) {
         ordered_json o;
         if (r.varies()) o["varied"] = w.varied;
         o["noise"] = w.noise;
-        o["white_diffusivity"] = w.white_diffusivity;
+        o["white_diffusivity"] = r.request.params.has_drift_law() ? solved_estimate_json(w.white_diffusivity, std::nan(""))
+                                                                 : exact_estimate_json(w.white_diffusivity);
         o["exponent"] = sweep_estimate_json(r, w.exponent);
         o["coefficient"] = sweep_estimate_json(r, w.coefficient);
         o["chi2_per_dof"] = json_number(w.chi2_per_dof);
@@ -163,10 +164,10 @@ ModelParams point_params(const SweepResult& r, const SweepPoint& p) {
 std::string solved_json(const SweepResult& r, int indent) {
     const auto& q = r.request;
     ordered_json j = report_head("sweep", q.engine, nullptr, nullptr);
-    j["method"] = "kolmogorov";
     auto params = sweep_params_json(q);
     params["rel_precision"] = q.rel_precision;
     j["params"] = params;
+    j["engine_details"] = {{"method", "kolmogorov"}};
     ordered_json pts = ordered_json::array();
     for (const auto& p : r.points) {
         const KolmogorovResult& s = *p.solution;
@@ -180,7 +181,7 @@ std::string solved_json(const SweepResult& r, int indent) {
         o["stuck_probability"] = grid_estimate_json(s.stuck_probability);
         o["mean_duration"] = grid_estimate_json(s.mean_duration);
         o["precision_reached"] = s.converged;
-        o["slope"] = {{"value", json_number(p.slope.value)}, {"error", json_number(p.slope.std_error)}};
+        o["slope"] = grid_estimate_json({p.slope.value, p.slope.std_error});
         o["white_ratio"] = sweep_estimate_json(r, p.white_ratio);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", s.diffusivity.value / sc.diffusivity},
@@ -283,7 +284,7 @@ std::string to_json(const SweepResult& r, int indent) {
         if (own_dt) o["dt"] = p.dt; // --dt auto: the point's own step
         if (own_scheme) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
         append_members(o, long_excursion_json(p.estimates));
-        o["slope"] = {{"value", json_number(p.slope.value)}, {"stderr", json_number(p.slope.std_error)}};
+        o["slope"] = estimate_json(p.slope, false);
         o["white_ratio"] = sweep_estimate_json(r, p.white_ratio);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},

@@ -16,23 +16,37 @@ using namespace detail;
 std::string to_json(const WhiteNoiseResult& r, int indent) {
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
+    const bool law = q.params.has_drift_law();
+    // The affine law's references are closed forms (exact to rounding); a
+    // drift law's are quadratures whose error is not estimated (null).
+    const auto reference = [&](double x) {
+        return law ? solved_estimate_json(x, std::nan("")) : exact_estimate_json(x);
+    };
     ordered_json j;
     j["quantity"] = "white_noise_reference";
-    j["mobility"] = r.reference.mobility;
-    j["diffusivity"] = r.reference.diffusivity;
-    j["variance"] = r.reference.variance;
+    j["mobility"] = reference(r.reference.mobility);
+    j["diffusivity"] = reference(r.reference.diffusivity);
+    j["variance"] = reference(r.reference.variance);
+    const GridDetails& g = r.grid();
     if (!q.times.empty()) {
+        // Series with the paths of the sampled ones (moments' first_moment,
+        // correlation's autocorrelation): exact for a closed form, else the
+        // grid's relative discretisation error times the value.
+        const auto series = [&](const char* key, const std::vector<double>& values) {
+            ordered_json a = ordered_json::array();
+            for (std::size_t k = 0; k < values.size(); ++k) {
+                ordered_json o;
+                o[key] = q.times[k];
+                append_members(o, g.cells > 0 ? solved_estimate_json(values[k], g.discretisation_error * std::abs(values[k]))
+                                              : exact_estimate_json(values[k]));
+                a.push_back(o);
+            }
+            return a;
+        };
         j["times"] = q.times;
         j["v0"] = q.v0;
-        j["first_moment"] = r.first_moment;
-        j["autocorrelation"] = r.autocorrelation;
-        const GridDetails& g = r.grid();
-        j["method"] = g.solver;
-        if (g.cells > 0)
-            j["grid"] = {{"cells", g.cells},
-                         {"lower", g.lower},
-                         {"upper", g.upper},
-                         {"discretisation_error", g.discretisation_error}};
+        j["first_moment"] = series("time", r.first_moment);
+        j["autocorrelation"] = series("lag", r.autocorrelation);
     }
     if (!q.velocities.empty()) {
         j["velocities"] = q.velocities;
@@ -42,10 +56,8 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
     ordered_json params;
     params["friction"] = q.params.friction;
     params["noise"] = q.params.noise;
-    const bool law = q.params.has_drift_law();
     if (law) {
         add_drift_law_json(params, q.params);
-        j["method"] = r.grid().solver;
     } else {
         params["relaxation"] = json_number(q.params.relaxation);
         params["bias"] = q.params.bias;
@@ -65,6 +77,16 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
                            {"diffusivity_unit", sc.diffusivity}};
     for (const auto& [key, value] : values.items()) ndj[key] = value;
     j["nondimensional"] = ndj;
+    if (law || !q.times.empty()) {
+        ordered_json details;
+        details["method"] = g.solver;
+        if (g.cells > 0)
+            details["grid"] = {{"cells", g.cells},
+                               {"lower", g.lower},
+                               {"upper", g.upper},
+                               {"discretisation_error", g.discretisation_error}};
+        j["engine_details"] = details;
+    }
     add_report_tail(j, r.request, nullptr, r.warnings);
     return dump(j, indent);
 }

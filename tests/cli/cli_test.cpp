@@ -31,8 +31,9 @@ void expect_estimate(const json& j, const std::string& key, bool with_ci) {
     ASSERT_TRUE(j.contains(key)) << "no \"" << key << "\"";
     const json& e = j[key];
     expect_number(e, "value", key);
-    expect_number(e, "stderr", key);
-    EXPECT_GT(e["stderr"].get<double>(), 0.0) << key;
+    expect_number(e, "error", key);
+    EXPECT_GT(e["error"].get<double>(), 0.0) << key;
+    EXPECT_EQ(e.at("kind"), "sampled") << key;
     if (!with_ci) return;
     ASSERT_TRUE(e.contains("ci")) << key;
     ASSERT_TRUE(e["ci"].is_array()) << key;
@@ -42,7 +43,7 @@ void expect_estimate(const json& j, const std::string& key, bool with_ci) {
     const double v = e["value"], lo = e["ci"][0], hi = e["ci"][1];
     EXPECT_LT(lo, v) << key;
     EXPECT_LT(v, hi) << key;
-    const double qse = 1.959963984540054 * e["stderr"].get<double>();
+    const double qse = 1.959963984540054 * e["error"].get<double>();
     if (key == "diffusivity") {
         // D (and brute force D_t): the relative-error interval v / (1 -+ q se / v),
         // positive and longer above (make_relative_interval).
@@ -52,7 +53,7 @@ void expect_estimate(const json& j, const std::string& key, bool with_ci) {
         EXPECT_GT(hi - v, v - lo) << key;
         return;
     }
-    // A symmetric normal interval: half-width = 1.959964 * stderr.
+    // A symmetric normal interval: half-width = 1.959964 * standard error.
     EXPECT_NEAR((hi - lo) / 2, qse, 1e-9 * std::fabs(hi - lo)) << key;
 }
 
@@ -526,8 +527,8 @@ TEST(CliCheckDt, DetectsTheResolventBiasOfWhiteNoiseAtACoarseStep) {
     EXPECT_EQ(c.at("dt").get<double>(), 0.1);
     EXPECT_EQ(c.at("check_dt").get<double>(), 0.2);
     EXPECT_EQ(c.at("excursions").get<std::uint64_t>(), 200000u);
-    const double diff = c.at("diffusivity").at("difference").get<double>();
-    const double se = c.at("diffusivity").at("stderr").get<double>();
+    const double diff = c.at("diffusivity").at("value").get<double>();
+    const double se = c.at("diffusivity").at("error").get<double>();
     EXPECT_LT(diff / se, -3.0) << "D(2 dt) - D(dt) = " << diff << " +- " << se << ", z = " << diff / se;
     bool warned = false;
     for (const auto& w : j.at("warnings")) warned = warned || w.get<std::string>().find("bias is visible") != std::string::npos;

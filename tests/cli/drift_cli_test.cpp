@@ -163,7 +163,7 @@ TEST(CliDrift, JsonGivesTheLawAndTheRunRepeatsFromIt) {
     EXPECT_FALSE(p.contains("relaxation")) << "the affine law's settings are not the run's";
     EXPECT_FALSE(p.contains("bias"));
     EXPECT_EQ((*j)["knots_check"]["check_knots"], 513);
-    EXPECT_TRUE((*j)["knots_check"]["diffusivity"].contains("stderr"));
+    EXPECT_TRUE((*j)["knots_check"]["diffusivity"].contains("error"));
     // --print-config, then --config: the same numbers.
     const Result printed = run(with(args, {"--print-config"}));
     ASSERT_EQ(printed.code, 0) << printed.err;
@@ -189,7 +189,8 @@ TEST(CliDrift, EveryCommandTakesALaw) {
     }
     const auto white = run_json({"analytic", "--drift", "0.2 - v*abs(v)", "--format", "json"});
     ASSERT_TRUE(white);
-    EXPECT_GT((*white)["diffusivity"].get<double>(), 0.0);
+    EXPECT_GT((*white)["diffusivity"]["value"].get<double>(), 0.0);
+    EXPECT_EQ((*white)["diffusivity"]["kind"], "solved"); // a quadrature, its error not estimated
 }
 
 } // namespace

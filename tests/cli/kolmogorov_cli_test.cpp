@@ -27,7 +27,7 @@ using nlohmann::json;
 // A loose precision: one round of grids, well under a second.
 const Args kBase{"diffusivity", "--engine", "kolmogorov", "--rel-precision", "0.01", "--format", "json"};
 
-TEST(CliKolmogorov, DiffusivityJsonHasValueAndErrorNoStderr) {
+TEST(CliKolmogorov, DiffusivityJsonHasValueAndErrorOfKindSolved) {
     const auto j = run_json(kBase);
     ASSERT_TRUE(j);
     EXPECT_EQ((*j)["engine"], "kolmogorov");
@@ -35,13 +35,15 @@ TEST(CliKolmogorov, DiffusivityJsonHasValueAndErrorNoStderr) {
         const json& e = (*j)[key];
         ASSERT_TRUE(e.contains("value") && e.contains("error")) << key;
         EXPECT_FALSE(e.contains("stderr") || e.contains("ci")) << key;
+        EXPECT_EQ(e["kind"], "solved") << key;
         EXPECT_GT(e["error"].get<double>(), 0) << key;
         EXPECT_LT(e["error"].get<double>(), std::abs(e["value"].get<double>())) << key;
     }
     EXPECT_TRUE((*j)["precision"]["reached"].get<bool>());
     EXPECT_LE((*j)["precision"]["relative_error"].get<double>(), 0.01);
-    // No excursion totals, step or seed for a solver.
-    for (const char* key : {"completed", "capped", "engine_details"}) EXPECT_FALSE(j->contains(key)) << key;
+    // No excursion totals, step or seed for a solver; its details name it.
+    for (const char* key : {"completed", "capped", "method", "grid"}) EXPECT_FALSE(j->contains(key)) << key;
+    EXPECT_EQ((*j)["engine_details"]["method"], "kolmogorov");
     EXPECT_FALSE((*j)["params"].contains("dt") || (*j)["params"].contains("seed"));
 }
 
@@ -53,7 +55,8 @@ TEST(CliKolmogorov, EveryTauDownToTheWhiteNoiseLimit) {
         const auto j = run_json(with(with(kBase, {"--tau", tau}), {"--friction", "1", "--noise", "1", "--relaxation",
                                                                     "inf", "--bias", "0"}));
         ASSERT_TRUE(j) << tau;
-        EXPECT_NE((*j)["method"].get<std::string>().find("near-white"), std::string::npos) << (*j)["method"];
+        const json& method = (*j)["engine_details"]["method"];
+        EXPECT_NE(method.get<std::string>().find("near-white"), std::string::npos) << method;
         const double d = (*j)["diffusivity"]["value"], error = (*j)["diffusivity"]["error"];
         EXPECT_GT(d, 1.2) << tau; // between D(tau' = 0.1) = 1.06 and the white 1.25
         EXPECT_LT(d, 1.25) << tau;
@@ -143,7 +146,8 @@ TEST(CliKolmogorov, WeaklyConfinedLawsAreSolvedOnTheRangeTheyNeed) {
     ASSERT_TRUE(bias);
     EXPECT_NEAR((*bias)["mobility"]["value"].get<double>(), 5.85, 0.05) << *bias;
     EXPECT_NEAR((*bias)["diffusivity"]["value"].get<double>(), 4590, 200) << *bias;
-    EXPECT_GT((*bias)["grid"]["v_upper"].get<double>(), 100.0) << (*bias)["grid"];
+    const json& grid = (*bias)["engine_details"]["grid"];
+    EXPECT_GT(grid["v_upper"].get<double>(), 100.0) << grid;
     const auto drift = run_json({"diffusivity", "--engine", "kolmogorov", "--drift", "3.5 - 0.01*v", "--rel-precision",
                                  "0.01", "--format", "json"});
     ASSERT_TRUE(drift);
@@ -226,7 +230,7 @@ TEST(CliKolmogorov, SweepPointsAreTheSolversDiffusivities) {
     const auto j = run_json({"sweep", "--engine", "kolmogorov", "--noise", "2,4,8", "--tau", "0.5",
                              "--rel-precision", "0.01", "--format", "json"});
     ASSERT_TRUE(j);
-    EXPECT_EQ((*j)["method"], "kolmogorov");
+    EXPECT_EQ((*j)["engine_details"]["method"], "kolmogorov");
     const json& points = (*j)["points"];
     ASSERT_EQ(points.size(), 3u);
     const char* noises[] = {"2", "4", "8"};

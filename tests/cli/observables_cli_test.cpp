@@ -29,15 +29,21 @@ Args cmd(std::initializer_list<std::string> head, const Args& tail = {}) {
 TEST(CliAnalytic, ContractWithTimes) {
     const auto j = run_json(cmd({"analytic", "--v0", "1", "--times", "0.05,0.125,0.25,0.5,1,2.5", "--format", "json"}, kDry));
     ASSERT_TRUE(j);
-    for (const char* k : {"mobility", "diffusivity", "variance"}) ASSERT_TRUE((*j)[k].is_number()) << k;
-    EXPECT_NEAR((*j)["diffusivity"].get<double>(), 1.25, 1e-10);
-    EXPECT_NEAR((*j)["variance"].get<double>(), 0.5, 1e-10);
-    EXPECT_NEAR((*j)["mobility"].get<double>(), 0.0, 1e-12);
+    // Closed forms: estimates of kind "exact" at the paths every engine uses.
+    for (const char* k : {"mobility", "diffusivity", "variance"}) {
+        ASSERT_TRUE((*j)[k]["value"].is_number()) << k;
+        EXPECT_EQ((*j)[k]["error"], 0.0) << k;
+        EXPECT_EQ((*j)[k]["kind"], "exact") << k;
+    }
+    EXPECT_NEAR((*j)["diffusivity"]["value"].get<double>(), 1.25, 1e-10);
+    EXPECT_NEAR((*j)["variance"]["value"].get<double>(), 0.5, 1e-10);
+    EXPECT_NEAR((*j)["mobility"]["value"].get<double>(), 0.0, 1e-12);
     const double table_i[] = {0.950000, 0.875248, 0.757249, 0.567963, 0.336204, 0.090194};
     ASSERT_EQ((*j)["first_moment"].size(), 6u);
     ASSERT_EQ((*j)["autocorrelation"].size(), 6u);
-    for (int k = 0; k < 6; ++k) EXPECT_NEAR((*j)["first_moment"][k].get<double>(), table_i[k], 1e-6);
-    EXPECT_NEAR((*j)["autocorrelation"][3].get<double>(), 0.3179579, 1e-6);
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR((*j)["first_moment"][k]["value"].get<double>(), table_i[k], 1e-6);
+    EXPECT_NEAR((*j)["autocorrelation"][3]["value"].get<double>(), 0.3179579, 1e-6);
+    EXPECT_EQ((*j)["autocorrelation"][3]["lag"].get<double>(), 0.5);
 }
 
 TEST(CliAnalytic, StationaryOnlyWithoutTimesAndPhysicalUnits) {
@@ -45,13 +51,15 @@ TEST(CliAnalytic, StationaryOnlyWithoutTimesAndPhysicalUnits) {
     const auto j = run_json({"analytic", "--friction", "2", "--noise", "3", "--relaxation", "inf", "--bias", "0",
                              "--format", "json"});
     ASSERT_TRUE(j);
-    EXPECT_NEAR((*j)["diffusivity"].get<double>(), 1.25 * 27 / 16, 1e-9);
+    EXPECT_NEAR((*j)["diffusivity"]["value"].get<double>(), 1.25 * 27 / 16, 1e-9);
+    EXPECT_EQ((*j)["diffusivity"]["kind"], "exact");
     EXPECT_FALSE(j->contains("first_moment"));
     // The paper's b: Fokker-Planck for the transient part; first moment starts at v0.
     const auto b = run_json({"analytic", "--v0", "0.2", "--times", "0,0.1", "--format", "json"});
     ASSERT_TRUE(b);
-    EXPECT_NEAR((*b)["first_moment"][0].get<double>(), 0.2, 1e-12);
-    EXPECT_NE((*b)["method"].get<std::string>().find("fokker-planck"), std::string::npos);
+    EXPECT_NEAR((*b)["first_moment"][0]["value"].get<double>(), 0.2, 1e-12);
+    EXPECT_EQ((*b)["first_moment"][0]["time"].get<double>(), 0.0);
+    EXPECT_NE((*b)["engine_details"]["method"].get<std::string>().find("fokker-planck"), std::string::npos);
 }
 
 TEST(CliMoments, ContractFirstMomentRows) {
@@ -63,8 +71,8 @@ TEST(CliMoments, ContractFirstMomentRows) {
     for (const auto& row : (*j)["first_moment"]) {
         ASSERT_TRUE(row["time"].is_number());
         ASSERT_TRUE(row["value"].is_number());
-        ASSERT_TRUE(row["stderr"].is_number());
-        EXPECT_GT(row["stderr"].get<double>(), 0.0);
+        ASSERT_TRUE(row["error"].is_number());
+        EXPECT_GT(row["error"].get<double>(), 0.0);
     }
     EXPECT_DOUBLE_EQ((*j)["first_moment"][0]["time"].get<double>(), 0.5);
     EXPECT_NEAR((*j)["first_moment"][0]["value"].get<double>(), 0.568, 0.1);
@@ -78,7 +86,7 @@ TEST(CliMoments, DensityHistogramsPerTime) {
     ASSERT_TRUE(j);
     ASSERT_EQ((*j)["density"].size(), 1u);
     EXPECT_EQ((*j)["density"][0]["bins"].size(), 10u);
-    EXPECT_TRUE((*j)["density"][0]["stuck"]["value"].is_number());
+    EXPECT_TRUE((*j)["density"][0]["stuck_probability"]["value"].is_number());
 }
 
 // --- every subcommand: json runs, csv has a header and rows, table is default -------

@@ -38,7 +38,7 @@ step("install into ${prefix}"
      ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --config ${CONFIG})
 # GNUInstallDirs may choose lib, lib64 or a multiarch libdir: search for the config.
 file(GLOB_RECURSE config_file ${prefix}/stickslipConfig.cmake)
-foreach(f include/stickslip/diffusivity.hpp bin/stickslip share/doc/stickslip/LICENSE)
+foreach(f include/stickslip/diffusivity.hpp bin/stickslip share/doc/stickslip/LICENSE share/stickslip/report.schema.json)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "installed tree lacks ${f}")
   endif()
