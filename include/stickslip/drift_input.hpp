@@ -21,6 +21,7 @@
 /// top of this header explains the design.
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,19 @@ struct DriftLawReport {
 /// has duplicates, NaN or fewer than two rows, and a law that does not confine
 /// the velocity (no stationary state). `report`, when given, says how the law
 /// was made.
+///
+/// Made once per inputs: the laws of the last few distinct inputs are kept
+/// (thread-safe), so the many parts of one run that need the law (the
+/// engine's constants, the thresholds, the step choices, the quadrature, the
+/// chain, the corrector) share the one made first, bit for bit the same as a
+/// new one. A callable law (drift_function) and a table path whose rows are
+/// not read yet (read_drift_inputs) are made anew at each call.
 DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report = nullptr);
+
+/// How many non-affine laws make_drift_law has made in this process (not
+/// counting those it served again): what the test that a run makes its law
+/// once reads.
+std::uint64_t drift_laws_made();
 
 /// The named constants of a drift expression (every name but v that it uses,
 /// sorted), e.g. {"a", "c"} for "a*v - c*v^3". Throws InvalidParameter("drift",

@@ -3,6 +3,9 @@
 #include "stickslip/drift_input.hpp"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -10,7 +13,10 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <deque>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <muParser.h>
@@ -280,7 +286,10 @@ void read_drift_inputs(ModelParams& p) {
     read_drift_table(p.drift_table, p.drift_table_v, p.drift_table_b, &p.drift_table_digest);
 }
 
-DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report) {
+namespace {
+
+/// Makes the law of p (make_drift_law's work, without the memo).
+DriftLaw build_drift_law(const ModelParams& p, DriftLawReport* report) {
     if (!p.has_drift_law()) {
         if (report) {
             *report = DriftLawReport{};
@@ -371,6 +380,77 @@ DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report) {
     }
     return law;
 }
+
+/// Everything of ModelParams that the made law can depend on, doubles by
+/// their bits: equal inputs make the same law, bit for bit.
+struct DriftLawInputs {
+    std::array<std::uint64_t, 5> numbers{}; ///< friction, noise, tau, relaxation, bias
+    int knots = 0;
+    std::string drift, drift_params, drift_table;
+    std::vector<double> table_v, table_b;
+    bool operator==(const DriftLawInputs&) const = default;
+};
+
+/// The inputs of p, or nothing where they do not say the law: a callable
+/// (whose behaviour its value does not show) and a table not yet read (whose
+/// file may change).
+std::optional<DriftLawInputs> drift_law_inputs(const ModelParams& p) {
+    if (p.drift_function || (!p.drift_table.empty() && p.drift_table_v.empty())) return std::nullopt;
+    DriftLawInputs in;
+    in.numbers = {std::bit_cast<std::uint64_t>(p.friction), std::bit_cast<std::uint64_t>(p.noise),
+                  std::bit_cast<std::uint64_t>(p.tau), std::bit_cast<std::uint64_t>(p.relaxation),
+                  std::bit_cast<std::uint64_t>(p.bias)};
+    in.knots = p.knots;
+    in.drift = p.drift;
+    in.drift_params = p.drift_params;
+    in.drift_table = p.drift_table;
+    in.table_v = p.drift_table_v;
+    in.table_b = p.drift_table_b;
+    return in;
+}
+
+/// The laws made most recently, newest last: the engines' constants, the
+/// thresholds, the step choices, the quadrature, the chain and the corrector
+/// of one run all ask for the law of the same inputs, and get the one made
+/// first instead of a new one each (a run used to make it 32 times).
+struct MadeLaw {
+    DriftLawInputs inputs;
+    DriftLaw law;
+    DriftLawReport report;
+};
+constexpr std::size_t made_laws_kept = 8; // a sweep's point, its neighbours, a --check-knots pair
+std::mutex made_laws_mutex;
+std::deque<std::shared_ptr<const MadeLaw>> made_laws;
+std::atomic<std::uint64_t> drift_laws_built{0};
+
+} // namespace
+
+DriftLaw make_drift_law(const ModelParams& p, DriftLawReport* report) {
+    if (!p.has_drift_law()) return build_drift_law(p, report); // the affine law: nothing to make
+    std::optional<DriftLawInputs> inputs = drift_law_inputs(p);
+    if (inputs) {
+        std::lock_guard lock(made_laws_mutex);
+        for (auto it = made_laws.rbegin(); it != made_laws.rend(); ++it)
+            if ((*it)->inputs == *inputs) {
+                if (report) *report = (*it)->report;
+                return (*it)->law;
+            }
+    }
+    // Made outside the lock (a callable may take long); a refusal is not kept.
+    auto made = std::make_shared<MadeLaw>();
+    made->law = build_drift_law(p, &made->report);
+    drift_laws_built.fetch_add(1, std::memory_order_relaxed);
+    if (report) *report = made->report;
+    if (inputs) {
+        made->inputs = std::move(*inputs);
+        std::lock_guard lock(made_laws_mutex);
+        made_laws.push_back(made);
+        if (made_laws.size() > made_laws_kept) made_laws.pop_front();
+    }
+    return made->law;
+}
+
+std::uint64_t drift_laws_made() { return drift_laws_built.load(std::memory_order_relaxed); }
 
 std::vector<std::string> drift_expression_constants(const std::string& text) {
     mu::Parser parser;

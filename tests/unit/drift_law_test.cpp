@@ -323,3 +323,79 @@ TEST(DriftLawQuadrature, KnotRefinementConvergesAtSecondOrder) {
         }
     }
 }
+
+// ---- the law made once per run ---------------------------------------------------
+
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace {
+
+/// A law no other test makes (its constant unique to this file), so that the
+/// count of laws made is this run's alone.
+ss::ModelParams law_of_its_own(const char* constant) {
+    ss::ModelParams p;
+    p.drift = "-v/0.067 + c";
+    p.drift_params = std::string("c=") + constant;
+    return p;
+}
+
+} // namespace
+
+// Issue 44, item 3: one event-scheme run made its law 32 times (constants,
+// thresholds, step choice, corrector, chain); now the run makes it once and
+// every part gets those bits.
+TEST(DriftLaw, ARunMakesItsLawOnce) {
+    ss::DiffusivityRequest req;
+    req.params = law_of_its_own("0.3420001");
+    req.engine.scheme = ss::Scheme::Event;
+    req.excursions = 64;
+    req.control.threads = 2;
+    const std::uint64_t before = ss::drift_laws_made();
+    const ss::DiffusivityResult r = ss::compute_diffusivity(req);
+    EXPECT_EQ(ss::drift_laws_made() - before, 1u) << "laws made by one event-scheme run with its corrector";
+    EXPECT_TRUE(r.control_variate.has_value()) << "the corrector (which needs the law too) ran";
+    // Served again, the law is the same bits as one made anew.
+    ss::ModelParams same = req.params;
+    const ss::DriftLaw served = ss::make_drift_law(same);
+    EXPECT_EQ(ss::drift_laws_made() - before, 1u);
+    same.knots = 1023; // other inputs: another law, made
+    (void)ss::make_drift_law(same);
+    EXPECT_EQ(ss::drift_laws_made() - before, 2u);
+    same.knots = req.params.knots;
+    ss::ModelParams anew = same;
+    anew.drift_params = "c=0.34200010"; // the same law under other inputs: made anew
+    const ss::DriftLaw made = ss::make_drift_law(anew);
+    EXPECT_EQ(ss::drift_laws_made() - before, 3u);
+    ASSERT_EQ(served.knots, made.knots);
+    EXPECT_EQ(std::memcmp(&served.first, &made.first, sizeof made.first), 0);
+    EXPECT_EQ(std::memcmp(&served.spacing, &made.spacing, sizeof made.spacing), 0);
+    EXPECT_EQ(std::memcmp(served.values, made.values, sizeof made.values), 0);
+}
+
+TEST(DriftLaw, ASweepMakesOneLawPerPoint) {
+    ss::SweepRequest req;
+    req.params = law_of_its_own("0.3420002");
+    req.noises = {4.0, 5.0, 6.0};
+    req.taus = {0.5};
+    req.engine.scheme = ss::Scheme::Resolvent;
+    req.engine.dt = 4e-3;
+    req.engine.dt_auto = false;
+    req.excursions = 32;
+    req.control.threads = 2;
+    const std::uint64_t before = ss::drift_laws_made();
+    (void)ss::compute_sweep(req);
+    // The law's knots span the velocities each noise (and tau) reaches: one
+    // law per point, and one per noise for its white-noise reference D_white
+    // (tau = 0: white_ratio), 3 + 3.
+    EXPECT_EQ(ss::drift_laws_made() - before, 6u);
+}
+
+TEST(DriftLaw, ACallableIsMadeAnewEachTime) {
+    ss::ModelParams p;
+    p.drift_function = [](double v) { return -v / 0.067 + 0.342; };
+    const std::uint64_t before = ss::drift_laws_made();
+    (void)ss::make_drift_law(p);
+    (void)ss::make_drift_law(p);
+    EXPECT_EQ(ss::drift_laws_made() - before, 2u) << "a callable's value does not show its behaviour: not kept";
+}
