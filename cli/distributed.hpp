@@ -8,7 +8,7 @@
 // process prints or writes.
 #pragma once
 
-#include "stickslip/runner.hpp"
+#include "stickslip/run_control.hpp"
 
 namespace stickslip::cli {
 

@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "stickslip/runner.hpp"
+#include "stickslip/run_control.hpp"
 
 namespace stickslip::cli {
 

@@ -3,7 +3,7 @@
 // run can be resumed and its result is the uninterrupted run's, bit for bit.
 //
 // Why it can be exact: every run is a fixed sequence of calls of the block
-// driver (runner.hpp) -- one for a plain run, one per batch of a
+// driver (sample_runs.hpp) -- one for a plain run, one per batch of a
 // precision-on-demand run, one per point of a sweep, a pilot and a main run
 // for a density -- and each call's statistics are exact, order-free sums
 // (moment_sums.hpp) of blocks of 64 samples. The driver completes blocks in

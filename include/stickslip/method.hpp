@@ -23,7 +23,7 @@
 #include <variant>
 
 #include "stickslip/run.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/stats/run_totals.hpp"
 
 namespace stickslip {
 

@@ -47,7 +47,6 @@
 #include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/run.hpp"
-#include "stickslip/runner.hpp"
 
 namespace stickslip {
 

@@ -25,7 +25,7 @@
 
 #include "stickslip/engine.hpp"
 #include "stickslip/params.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/run_control.hpp"
 #include "stickslip/setting.hpp"
 
 namespace stickslip {
@@ -41,7 +41,7 @@ struct RunSettings {
     /// The engine and its numerical settings.
     EngineSettings engine;
     /// Seed and threads (settings), and the caller's callbacks, flags and
-    /// process split (runner.hpp).
+    /// process split (run_control.hpp).
     RunControl control;
     double level = 0.95; ///< confidence level of the intervals, in (0, 1)
     /// What asked for the run, as the reports' provenance gives it: the

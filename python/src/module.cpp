@@ -17,7 +17,7 @@
 #include "stickslip/drift_input.hpp"
 #include "stickslip/config.hpp"
 #include "stickslip/diffusivity.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/sample_runs.hpp"
 
 namespace stickslip::python {
 

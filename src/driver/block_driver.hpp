@@ -38,7 +38,9 @@
 #include "stickslip/stats/moment_sums.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/random/rng.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/run_control.hpp"
+#include "stickslip/stats/run_totals.hpp"
+#include "stickslip/excursion.hpp"
 #include "stickslip/threads.hpp"
 
 namespace stickslip::detail {

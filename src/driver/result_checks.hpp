@@ -10,6 +10,7 @@
 #include "driver/step_check.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
+#include "stickslip/stats/run_totals.hpp"
 
 namespace stickslip::detail {
 

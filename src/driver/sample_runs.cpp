@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "stickslip/runner.hpp"
+#include "stickslip/sample_runs.hpp"
 
 #include <cmath>
 #include <concepts>

@@ -9,6 +9,7 @@
 
 #include "core/format.hpp"
 #include "stickslip/drift_law_quadrature.hpp"
+#include "stickslip/stats/run_totals.hpp"
 #include "stickslip/threads.hpp"
 #include "engines/event/event_steps.hpp"
 #include "engines/resolvent/resolvent_steps.hpp"

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/prepared_engine.hpp"
+#include "stickslip/sample_runs.hpp"
 
 #include <cmath>
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/prepared_engine.hpp"
+#include "stickslip/sample_runs.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -13,6 +13,7 @@
 
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
+#include "stickslip/stats/run_totals.hpp"
 #include "stickslip/setting.hpp"
 
 namespace stickslip::detail {

@@ -21,7 +21,7 @@
 #include "stickslip/random/rng_batch.hpp"
 #include "stickslip/run.hpp"
 #include "stickslip/prepared_engine.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/sample_runs.hpp"
 
 namespace ss = stickslip;
 

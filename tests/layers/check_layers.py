@@ -27,8 +27,7 @@ RANK = {"core": 0, "model": 1, "random": 2, "stats": 2, "engines": 3, "driver": 
 KNOWN = {
     ("src/engines/cuda/gpu_check.cpp", "stickslip/prepared_engine.hpp"),
     ("src/engines/cuda/gpu_check.cpp", "stickslip/run.hpp"),
-    ("src/engines/cuda/gpu_check.cpp", "stickslip/runner.hpp"),
-    ("src/engines/cuda/host_merge.hpp", "stickslip/runner.hpp"),
+    ("src/engines/cuda/gpu_check.cpp", "stickslip/sample_runs.hpp"),
     ("src/driver/step_check.cpp", "stickslip/drift_law_quadrature.hpp"),
 }
 
@@ -97,7 +96,41 @@ def check(root):
             problems.append(f"{rel} ({own}) includes {inc} ({other}): up a layer")
     for rel, inc in sorted(KNOWN - seen_known):
         problems.append(f"{rel} no longer includes {inc} up a layer: drop it from KNOWN in {__file__}")
+    problems += kernels_behind_the_api(root, places)
     return files, problems
+
+
+def kernels_behind_the_api(root, places):
+    """The API's headers (the quantities row) must not pull in a kernel
+    (kernels/), directly or through other headers: a user who includes
+    diffusivity.hpp compiles no step of an engine."""
+    def includes(rel):
+        path = os.path.join(root, "include", rel)
+        if not os.path.exists(path):
+            return []
+        text = open(path, encoding="utf-8").read()
+        return [i for i in re.findall(r'^\s*#\s*include\s+"([^"]+)"', text, re.M) if i.startswith("stickslip/")]
+    problems = []
+    for name, layer in sorted(places.items()):
+        if layer != "quantities" or name.endswith("/"):
+            continue
+        start = "stickslip/" + name
+        seen, todo, via = {start}, [start], {start: None}
+        while todo:
+            here = todo.pop()
+            for inc in includes(here):
+                if inc not in seen:
+                    seen.add(inc)
+                    via[inc] = here
+                    todo.append(inc)
+        for inc in sorted(seen):
+            if inc.startswith("stickslip/kernels/"):
+                chain, at = [], inc
+                while at is not None:
+                    chain.append(at)
+                    at = via[at]
+                problems.append(f"include/{start} pulls in a kernel: {' <- '.join(chain)}")
+    return problems
 
 
 def self_test():
@@ -106,19 +139,23 @@ def self_test():
         def write(rel, text):
             os.makedirs(os.path.dirname(os.path.join(root, rel)), exist_ok=True)
             open(os.path.join(root, rel), "w", encoding="utf-8").write(text)
-        write("ARCHITECTURE.md", "| layer | `include/stickslip/` |\n|---|---|\n| engines | `engine.hpp` |\n"
-                                 "| driver (a run) | `run.hpp` |\n")
+        write("ARCHITECTURE.md", "| layer | `include/stickslip/` |\n|---|---|\n| engines | `engine.hpp`, `kernels/` |\n"
+                                 "| driver (a run) | `run.hpp` |\n| quantities (the API) | `api.hpp` |\n")
+        write("include/stickslip/kernels/step.hpp", "#pragma once\n")
+        write("include/stickslip/api.hpp", '#include "stickslip/run.hpp"\n')
         write("include/stickslip/engine.hpp", "#pragma once\n")
-        write("include/stickslip/run.hpp", '#include "stickslip/engine.hpp"\n')
+        write("include/stickslip/run.hpp", '#include "stickslip/engine.hpp"\n#include "stickslip/kernels/step.hpp"\n')
         write("include/stickslip/stray.hpp", "#pragma once\n")
         write("src/engines/adapter.hpp", '#include "stickslip/run.hpp"\n')
         _, problems = check(root)
     wanted = ["src/engines/adapter.hpp (engines) includes stickslip/run.hpp (driver): up a layer",
-              "include/stickslip/stray.hpp: a public header that ARCHITECTURE.md's layer table does not place"]
+              "include/stickslip/stray.hpp: a public header that ARCHITECTURE.md's layer table does not place",
+              "include/stickslip/api.hpp pulls in a kernel: stickslip/kernels/step.hpp <- stickslip/run.hpp "
+              "<- stickslip/api.hpp"]
     missing = [w for w in wanted if w not in problems]
     for w in missing:
         print("check_layers --self-test: not caught:", w)
-    print("check_layers --self-test:", "failed" if missing else "the check catches both")
+    print("check_layers --self-test:", "failed" if missing else "the check catches all three")
     return 1 if missing else 0
 
 

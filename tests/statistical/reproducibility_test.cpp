@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "stickslip/runner.hpp"
+#include "stickslip/sample_runs.hpp"
 #include "support.hpp"
 
 namespace {

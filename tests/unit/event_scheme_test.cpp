@@ -14,7 +14,7 @@
 #include "stickslip/drift_input.hpp"
 #include "stickslip/kernels/event_scheme.hpp"
 #include "stickslip/random/rng_batch.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/sample_runs.hpp"
 #include "model_cases.hpp"
 
 namespace ss = stickslip;

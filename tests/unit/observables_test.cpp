@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "stickslip/observables.hpp"
+#include "stickslip/sample_runs.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace ss = stickslip;

@@ -2,7 +2,7 @@
 // stickslip/stats/moment_sums.hpp -- the statistics of a run as exact, order-free
 // sums.
 //
-// Why: a run is cut into blocks of 64 samples (runner.hpp). Each block's
+// Why: a run is cut into blocks of 64 samples (sample_runs.hpp, stats/run_totals.hpp). Each block's
 // statistics are computed by one thread in a fixed order, so they are the
 // same bits whoever computes them; merging blocks with floating-point
 // arithmetic, though, depends on the order of the merges, and results used to

@@ -10,7 +10,7 @@
 
 #include "stickslip/excursion.hpp"
 #include "stickslip/stats/moment_sums.hpp"
-#include "stickslip/runner.hpp"
+#include "stickslip/stats/run_totals.hpp"
 
 namespace stickslip::cuda {
 

@@ -1,35 +1,25 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// stickslip/runner.hpp -- parallel, reproducible Monte Carlo runs.
-//
-// Sample k (a long excursion or a brute-force trajectory) draws only from the
-// stream (seed, purpose, k). Samples are grouped in fixed blocks of
-// `block_size` consecutive indices (independent of the thread count); each
-// block's moments are computed by one thread in index order, then added into
-// exact, order-free sums (moment_sums.hpp) as soon as the block is done. Hence
+// stickslip/run_control.hpp -- how a Monte Carlo run is carried out, as
+// opposed to what it computes: seed, threads, sample indices, the caller's
+// callbacks and flags (progress, notes, cancel, graceful stop), checkpoints
+// and the process split. Only the seed and the first index change a result's
+// bits: sample k draws only from the stream (seed, purpose, k), and blocks of
+// samples are merged into exact, order-free sums (stats/run_totals.hpp), so
 // every result is bitwise identical for any thread count, any split of the
-// blocks across processes (reduced in any order) and any interruption and
-// resumption of a run.
+// blocks across processes and any interruption and resumption of a run.
 #pragma once
 
 /// \file
-/// Parallel, reproducible Monte Carlo runs: the run control and the block
-/// driver's entry points. The comment at the top of this header explains the
-/// design.
+/// The run control of a Monte Carlo run. The comment at the top of this
+/// header explains the design.
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "stickslip/errors.hpp"
 #include "stickslip/stats/estimators.hpp"
-#include "stickslip/excursion.hpp"
-#include "stickslip/kernels/corrector.hpp"
-#include "stickslip/stats/control_variate.hpp"
-#include "stickslip/stats/moment_sums.hpp"
-#include "stickslip/params.hpp"
 
 namespace stickslip {
 
@@ -46,7 +36,7 @@ struct Progress {
 /// How a run is carried out, as opposed to what it computes: seed, threads,
 /// the sample indices, the caller's callbacks and flags, checkpoints and the
 /// process split. None of it but the seed and first_index changes a result's
-/// bits (runner.hpp, top).
+/// bits (this header, top).
 struct RunControl {
     unsigned threads = 0;          ///< 0: the CPUs this process may use (default_threads(), threads.hpp)
     std::uint64_t seed = 1;        ///< user seed (the Philox key)
@@ -107,70 +97,7 @@ struct RunControl {
     /// @}
 };
 
-/// Samples per block: the unit of work and of deterministic merging.
-inline constexpr std::uint64_t block_size = 64;
-
-/// Raw outcome of a run: the exact sums of (U, t) over completed samples and
-/// the centred moments computed from them.
-struct RunTotals {
-    /// Exact sums of (U, t) (x = displacement U [m], y = duration t [s]) over
-    /// the completed samples, capped ones excluded.
-    ExactBivariateSums sums;
-    BivariateMoments moments; ///< sums.moments()
-    /// Samples asked for (completed, capped and, if interrupted, not run).
-    std::uint64_t requested = 0;
-    std::uint64_t capped = 0; ///< samples dropped by the runaway guard
-    std::uint64_t work = 0;   ///< steps or events, all samples
-    /// Wall time of the run [s]; a resumed run counts only this invocation.
-    double seconds = 0.0;
-    /// Worker threads used: RunControl::threads (0: default_threads()), at
-    /// most one per block of this process.
-    unsigned threads = 1;
-    /// How `threads` was chosen: ThreadChoice::from ("option" for
-    /// RunControl::threads > 0, else "hardware", "affinity", "cpu-quota",
-    /// "slurm", each possibly with "+local-ranks"), with "+blocks" when this
-    /// process had fewer blocks than that.
-    std::string threads_from;
-    bool interrupted = false; ///< stopped early (RunControl::stop): the sums are of a prefix of whole blocks
-    std::uint64_t resumed = 0; ///< samples restored from a checkpoint rather than computed
-    /// Long excursions run with a corrector (run_long_excursions' g): the
-    /// exact sums of (U, t, M, M^2 - Q) over the completed excursions (empty
-    /// otherwise).
-    ControlVariateSums control_variate;
-};
-
-struct PreparedEngine; // prepared_engine.hpp
-
 /// Throws InvalidParameter for a thread count above 4096.
 void check_run_control(const RunControl& ctl);
-
-/// N long excursions of a prepared engine (run.hpp), which is trusted.
-RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl);
-/// The same with the martingale of the corrector g accumulated in every
-/// excursion (kernels/corrector.hpp) into RunTotals::control_variate; U and t,
-/// and so `sums`, are bitwise those of the plain run. The engine must have a
-/// martingale kernel (engine_has_martingale), else std::logic_error.
-RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
-                              const CorrectorTable& g);
-/// Whether the prepared engine's kernels accumulate a martingale: the PDMP,
-/// the inclusion engine's resolvent scheme, and its event scheme with
-/// coloured noise; otherwise *why (if given) says why not, for a note.
-bool engine_has_martingale(const PreparedEngine& e, std::string* why = nullptr);
-/// The same, preparing (and so validating) the engine first.
-RunTotals run_long_excursions(const ModelParams& p, const EngineSettings& s, std::uint64_t excursions,
-                              const RunControl& ctl);
-
-/// N brute-force trajectories on [0, horizon] from noise x0 [s^-1/2] and
-/// velocity v0 [m/s], of a prepared engine. Moments are of (U(horizon), horizon).
-RunTotals run_bruteforce(const PreparedEngine& e, double horizon, double x0, double v0, std::uint64_t trajectories,
-                         const RunControl& ctl);
-/// The same, preparing (and so validating) the engine and the start first.
-RunTotals run_bruteforce(const ModelParams& p, const EngineSettings& s, double horizon, double x0,
-                         double v0, std::uint64_t trajectories, const RunControl& ctl);
-
-/// Generic driver used by both: calls sample(index) for every index in
-/// [first_index, first_index + n) in parallel; blocks are merged exactly.
-RunTotals run_samples(std::uint64_t n, const RunControl& ctl,
-                      const std::function<ExcursionOutcome(std::uint64_t)>& sample);
 
 } // namespace stickslip

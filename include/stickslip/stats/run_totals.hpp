@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// stickslip/stats/run_totals.hpp -- the raw outcome of a Monte Carlo run.
+//
+// Samples are grouped in fixed blocks of `block_size` consecutive indices
+// (independent of the thread count); each block's moments are computed by one
+// thread in index order, then added into exact, order-free sums
+// (moment_sums.hpp, control_variate.hpp) as soon as the block is done: the
+// totals of a run are the same bits for any thread count, process split,
+// reduction order and resume point.
+#pragma once
+
+/// \file
+/// A run's totals: its exact sums and counts. The comment at the top of this
+/// header explains the design.
+
+#include <cstdint>
+#include <string>
+
+#include "stickslip/stats/control_variate.hpp"
+#include "stickslip/stats/estimators.hpp"
+#include "stickslip/stats/moment_sums.hpp"
+
+namespace stickslip {
+
+/// Samples per block: the unit of work and of deterministic merging.
+inline constexpr std::uint64_t block_size = 64;
+
+/// Raw outcome of a run: the exact sums of (U, t) over completed samples and
+/// the centred moments computed from them.
+struct RunTotals {
+    /// Exact sums of (U, t) (x = displacement U [m], y = duration t [s]) over
+    /// the completed samples, capped ones excluded.
+    ExactBivariateSums sums;
+    BivariateMoments moments; ///< sums.moments()
+    /// Samples asked for (completed, capped and, if interrupted, not run).
+    std::uint64_t requested = 0;
+    std::uint64_t capped = 0; ///< samples dropped by the runaway guard
+    std::uint64_t work = 0;   ///< steps or events, all samples
+    /// Wall time of the run [s]; a resumed run counts only this invocation.
+    double seconds = 0.0;
+    /// Worker threads used: RunControl::threads (0: default_threads()), at
+    /// most one per block of this process.
+    unsigned threads = 1;
+    /// How `threads` was chosen: ThreadChoice::from ("option" for
+    /// RunControl::threads > 0, else "hardware", "affinity", "cpu-quota",
+    /// "slurm", each possibly with "+local-ranks"), with "+blocks" when this
+    /// process had fewer blocks than that.
+    std::string threads_from;
+    bool interrupted = false; ///< stopped early (RunControl::stop): the sums are of a prefix of whole blocks
+    std::uint64_t resumed = 0; ///< samples restored from a checkpoint rather than computed
+    /// Long excursions run with a corrector (run_long_excursions' g): the
+    /// exact sums of (U, t, M, M^2 - Q) over the completed excursions (empty
+    /// otherwise).
+    ControlVariateSums control_variate;
+};
+
+} // namespace stickslip
