@@ -54,6 +54,13 @@ struct PreparedEngine {
     /// trustworthy D): every report of a run on this engine carries them.
     std::vector<std::string> notes;
 
+    /// Frees `storage` and clears the constants' pointers into it: the
+    /// engine keeps what its preparation found (settings, resolved choices,
+    /// notes) but can no longer run. For keeping the checks of many prepared
+    /// points without their laws (a sweep's preparation). Returns whether
+    /// there was storage to free.
+    bool release_storage();
+
     /// The constants of engine C, or nullptr when another engine runs.
     template <class C>
     const C* constants_of() const {

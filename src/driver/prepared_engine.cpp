@@ -58,6 +58,7 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given,
         r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
         r.jump_rate = c.rate;
     } else if (s.scheme == Scheme::Event) {
+        // The pieces' laws live in `storage` (release_storage clears the pointer).
         std::shared_ptr<const std::vector<EventDriftPiece>> pieces;
         const EventConstants c = make_event_constants(p, s, &pieces, stop);
         e.constants = c;
@@ -92,6 +93,14 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given,
 }
 
 ResolvedEngine resolve_engine(const ModelParams& p, const EngineSettings& s) { return prepare_engine(p, s).resolved; }
+
+bool PreparedEngine::release_storage() {
+    if (!storage) return false;
+    // Only the event scheme's constants point into storage (prepare_engine).
+    if (auto* c = std::get_if<EventConstants>(&constants)) c->pieces = nullptr;
+    storage.reset();
+    return true;
+}
 
 PreparedEngine prepare(const RunSettings& r) {
     PreparedEngine e = prepare_engine(r.params, r.engine, r.control.stop);

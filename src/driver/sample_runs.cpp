@@ -49,12 +49,15 @@ concept HasMartingale = requires(const Engine& e, ExcursionOutcome* out, const C
 } // namespace
 
 bool engine_has_martingale(const PreparedEngine& e, std::string* why) {
-    if (const auto* c = e.constants_of<EventConstants>(); c && c->white) {
-        if (why) *why = "the event scheme has no martingale for white noise (use --scheme resolvent)";
-        return false;
-    }
     return detail::visit_engine(e, [&](const auto& engine) {
         if constexpr (HasMartingale<std::decay_t<decltype(engine)>>) {
+            // An adapter may lack it for some constants (no_martingale says why).
+            if constexpr (requires { engine.no_martingale(); }) {
+                if (const char* reason = engine.no_martingale()) {
+                    if (why) *why = reason;
+                    return false;
+                }
+            }
             return true;
         } else {
             if (why) *why = "this engine has no martingale kernel";

@@ -140,11 +140,7 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
                         validate(point);
                     } else {
                         PreparedEngine& e = out.engines.emplace_back(prepare(point));
-                        out.again.push_back(e.storage != nullptr);
-                        if (e.storage) { // keep the checks' outcome, not the laws
-                            std::get<EventConstants>(e.constants).pieces = nullptr;
-                            e.storage.reset();
-                        }
+                        out.again.push_back(e.release_storage()); // keep the checks' outcome, not the laws
                     }
                     if (point.params.has_drift_law()) make_drift_law(point.params, &out.laws.emplace_back());
                 } catch (const InvalidParameter& e) {

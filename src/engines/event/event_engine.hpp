@@ -46,6 +46,12 @@ public:
         return event_long_excursions(c_, seed, first, count, out, cancel);
     }
 
+    /// Why these constants have no martingale kernel, or nullptr when they
+    /// have one (white noise's velocity levels have none).
+    const char* no_martingale() const {
+        return c_.white ? "the event scheme has no martingale for white noise (use --scheme resolvent)" : nullptr;
+    }
+
     /// long_excursions with the martingale of the corrector g in each outcome
     /// (kernels/corrector.hpp).
     bool long_excursions_with(std::uint64_t seed, std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
