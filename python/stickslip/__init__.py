@@ -50,7 +50,7 @@ Every result says what produced it: ``result.meta`` is {"command": the call,
 "revision"}, also in its JSON, its CSV's '#' comment lines and the .npz files
 of ``result.save("run.npz")`` (or .json, .csv, .txt; written atomically).
 ``result.to_dataframe()`` (with pandas) and ``result.to_columns()`` give it as
-a table, one row per point or bin, NAME_stderr, NAME_lo and NAME_hi beside
+a table, one row per point or bin, NAME_error, NAME_lo and NAME_hi beside
 each estimate NAME. Its notes (``result.warnings``) are raised as
 ``StickslipWarning``, naming the keywords rather than the CLI's flags.
 Results (and Params, the requests) pickle, bit for bit, for

@@ -5,8 +5,9 @@ and save(), added to every result class by the package.
 One definition of each result's table (COLUMNS): the rows are the result's
 points (one per bin, lag, time, recorded point or sweep point, or (time,
 velocity) pair of the white-noise references; one row for a single
-estimate), and an estimate NAME has the columns NAME, NAME_stderr, NAME_lo
-and NAME_hi, as in the CSV. to_dataframe() makes a pandas DataFrame of
+estimate), and an estimate NAME has the columns NAME, NAME_error (its
+standard error), NAME_lo and NAME_hi, as in the CSV (a solved value: NAME
+and NAME_error). to_dataframe() makes a pandas DataFrame of
 it, to_npz() a NumPy .npz file with the result's provenance (meta) beside the
 arrays, written as the CLI writes --output: atomically.
 """
@@ -21,7 +22,7 @@ from . import _core
 
 def _estimate(cols, name, e):
     cols[name] = _np.atleast_1d(_np.asarray(e.value, dtype=float)).ravel()
-    cols[name + "_stderr"] = _np.atleast_1d(_np.asarray(e.stderr, dtype=float)).ravel()
+    cols[name + "_error"] = _np.atleast_1d(_np.asarray(e.stderr, dtype=float)).ravel()
     cols[name + "_lo"] = _np.atleast_1d(_np.asarray(e.lo, dtype=float)).ravel()
     cols[name + "_hi"] = _np.atleast_1d(_np.asarray(e.hi, dtype=float)).ravel()
 
@@ -133,14 +134,14 @@ COLUMNS = {
 def to_columns(self):
     """The result as a table: a dict of equally long 1-D NumPy arrays, one row
     per point (bin, lag, time, recorded point, sweep point, (time, velocity)
-    pair of WhiteNoiseResult; one row for a single estimate), an estimate NAME as the columns NAME, NAME_stderr,
+    pair of WhiteNoiseResult; one row for a single estimate), an estimate NAME as the columns NAME, NAME_error,
     NAME_lo and NAME_hi (a solved value: NAME and NAME_error)."""
     return COLUMNS[type(self).__name__](self)
 
 
 def to_dataframe(self):
     """The result as a tidy pandas DataFrame: to_columns(), one row per point
-    or bin, with the stderr and interval columns; df.attrs["meta"] is the
+    or bin, with the error and interval columns; df.attrs["meta"] is the
     result's provenance (meta). Needs pandas."""
     try:
         import pandas

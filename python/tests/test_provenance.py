@@ -114,7 +114,7 @@ class CliProvenance(unittest.TestCase):
         header, row = body.splitlines()[:2]
         cells = dict(zip(header.split(","), row.split(",")))
         self.assertEqual(float(cells["diffusivity"]), d["diffusivity"]["value"])  # the same double, bit for bit
-        self.assertEqual(float(cells["diffusivity_stderr"]), d["diffusivity"]["error"])
+        self.assertEqual(float(cells["diffusivity_error"]), d["diffusivity"]["error"])
         self.assertEqual(float(cells["mobility_lo"]), d["mobility"]["ci"][0])
 
 
@@ -148,7 +148,7 @@ class PythonProvenance(unittest.TestCase):
             z = np.load(path)
             self.assertEqual(json.loads(str(z["meta"])), r.meta)
             np.testing.assert_array_equal(z["lag"], r.lag)
-            np.testing.assert_array_equal(z["covariance_stderr"], r.covariance.stderr)
+            np.testing.assert_array_equal(z["covariance_error"], r.covariance.stderr)
             for suffix, render in ((".json", r.to_json), (".csv", r.to_csv), (".txt", r.to_table)):
                 r.save(os.path.join(tmp, "c" + suffix))
                 with open(os.path.join(tmp, "c" + suffix)) as f:
@@ -177,7 +177,7 @@ class PythonProvenance(unittest.TestCase):
                          "trajectory": "v"}.get(name, "diffusivity")
                 self.assertIn(value, cols)
                 if name != "trajectory":
-                    for suffix in ("_stderr", "_lo", "_hi"):
+                    for suffix in ("_error", "_lo", "_hi"):
                         self.assertIn(value + suffix, cols)
                 try:
                     import pandas  # noqa: F401
@@ -195,7 +195,7 @@ class PythonProvenance(unittest.TestCase):
         r = stickslip.density(stickslip.Params(), **small(excursions=128, bins=5))
         frame = r.to_dataframe()
         self.assertEqual(len(frame), 5)
-        np.testing.assert_array_equal(frame["density_stderr"].to_numpy(), r.density.stderr)
+        np.testing.assert_array_equal(frame["density_error"].to_numpy(), r.density.stderr)
 
     def test_sweep_arrays_have_the_grid_shape(self):
         r = stickslip.sweep(stickslip.Params(), noise=[4, 5, 6], tau=[0.5, 1], excursions=64)

@@ -327,7 +327,7 @@ std::string csv_number(double x) {
 }
 
 std::string csv_estimate_header(const std::string& name) {
-    return name + "," + name + "_stderr," + name + "_lo," + name + "_hi";
+    return name + "," + name + "_error," + name + "_lo," + name + "_hi";
 }
 
 std::string csv_estimate(const Estimate& e) {

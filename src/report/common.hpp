@@ -123,7 +123,7 @@ std::string relaxation_text(double relaxation);
 
 /// A CSV cell: 12 significant digits, "inf"/"-inf", and empty for NaN (never "nan").
 std::string csv_number(double x);
-/// "name,name_stderr,name_lo,name_hi".
+/// "name,name_error,name_lo,name_hi" (the error column: the standard error).
 std::string csv_estimate_header(const std::string& name);
 /// value,stderr,lo,hi.
 std::string csv_estimate(const Estimate& e);

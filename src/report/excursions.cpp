@@ -198,9 +198,9 @@ std::string to_csv(const DiffusivityResult& r) {
     const auto& p = q.params;
     std::ostringstream os = report_stream();
     os << "engine,friction,noise,tau,relaxation,bias,excursions,seed," << csv_estimate_header("diffusivity") << ","
-       << csv_estimate_header("mobility") << ",mean_duration,mean_duration_stderr"
-       << (r.discretisation ? ",check_dt,diffusivity_difference,diffusivity_difference_stderr,mobility_difference,"
-                              "mobility_difference_stderr"
+       << csv_estimate_header("mobility") << ",mean_duration,mean_duration_error"
+       << (r.discretisation ? ",check_dt,diffusivity_difference,diffusivity_difference_error,mobility_difference,"
+                              "mobility_difference_error"
                             : "")
        << "\n";
     os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","

@@ -156,7 +156,7 @@ std::string to_table(const DensityResult& r) {
 std::string to_csv(const DensityResult& r) {
     if (r.solution) return csv_provenance(r.request) + solved_csv(r);
     std::ostringstream os = report_stream();
-    os << "kind,v_lo,v_hi,value,stderr,lo,hi\n";
+    os << "kind,v_lo,v_hi,value,error,lo,hi\n";
     for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
         os << "density," << csv_number(r.histogram.edges[k]) << "," << csv_number(r.histogram.edges[k + 1]) << ","
            << csv_estimate(r.histogram.density[k]) << "\n";
@@ -236,7 +236,7 @@ std::string to_csv(const MomentsResult& r) {
                << "," << csv_estimate(r.stuck[k]) << "\n";
         return csv_provenance(r.request) + os.str();
     }
-    os << "time,v_lo,v_hi,density,stderr\n";
+    os << "time,v_lo,v_hi,density,error\n";
     for (std::size_t k = 0; k < r.time.size(); ++k) {
         const auto& h = r.density[k];
         for (std::size_t b = 0; b < h.density.size(); ++b)

@@ -347,7 +347,7 @@ std::string to_csv(const SweepResult& r) {
     if (r.solved()) return solved_csv(r);
     std::ostringstream os = report_stream();
     os << (r.varies() ? "varied," : "") << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
-       << ",mean_duration,mean_duration_stderr,slope,slope_stderr,tau_nondim,diffusivity_nondim,excursions,"
+       << ",mean_duration,mean_duration_error,slope,slope_error,tau_nondim,diffusivity_nondim,excursions,"
        << csv_estimate_header("white_ratio")
        << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
        << "\n";
