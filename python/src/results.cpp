@@ -106,12 +106,12 @@ void bind_results(py::module_& m) {
         .def_property_readonly(
             "density", [](const VelocityHistogram& h) { return series(h.density, h.stuck.level); },
             "density [s/m] per bin (EstimateSeries, shape (bins,))")
-        .def_readonly("stuck", &VelocityHistogram::stuck, "P(V = 0), the object sticks (Estimate)")
+        .def_readonly("stuck_probability", &VelocityHistogram::stuck, "P(V = 0), the object sticks (Estimate)")
         .def_readonly("below", &VelocityHistogram::below, "P(V < edges[0], V != 0) (Estimate)")
         .def_readonly("above", &VelocityHistogram::above, "P(V >= edges[-1], V != 0) (Estimate)")
         .def("__repr__", [](const VelocityHistogram& h) {
             return "Histogram(bins=" + std::to_string(h.density.size()) + ", range=(" + g4(h.edges.front()) + ", " +
-                   g4(h.edges.back()) + "), stuck=" + g4(h.stuck.value) + ")";
+                   g4(h.edges.back()) + "), stuck_probability=" + g4(h.stuck.value) + ")";
         });
 
     py::class_<SamplePath>(m, "Path",
@@ -296,7 +296,7 @@ void bind_results(py::module_& m) {
         };
         c.def_property_readonly(
              "histogram", [](const R& r) { return r.histogram; },
-             "the Histogram (edges, density, stuck, ...); empty with engine='kolmogorov'")
+             "the Histogram (edges, density, stuck_probability, ...); empty with engine='kolmogorov'")
             .def_property_readonly(
                 "edges", [edges_of](const R& r) { return to_array(edges_of(r)); },
                 "bin edges [m/s], shape (bins + 1,) (engine='kolmogorov': the grid's velocity cells)")
@@ -311,7 +311,7 @@ void bind_results(py::module_& m) {
                 "density [s/m] per bin (EstimateSeries, shape (bins,)), V = 0 excluded; engine='kolmogorov': "
                 "the grid's values (a NumPy array, no error bars)")
             .def_property_readonly(
-                "stuck",
+                "stuck_probability",
                 [](const R& r) -> py::object {
                     if (r.solution) return py::cast(r.solution->stuck_probability);
                     return py::cast(r.histogram.stuck);
@@ -348,7 +348,7 @@ void bind_results(py::module_& m) {
                 }
                 return "DensityResult(bins=" + std::to_string(r.histogram.density.size()) + ", range=(" +
                        g4(r.histogram.edges.front()) + ", " + g4(r.histogram.edges.back()) +
-                       ") m/s, stuck=" + estimate_short(r.histogram.stuck) + ", mean=" + estimate_short(r.mean) +
+                       ") m/s, stuck_probability=" + estimate_short(r.histogram.stuck) + ", mean=" + estimate_short(r.mean) +
                        " m/s, completed=" + std::to_string(r.estimates.excursions) + ")";
             });
 
@@ -406,7 +406,8 @@ void bind_results(py::module_& m) {
                 "second_moment", [](const R& r) { return series(r.second_moment, r.request.level); },
                 "E[V(t)^2|v0] [m^2/s^2] (EstimateSeries)")
             .def_property_readonly(
-                "stuck", [](const R& r) { return series(r.stuck, r.request.level); }, "P(V(t) = 0) (EstimateSeries)")
+                "stuck_probability", [](const R& r) { return series(r.stuck, r.request.level); },
+                "P(V(t) = 0) (EstimateSeries)")
             .def_readonly("density", &R::density,
                           "list of Histogram, one per time (empty unless density=True)")
             .def_property_readonly("v0", [](const R& r) { return r.request.v0; }, "initial velocity [m/s]")

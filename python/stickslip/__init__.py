@@ -192,13 +192,13 @@ Stationary velocity density as a histogram with error bars, and P(V = 0).
     Renewal-reward ratios over long excursions (time spent in each bin during an
     excursion / its duration): exact in the limit of many excursions, no
     burn-in. The atom at V = 0 (the object sticks; positive for coloured noise)
-    is reported apart, so sum(density * widths) + stuck + below + above = 1.
+    is reported apart, so sum(density * widths) + stuck_probability + below + above = 1.
     The excursions are diffusivity()'s with the same seed, so D, M0 and E[t1]
     come with it, identical. Same as ``stickslip density``; range is (lo, hi)
     in m/s.""", """\
     DensityResult
         .edges (bins + 1,) [m/s], .centers (bins,), .density (EstimateSeries,
-        (bins,), s/m), .stuck, .below, .above (Estimate, probabilities),
+        (bins,), s/m), .stuck_probability, .below, .above (Estimate, probabilities),
         .mean [m/s], .variance [m^2/s^2], .diffusivity, .mobility,
         .mean_duration; .to_dict() is the CLI's JSON.""")
 
@@ -222,7 +222,7 @@ Transient statistics from V(0) = v0: E[V(t)|v0], E[V(t)^2|v0], P(V(t) = 0), dens
     None: Table I's); the inclusion engine rounds them to whole steps
     (result.time has the times used).""", """\
     MomentsResult
-        .time (n,) [s], .first_moment [m/s], .second_moment [m^2/s^2], .stuck
+        .time (n,) [s], .first_moment [m/s], .second_moment [m^2/s^2], .stuck_probability
         (EstimateSeries, (n,)), .density (list of n Histogram, or []);
         .to_dict() is the CLI's JSON.""")
 

@@ -150,7 +150,7 @@ class Histogram:
     @property
     def density(self) -> EstimateSeries: ...  # (bins,) [s/m], V = 0 excluded
     @property
-    def stuck(self) -> Estimate: ...      # P(V = 0)
+    def stuck_probability(self) -> Estimate: ...  # P(V = 0)
     @property
     def below(self) -> Estimate: ...
     @property
@@ -267,7 +267,7 @@ class DensityResult(_LongExcursions):
     @property
     def density(self) -> Union[EstimateSeries, FloatArray]: ...  # FloatArray with engine="kolmogorov"
     @property
-    def stuck(self) -> Union[Estimate, GridEstimate]: ...  # GridEstimate with engine="kolmogorov"
+    def stuck_probability(self) -> Union[Estimate, GridEstimate]: ...  # GridEstimate with engine="kolmogorov"
     @property
     def diffusivity(self) -> Union[Estimate, GridEstimate]: ...  # type: ignore[override]
     @property
@@ -301,7 +301,7 @@ class MomentsResult(_Totals):
     @property
     def second_moment(self) -> EstimateSeries: ...
     @property
-    def stuck(self) -> EstimateSeries: ...
+    def stuck_probability(self) -> EstimateSeries: ...
     @property
     def density(self) -> List[Histogram]: ...
     @property

@@ -72,7 +72,7 @@ def _correlation(r):
 
 def _moments(r):
     cols = {"time": _np.asarray(r.time)}
-    for name in ("first_moment", "second_moment", "stuck"):
+    for name in ("first_moment", "second_moment", "stuck_probability"):
         _estimate(cols, name, getattr(r, name))
     return cols
 

@@ -36,10 +36,10 @@ class KolmogorovEngineTest(unittest.TestCase):
 
     def test_density_of_the_finest_grid(self):
         d = stickslip.density(engine="kolmogorov", threads=1)
-        self.assertIsInstance(d.stuck, stickslip.GridEstimate)
+        self.assertIsInstance(d.stuck_probability, stickslip.GridEstimate)
         self.assertEqual(d.density.shape[0] + 1, d.edges.shape[0])
         mass = float((d.density * (d.edges[1:] - d.edges[:-1])).sum())
-        self.assertAlmostEqual(mass + d.stuck.value, 1.0, delta=10 * d.stuck.error)
+        self.assertAlmostEqual(mass + d.stuck_probability.value, 1.0, delta=10 * d.stuck_probability.error)
         self.assertIn("engine='kolmogorov'", repr(d))
 
     def test_sweep_solved_at_every_point(self):

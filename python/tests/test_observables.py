@@ -21,9 +21,9 @@ class DensityTest(unittest.TestCase):
         self.assertEqual(len(r.density), 20)
         self.assertIsInstance(r.density[3], stickslip.Estimate)
         np.testing.assert_array_equal(np.asarray(r.density), r.density.value)
-        total = np.sum(r.density.value * np.diff(r.edges)) + r.stuck.value + r.below.value + r.above.value
+        total = np.sum(r.density.value * np.diff(r.edges)) + r.stuck_probability.value + r.below.value + r.above.value
         self.assertAlmostEqual(total, 1.0, places=9)
-        self.assertGreater(r.stuck.value, 0)  # coloured noise: the object sticks
+        self.assertGreater(r.stuck_probability.value, 0)  # coloured noise: the object sticks
         self.assertEqual(r.histogram.edges.shape, (21,))
         self.assertEqual(r.completed, 128)
         cli = cli_json("density", "--engine", "pdmp", "--excursions", "128", "--bins", "20", "--seed", "2")
@@ -73,7 +73,7 @@ class MomentsTest(unittest.TestCase):
         self.assertEqual(h.edges.shape, (13,))
         self.assertEqual(h.density.value.shape, (12,))
         self.assertEqual(r.second_moment.value.shape, (2,))
-        self.assertEqual(r.stuck.value.shape, (2,))
+        self.assertEqual(r.stuck_probability.value.shape, (2,))
 
 
 class TrajectoryTest(unittest.TestCase):

@@ -230,7 +230,7 @@ std::string to_csv(const MomentsResult& r) {
     std::ostringstream os = report_stream();
     if (r.density.empty()) {
         os << "time," << csv_estimate_header("first_moment") << "," << csv_estimate_header("second_moment") << ","
-           << csv_estimate_header("stuck") << "\n";
+           << csv_estimate_header("stuck_probability") << "\n";
         for (std::size_t k = 0; k < r.time.size(); ++k)
             os << csv_number(r.time[k]) << "," << csv_estimate(r.first_moment[k]) << "," << csv_estimate(r.second_moment[k])
                << "," << csv_estimate(r.stuck[k]) << "\n";
