@@ -20,17 +20,11 @@
 /// Var(V) by quadrature, and Touchette's transient closed forms for pure dry
 /// friction. The comment at the top of this header explains the design.
 
+#include "stickslip/drift_law_quadrature.hpp" // WhiteNoiseReference
 #include "stickslip/params.hpp"
 
 namespace stickslip {
 
-/// The exact white-noise stationary quantities of one parameter set: what
-/// every white-noise-limit check compares against (white_noise_reference).
-struct WhiteNoiseReference {
-    double mobility;    ///< M0 [m/s]
-    double diffusivity; ///< D [m^2/s]
-    double variance;    ///< stationary Var(V) [m^2/s^2]
-};
 /// Exact white-noise stationary quantities for the drift and friction of p
 /// (p.tau is ignored), to a few units of double rounding for every valid p:
 /// closed forms without drag, the viscous values (D = relaxation^2 noise,

@@ -23,11 +23,19 @@
 
 #include <vector>
 
-#include "stickslip/analytic.hpp"
 #include "stickslip/drift_law.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {
+
+/// The exact white-noise stationary quantities of one parameter set: what
+/// every white-noise-limit check compares against (white_noise_reference,
+/// analytic.hpp; DriftLawWhiteNoise::reference).
+struct WhiteNoiseReference {
+    double mobility;    ///< M0 [m/s]
+    double diffusivity; ///< D [m^2/s]
+    double variance;    ///< stationary Var(V) [m^2/s^2]
+};
 
 /// The white-noise stationary law of p's drift law (p.tau is ignored), built
 /// once (a few milliseconds), then evaluated.
