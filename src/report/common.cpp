@@ -47,6 +47,10 @@ ordered_json exact_estimate_json(double value) {
     return j;
 }
 
+ordered_json white_reference_json(double value, const ModelParams& p) {
+    return p.has_drift_law() ? solved_estimate_json(value, std::nan("")) : exact_estimate_json(value);
+}
+
 ordered_json series_point(const char* key, double where, const Estimate& e) {
     ordered_json j;
     j[key] = where;

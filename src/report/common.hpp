@@ -43,6 +43,10 @@ ordered_json estimate_json(const Estimate& e, bool with_ci = true);
 ordered_json solved_estimate_json(double value, double error);
 /// {value, error: 0, kind: "exact"}.
 ordered_json exact_estimate_json(double value);
+/// A white-noise reference value of model p (analytic, a sweep's D_white):
+/// exact_estimate_json for the affine law's closed forms, a solved estimate
+/// with no error estimate (null) for a drift law's quadrature.
+ordered_json white_reference_json(double value, const ModelParams& p);
 /// {key: where, value, error, ci, kind: "sampled"}: one point of a series (null for NaN).
 ordered_json series_point(const char* key, double where, const Estimate& e);
 /// {diffusivity, mobility, mean_duration, completed}.

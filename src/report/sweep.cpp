@@ -82,8 +82,7 @@ ordered_json white_limits_json(const SweepResult& r) {
         ordered_json o;
         if (r.varies()) o["varied"] = w.varied;
         o["noise"] = w.noise;
-        o["white_diffusivity"] = r.request.params.has_drift_law() ? solved_estimate_json(w.white_diffusivity, std::nan(""))
-                                                                 : exact_estimate_json(w.white_diffusivity);
+        o["white_diffusivity"] = white_reference_json(w.white_diffusivity, r.request.params);
         o["exponent"] = sweep_estimate_json(r, w.exponent);
         o["coefficient"] = sweep_estimate_json(r, w.coefficient);
         o["chi2_per_dof"] = json_number(w.chi2_per_dof);

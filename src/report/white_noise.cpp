@@ -17,11 +17,7 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
     const bool law = q.params.has_drift_law();
-    // The affine law's references are closed forms (exact to rounding); a
-    // drift law's are quadratures whose error is not estimated (null).
-    const auto reference = [&](double x) {
-        return law ? solved_estimate_json(x, std::nan("")) : exact_estimate_json(x);
-    };
+    const auto reference = [&](double x) { return white_reference_json(x, q.params); };
     ordered_json j;
     j["quantity"] = "white_noise_reference";
     j["mobility"] = reference(r.reference.mobility);
