@@ -18,6 +18,7 @@
 #include "stickslip/errors.hpp"
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/method.hpp"
+#include "stickslip/result_fields.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
 
@@ -144,19 +145,42 @@ struct DiscretisationCheck {
 
 /// How the control variate of a diffusivity run went (theory.md, section 12).
 struct ControlVariateReport {
-    /// Where the corrector came from: "kolmogorov" (a coarse grid solve) or
-    /// "closed-form" (white noise).
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
     std::string source;
-    std::string grid;            ///< the corrector's grid, in words
-    double corrector_seconds = 0; ///< wall time this run spent making the corrector [s] (about 0 when the process had made it for the same model already)
-    double beta = 0;             ///< coefficient of C = M^2 - Q in D's estimate
-    double beta_mobility = 0;    ///< coefficient of M in M0's estimate
-    /// Variance of the plain estimator of D over the control variate's, from
-    /// the same excursions: the factor of excursions saved at equal error.
+    std::string grid;
+    double corrector_seconds = 0;
+    double beta = 0;
+    double beta_mobility = 0;
     double variance_reduction = 0;
-    double variance_reduction_mobility = 0; ///< the same for M0
-    Estimate plain_diffusivity; ///< D without the control variate [m^2/s]
-    Estimate plain_mobility;    ///< M0 without it [m/s]
+    double variance_reduction_mobility = 0;
+    Estimate plain_diffusivity;
+    Estimate plain_mobility;
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = ControlVariateReport;
+        visit(&S::source, FieldInfo{"source", "",
+                                    "where the corrector came from: 'kolmogorov' (a coarse grid solve) or "
+                                    "'closed-form' (white noise)"});
+        visit(&S::grid, FieldInfo{"grid", "", "the corrector's grid, in words"});
+        visit(&S::corrector_seconds,
+              FieldInfo{"corrector_seconds", "s",
+                        "wall time this run spent making the corrector (about 0 when the process had made it for "
+                        "the same model already); reported in the run's work",
+                        FieldForm::NotInBlock});
+        visit(&S::beta, FieldInfo{"beta", "", "coefficient of C = M^2 - Q in D's estimate"});
+        visit(&S::beta_mobility, FieldInfo{"beta_mobility", "", "coefficient of M in M0's estimate"});
+        visit(&S::variance_reduction,
+              FieldInfo{"variance_reduction", "",
+                        "variance of the plain estimator of D over the control variate's, from the same excursions: "
+                        "the factor of excursions saved at equal error"});
+        visit(&S::variance_reduction_mobility,
+              FieldInfo{"variance_reduction_mobility", "", "the same for M0"});
+        visit(&S::plain_diffusivity, FieldInfo{"plain.diffusivity", "m^2/s", "D without the control variate"});
+        visit(&S::plain_mobility, FieldInfo{"plain.mobility", "m/s", "M0 without the control variate"});
+    }
 };
 
 /// How a precision-on-demand run ended.

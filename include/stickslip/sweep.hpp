@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/result_fields.hpp"
 
 namespace stickslip {
 
@@ -154,43 +155,76 @@ struct SweepPoint {
 /// and Levermore's, at absorbing boundaries), as delta = a tau'^(1/2) +
 /// b tau' + c tau'^(3/2) (weighted linear least squares, 4 or more points).
 struct SweepWhiteLimit {
-    double noise = 0; ///< the noise intensity Gamma [m^2 s^-3]
-    /// The value of the swept drift constant; NaN without --vary.
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
     double varied = std::numeric_limits<double>::quiet_NaN();
-    double white_diffusivity = 0; ///< D with white noise at this noise [m^2/s]
-    Estimate exponent;            ///< p (NaN with fewer than 2 points)
-    Estimate coefficient;         ///< c1 (per unit tau'^p; NaN with fewer than 2 points)
-    double chi2_per_dof = 0;      ///< of the power law (NaN with fewer than 3 points)
-    /// a, the coefficient of tau'^(1/2) in the three-term fit: 0 within its
-    /// error when there is no tau'^(1/2) law (NaN with fewer than 4 points).
+    double noise = 0;
+    double white_diffusivity = 0;
+    Estimate exponent;
+    Estimate coefficient;
+    double chi2_per_dof = 0;
     Estimate half_order;
-    /// b, the coefficient of tau' in the three-term fit: the leading one when a
-    /// is 0 (NaN with fewer than 4 points).
     Estimate first_order;
-    /// c, the coefficient of tau'^(3/2) in the three-term fit (NaN with fewer than 4 points).
     Estimate three_half_order;
-    /// The tau [s] below which D is within 1% of the white value: where delta
-    /// crosses 0.01 between two points (log-log interpolation); NaN when no
-    /// two neighbouring points bracket it.
+    int points = 0;
     double tau_within_percent = std::numeric_limits<double>::quiet_NaN();
-    int points = 0; ///< points fitted
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = SweepWhiteLimit;
+        visit(&S::varied, FieldInfo{"varied", "", "the swept drift constant's value (NaN without vary)",
+                                    FieldForm::WhenSet});
+        visit(&S::noise, FieldInfo{"noise", "m^2 s^-3", "the noise intensity of these points"});
+        visit(&S::white_diffusivity, FieldInfo{"white_diffusivity", "m^2/s", "D with white noise at this noise",
+                                               FieldForm::Reference});
+        visit(&S::exponent, FieldInfo{"exponent", "", "p of 1 - D/D_white = c1 tau'^p (NaN with fewer than 2 points)"});
+        visit(&S::coefficient, FieldInfo{"coefficient", "", "c1, per unit tau'^p (NaN with fewer than 2 points)"});
+        visit(&S::chi2_per_dof, FieldInfo{"chi2_per_dof", "", "of the power law (NaN with fewer than 3 points)"});
+        visit(&S::half_order,
+              FieldInfo{"half_order", "",
+                        "a, the coefficient of tau'^(1/2) in the three-term fit: 0 within its error when there is no "
+                        "tau'^(1/2) law (NaN with fewer than 4 points)"});
+        visit(&S::first_order, FieldInfo{"first_order", "",
+                                         "b, the coefficient of tau' in the three-term fit: the leading one when a is "
+                                         "0 (NaN with fewer than 4 points)"});
+        visit(&S::three_half_order,
+              FieldInfo{"three_half_order", "",
+                        "c, the coefficient of tau'^(3/2) in the three-term fit (NaN with fewer than 4 points)"});
+        visit(&S::points, FieldInfo{"points", "", "points fitted"});
+        visit(&S::tau_within_percent,
+              FieldInfo{"tau_within_percent", "s",
+                        "the tau below which D is within 1% of the white value, where 1 - D/D_white crosses 0.01 "
+                        "between two points (log-log interpolation; NaN when no two neighbours bracket it)"});
+    }
 };
 
 /// The power law D ~ Gamma^alpha fitted over the noises of one tau.
 struct SweepExponent {
-    /// The correlation time [s] of the fit.
-    double tau = 0;
-    /// The value of the swept drift constant of the fit; NaN without --vary.
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
     double varied = std::numeric_limits<double>::quiet_NaN();
-    /// alpha of D ~ Gamma^alpha, weighted least squares in log-log (solved
-    /// points: weights and std_error from D's discretisation errors, the
-    /// interval NaN)
+    double tau = 0;
     Estimate exponent;
-    /// Of the power-law fit: >> 1 means no single power law (solved points:
-    /// the residuals in units of D's discretisation errors)
     double chi2_per_dof = 0;
-    /// Points fitted (fewer than the noises when the sweep was interrupted).
     int points = 0;
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = SweepExponent;
+        visit(&S::varied, FieldInfo{"varied", "", "the swept drift constant's value of the fit (NaN without vary)",
+                                    FieldForm::WhenSet});
+        visit(&S::tau, FieldInfo{"tau", "s", "the correlation time of the fit"});
+        visit(&S::exponent,
+              FieldInfo{"exponent", "",
+                        "alpha of D ~ noise^alpha, weighted least squares in log-log (solved points: weights and "
+                        "error from D's discretisation errors)"});
+        visit(&S::chi2_per_dof, FieldInfo{"chi2_per_dof", "",
+                                          "of the power-law fit: >> 1 means no single power law (solved points: the "
+                                          "residuals in units of D's discretisation errors)"});
+        visit(&S::points, FieldInfo{"points", "", "points fitted (fewer than the noises when interrupted)"});
+    }
 };
 
 /// What compute_sweep returns; report.hpp writes it.

@@ -9,14 +9,17 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/params.hpp"
+#include "stickslip/result_fields.hpp"
 
 namespace stickslip::python {
 
@@ -107,6 +110,82 @@ void add_renderings(Cls& cls) {
             },
             "What produced the result, as its JSON and CSV give it: {'command' (the call, or None), 'settings' "
             "(every setting, as --print-config writes them), 'version', 'revision' (when known)}.");
+}
+
+// ---- results that declare their fields (result_fields.hpp) ---------------------------------
+
+/// A declared field's Python name: its name with '.' read as '_'
+/// ("plain.diffusivity" -> "plain_diffusivity").
+std::string field_python_name(const FieldInfo& f);
+/// A declared field's docstring: its help, then its unit in brackets.
+std::string field_doc(const FieldInfo& f);
+/// The Python type of a member (float, int, bool, str or Estimate; an enum
+/// is its name, str) and its JSON kind (number, integer, count: an unsigned
+/// integer, boolean, string, estimate).
+template <class Value> std::array<const char*, 2> field_types() {
+    if constexpr (std::is_same_v<Value, Estimate>) return {"Estimate", "estimate"};
+    else if constexpr (std::is_same_v<Value, double>) return {"float", "number"};
+    else if constexpr (std::is_same_v<Value, bool>) return {"bool", "boolean"};
+    else if constexpr (std::is_integral_v<Value> && std::is_unsigned_v<Value>) return {"int", "count"};
+    else if constexpr (std::is_integral_v<Value>) return {"int", "integer"};
+    else if constexpr (std::is_enum_v<Value>) return {"str", "string"};
+    else {
+        static_assert(std::is_same_v<Value, std::string>, "a declared field of a type Python does not know");
+        return {"str", "string"};
+    }
+}
+
+/// What _result_fields() tells the stub and schema generators of a declared
+/// struct: its Python class ("" when Python sees it as a dict of its JSON
+/// block) and its JSON Schema definition, then per field its name, unit,
+/// help, Python type, form (result_fields.hpp's FieldForm, in lower case)
+/// and JSON kind. A struct whose block is merged into reports' top level
+/// names those reports' definitions, comma-separated, after "merged:".
+struct DeclaredStruct {
+    std::string python_class, schema_definition;
+    /// Per field: name, unit, help, Python type, form, JSON kind. Plain
+    /// strings, not Python objects: the list outlives the interpreter.
+    std::vector<std::array<std::string, 6>> fields;
+};
+/// Every struct bind_fields or note_declared was given, in that order.
+std::vector<DeclaredStruct>& declared_structs();
+
+/// Records T's declaration for _result_fields() (declared_structs()).
+template <DeclaredFields T> void note_declared(const std::string& python_class, const std::string& schema_definition) {
+    DeclaredStruct d{python_class, schema_definition, {}};
+    T::fields([&](auto member, const FieldInfo& f) {
+        using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
+        static constexpr const char* forms[] = {"value", "no_interval", "reference", "when_set", "not_in_block"};
+        const auto types = field_types<Value>();
+        d.fields.push_back({f.name, f.unit, f.help, types[0], forms[static_cast<int>(f.form)], types[1]});
+    });
+    declared_structs().push_back(std::move(d));
+}
+
+/// The read-only properties of a bound class, one per declared field, with
+/// the declaration's docstrings; and the record for _result_fields().
+template <DeclaredFields T, class Cls> Cls& bind_fields(Cls& cls, const std::string& python_class,
+                                                         const std::string& schema_definition) {
+    T::fields([&](auto member, const FieldInfo& f) {
+        cls.def_readonly(field_python_name(f).c_str(), member, field_doc(f).c_str()); // pybind11 copies both
+    });
+    note_declared<T>(python_class, schema_definition);
+    return cls;
+}
+
+/// "['a'] help [unit]; ['plain']['b'] ...": the keys of T's JSON block (a
+/// dict in Python) with their help, for the docstring of the property that
+/// returns it.
+template <DeclaredFields T> std::string block_doc() {
+    std::string out;
+    T::fields([&](auto, const FieldInfo& f) {
+        if (f.form == FieldForm::NotInBlock) return;
+        if (!out.empty()) out += "; ";
+        std::string key = "['";
+        for (const char* c = f.name; *c; ++c) key += *c == '.' ? std::string("']['") : std::string(1, *c);
+        out += key + "'] " + field_doc(f);
+    });
+    return out;
 }
 
 void bind_core(py::module_& m);     // exceptions, Params, Scales, Estimate, EstimateSeries

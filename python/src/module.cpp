@@ -56,6 +56,22 @@ std::string setting_text(const py::handle& v) {
 
 py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
+std::string field_python_name(const FieldInfo& f) {
+    std::string name = f.name;
+    for (char& c : name)
+        if (c == '.') c = '_';
+    return name;
+}
+
+std::string field_doc(const FieldInfo& f) {
+    return std::string(f.help) + (*f.unit ? " [" + std::string(f.unit) + "]" : std::string());
+}
+
+std::vector<DeclaredStruct>& declared_structs() {
+    static std::vector<DeclaredStruct> all;
+    return all;
+}
+
 std::string float_repr(double x) {
     if (std::isinf(x)) return x > 0 ? "float('inf')" : "float('-inf')";
     return py::repr(py::float_(x)).cast<std::string>();
@@ -590,4 +606,28 @@ PYBIND11_MODULE(_core, m) {
     stickslip::python::bind_requests(m);
     stickslip::python::bind_analytic(m);
     stickslip::python::bind_pickling(m); // last: it adds to the classes bound above
+    // For python/tools/make_stubs.py and make_schema.py: the results that declare
+    // their fields (result_fields.hpp), as the bindings above recorded them.
+    m.def(
+        "_result_fields",
+        [] {
+            pybind11::list out;
+            for (const auto& d : stickslip::python::declared_structs()) {
+                pybind11::dict one;
+                one["python_class"] = d.python_class;
+                one["schema_definition"] = d.schema_definition;
+                pybind11::list fields;
+                for (const auto& f : d.fields) {
+                    pybind11::dict each;
+                    const char* keys[] = {"name", "unit", "help", "type", "form", "json"};
+                    for (std::size_t k = 0; k < f.size(); ++k) each[keys[k]] = f[k];
+                    fields.append(each);
+                }
+                one["fields"] = fields;
+                out.append(one);
+            }
+            return out;
+        },
+        "The result structs that declare their fields, with each field's name, unit, help, Python type and "
+        "form (for the stub and schema generators).");
 }

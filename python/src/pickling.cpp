@@ -11,7 +11,8 @@
 // across versions (pickles are for multiprocessing, joblib and caches, not
 // for archives: save() writes those).
 //
-// A struct's members are listed once, in fields(f, x): f(member, ...) either
+// A struct's members are listed once, in fields(f, x) (or, for a result
+// that declares its fields, result_fields.hpp, by that declaration): f(member, ...) either
 // appends each member's state (Save) or reads it back (Load). The requests'
 // settings are not listed: visit_settings (setting.hpp) already names every
 // one, so a new setting is pickled without a change here; only their members
@@ -38,6 +39,12 @@ namespace {
 
 // ---- the members of every pickled struct ----------------------------------------------------
 
+/// A struct that declares its fields (result_fields.hpp): every one of them,
+/// in declaration order.
+template <class F, DeclaredFields T> void fields(F& f, T& x) {
+    T::fields([&](auto member, const FieldInfo&) { f(x.*member); });
+}
+
 template <class F> void fields(F& f, Estimate& x) { f(x.value, x.std_error, x.lo, x.hi, x.level); }
 template <class F> void fields(F& f, KolmogorovEstimate& x) { f(x.value, x.error); }
 template <class F> void fields(F& f, Scales& x) {
@@ -45,18 +52,11 @@ template <class F> void fields(F& f, Scales& x) {
 }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
 template <class F> void fields(F& f, GridEstimateSeries& x) { f(x.items, x.shape); }
-template <class F> void fields(F& f, LongExcursionEstimates& x) {
-    f(x.diffusivity, x.mobility, x.mean_duration, x.excursions, x.estimator);
-}
 template <class F> void fields(F& f, BruteForceEstimates& x) { f(x.diffusivity, x.mobility, x.trajectories, x.horizon); }
 template <class F> void fields(F& f, PrecisionOutcome& x) { f(x.target, x.relative_half_width, x.reached, x.batches); }
 template <class F> void fields(F& f, DiscretisationCheck& x) {
     f(x.knots, x.check_knots, x.dt, x.check_dt, x.excursions, x.steps, x.diffusivity_difference, x.diffusivity_stderr,
       x.mobility_difference, x.mobility_stderr);
-}
-template <class F> void fields(F& f, ControlVariateReport& x) {
-    f(x.source, x.grid, x.corrector_seconds, x.beta, x.beta_mobility, x.variance_reduction,
-      x.variance_reduction_mobility, x.plain_diffusivity, x.plain_mobility);
 }
 template <class F> void fields(F& f, ResolvedEngine& x) {
     f(x.stop_rule, x.lattice_bound, x.lattice_points, x.truncated_mass, x.jump_rate, x.white_level, x.upper_threshold,
@@ -93,11 +93,6 @@ template <class F> void fields(F& f, ExcursionOutcome& x) {
 template <class F> void fields(F& f, SweepPoint& x) {
     f(x.noise, x.tau, x.varied, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope,
       x.white_ratio, x.warnings);
-}
-template <class F> void fields(F& f, SweepExponent& x) { f(x.tau, x.varied, x.exponent, x.chi2_per_dof, x.points); }
-template <class F> void fields(F& f, SweepWhiteLimit& x) {
-    f(x.noise, x.varied, x.white_diffusivity, x.exponent, x.coefficient, x.chi2_per_dof, x.half_order, x.first_order,
-      x.three_half_order, x.tau_within_percent, x.points);
 }
 template <class F> void fields(F& f, WhiteNoiseReference& x) { f(x.mobility, x.diffusivity, x.variance); }
 

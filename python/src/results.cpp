@@ -53,19 +53,17 @@ void add_totals(Cls& cls) {
             "samples restored from a checkpoint (resume=) rather than computed");
 }
 
-/// D, M0, E[t1] of the long excursions behind a result.
+/// D, M0, E[t1] and the excursions completed of the long excursions behind a
+/// result: LongExcursionEstimates' declared fields (result_fields.hpp), as
+/// properties of the result.
 template <class Cls, class Get>
 void add_long_excursion(Cls& cls, Get get) {
     using R = typename Cls::type;
-    cls.def_property_readonly(
-           "diffusivity", [get](const R& r) { return get(r).diffusivity; }, "D [m^2/s] (Estimate)")
-        .def_property_readonly(
-            "mobility", [get](const R& r) { return get(r).mobility; }, "M0, the mean velocity [m/s] (Estimate)")
-        .def_property_readonly(
-            "mean_duration", [get](const R& r) { return get(r).mean_duration; },
-            "E[t1], mean duration of a long excursion [s] (Estimate)")
-        .def_property_readonly(
-            "completed", [get](const R& r) { return get(r).excursions; }, "completed long excursions");
+    LongExcursionEstimates::fields([&](auto member, const FieldInfo& f) {
+        if (f.form == FieldForm::NotInBlock) return;
+        cls.def_property_readonly(
+            field_python_name(f).c_str(), [get, member](const R& r) { return get(r).*member; }, field_doc(f).c_str());
+    });
 }
 
 EstimateSeries series(const std::vector<Estimate>& v, double level) { return EstimateSeries{v, level, {}}; }
@@ -91,6 +89,11 @@ py::array_t<double> widths(const std::vector<double>& edges) {
 } // namespace
 
 void bind_results(py::module_& m) {
+    // Seen from Python as a dict of its JSON block (DiffusivityResult.control_variate).
+    note_declared<ControlVariateReport>("", "control_variate");
+    // Merged into the top level of these reports, and flattened into their results (add_long_excursion).
+    note_declared<LongExcursionEstimates>(
+        "", "merged:diffusivity_report,stationary_density_report,autocorrelation_report,sweep_point");
     // ---- histograms and paths ----------------------------------------------------------------
     py::class_<VelocityHistogram>(m, "Histogram",
                                   "A velocity density histogram with error bars. `density` is the density of the "
@@ -224,10 +227,12 @@ void bind_results(py::module_& m) {
                     if (!r.control_variate) return py::none();
                     return json_loads(to_json(r, -1))["control_variate"]; // the JSON's layout, defined once
                 },
-                "when the martingale control variate ran (control_variate='auto' and a corrector): {'source', "
-                "'grid', 'beta', 'beta_mobility', 'variance_reduction', 'variance_reduction_mobility', 'plain': "
-                "{'diffusivity': {...}, 'mobility': {...}}}; diffusivity and mobility are then its estimates and "
-                "'plain' the estimates without it; None otherwise")
+                ("when the martingale control variate ran (control_variate='auto' and a corrector), a dict of "
+                 "the JSON's block: " +
+                 block_doc<ControlVariateReport>() +
+                 ". diffusivity and mobility are then its estimates and ['plain'] the estimates without it; None "
+                 "otherwise")
+                    .c_str())
             .def("__repr__", [](const DiffusivityResult& r) {
                 if (r.solution)
                     return "DiffusivityResult(diffusivity=" + g4(r.solution->diffusivity.value) + " +- " +
@@ -464,38 +469,22 @@ void bind_results(py::module_& m) {
     // ---- sweep ---------------------------------------------------------------------------------
     {
         using R = SweepResult;
-        py::class_<SweepExponent>(m, "SweepExponent",
+        py::class_<SweepExponent> exponent(m, "SweepExponent",
                                   "Fitted exponent alpha of D ~ noise^alpha at one tau (weighted least squares in "
-                                  "log-log), with chi^2/dof of the fit (>> 1: no single power law).")
-            .def_readonly("tau", &SweepExponent::tau, "[s]")
-            .def_readonly("varied", &SweepExponent::varied, "the swept drift constant's value (NaN without vary=)")
-            .def_readonly("exponent", &SweepExponent::exponent, "alpha (Estimate)")
-            .def_readonly("chi2_per_dof", &SweepExponent::chi2_per_dof)
-            .def_readonly("points", &SweepExponent::points)
-            .def("__repr__", [](const SweepExponent& e) {
+                                  "log-log), with chi^2/dof of the fit (>> 1: no single power law).");
+        bind_fields<SweepExponent>(exponent, "SweepExponent", "sweep_exponent");
+        exponent.def("__repr__", [](const SweepExponent& e) {
                 return "SweepExponent(" + (std::isnan(e.varied) ? std::string() : "varied=" + g4(e.varied) + ", ") +
                        "tau=" + g4(e.tau) + ", exponent=" + estimate_short(e.exponent) +
                        ", chi2_per_dof=" + g4(e.chi2_per_dof) + ", points=" + std::to_string(e.points) + ")";
             });
-        py::class_<SweepWhiteLimit>(m, "SweepWhiteLimit",
+        py::class_<SweepWhiteLimit> white_limit(m, "SweepWhiteLimit",
                                     "How D approaches its white-noise value as tau' -> 0 at one noise: 1 - D/D_white "
                                     "fitted as c1 tau'^p (weighted least squares in log-log over the points resolved "
                                     "and within 10%) and as a tau'^(1/2) + b tau' + c tau'^(3/2) (a tests for a "
-                                    "tau'^(1/2) law); tau' = tau friction^2/noise.")
-            .def_readonly("noise", &SweepWhiteLimit::noise, "[m^2 s^-3]")
-            .def_readonly("varied", &SweepWhiteLimit::varied, "the swept drift constant's value (NaN without vary=)")
-            .def_readonly("white_diffusivity", &SweepWhiteLimit::white_diffusivity, "D with white noise [m^2/s]")
-            .def_readonly("exponent", &SweepWhiteLimit::exponent, "p (Estimate; NaN with fewer than 2 points)")
-            .def_readonly("coefficient", &SweepWhiteLimit::coefficient, "c1 (Estimate; NaN with fewer than 2 points)")
-            .def_readonly("chi2_per_dof", &SweepWhiteLimit::chi2_per_dof, "of the power law")
-            .def_readonly("half_order", &SweepWhiteLimit::half_order, "a (Estimate; NaN with fewer than 4 points)")
-            .def_readonly("first_order", &SweepWhiteLimit::first_order, "b (Estimate; NaN with fewer than 4 points)")
-            .def_readonly("three_half_order", &SweepWhiteLimit::three_half_order,
-                          "c (Estimate; NaN with fewer than 4 points)")
-            .def_readonly("tau_within_percent", &SweepWhiteLimit::tau_within_percent,
-                          "the tau [s] below which D is within 1% of the white value (NaN when no two taus bracket it)")
-            .def_readonly("points", &SweepWhiteLimit::points, "points fitted")
-            .def("__repr__", [](const SweepWhiteLimit& w) {
+                                    "tau'^(1/2) law); tau' = tau friction^2/noise.");
+        bind_fields<SweepWhiteLimit>(white_limit, "SweepWhiteLimit", "sweep_white_limit");
+        white_limit.def("__repr__", [](const SweepWhiteLimit& w) {
                 return "SweepWhiteLimit(" + (std::isnan(w.varied) ? std::string() : "varied=" + g4(w.varied) + ", ") +
                        "noise=" + g4(w.noise) + ", exponent=" + estimate_short(w.exponent) +
                        ", coefficient=" + estimate_short(w.coefficient) + ", half_order=" + estimate_short(w.half_order) +

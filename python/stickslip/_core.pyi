@@ -1,6 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Type stubs of the compiled part of stickslip. Units are SI (m, s); see the
 # docstrings (help(stickslip.Params), ...) for the model and conventions.
+# Written by hand, except the classes of results that declare their fields
+# (SweepExponent, SweepWhiteLimit, ...), which python/tools/make_stubs.py
+# rewrites from the declarations (result_fields.hpp).
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
@@ -325,6 +328,8 @@ class TrajectoryResult(_Rendered):
 
 class SweepExponent:
     @property
+    def varied(self) -> float: ...
+    @property
     def tau(self) -> float: ...
     @property
     def exponent(self) -> Estimate: ...
@@ -335,9 +340,9 @@ class SweepExponent:
 
 class SweepWhiteLimit:
     @property
-    def noise(self) -> float: ...
-    @property
     def varied(self) -> float: ...
+    @property
+    def noise(self) -> float: ...
     @property
     def white_diffusivity(self) -> float: ...
     @property
@@ -353,9 +358,9 @@ class SweepWhiteLimit:
     @property
     def three_half_order(self) -> Estimate: ...
     @property
-    def tau_within_percent(self) -> float: ...
-    @property
     def points(self) -> int: ...
+    @property
+    def tau_within_percent(self) -> float: ...
 
 class SweepResult(_Rendered):
     @property

@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Writes python/stickslip/__init__.pyi, the type stubs of the package's keyword
 functions, from the request structures' own settings (Request.settings()),
-so that the stubs cannot drift from the module.
+and, in the hand-written python/stickslip/_core.pyi, the class of every result
+that declares its fields (result_fields.hpp, _core._result_fields()), so that
+the stubs cannot drift from the module.
 
     PYTHONPATH=build/python /usr/bin/python3 python/tools/make_stubs.py           # rewrite the file
     PYTHONPATH=build/python /usr/bin/python3 python/tools/make_stubs.py --check   # exit 1 if it is stale
@@ -15,6 +17,7 @@ import sys
 import stickslip
 
 STUBS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "stickslip", "__init__.pyi")
+CORE_STUBS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "stickslip", "_core.pyi")
 
 HEAD = '''\
 # SPDX-License-Identifier: BSD-3-Clause
@@ -77,17 +80,47 @@ def stub_text():
     return out
 
 
+def declared_class_text(declared):
+    """The stub of a class that declares its fields: one property per field."""
+    out = f"class {declared['python_class']}:\n"
+    for f in declared["fields"]:
+        name = f["name"].replace(".", "_")
+        out += f"    @property\n    def {name}(self) -> {f['type']}: ...\n"
+    return out
+
+
+def core_stub_text(current):
+    """_core.pyi with each declared class's block (from 'class X:' to the next
+    blank line) generated; a declared class missing from it is an error."""
+    for declared in stickslip._core._result_fields():
+        if not declared["python_class"]:
+            continue  # seen from Python as a dict
+        head = f"\nclass {declared['python_class']}:\n"
+        start = current.find(head)
+        if start < 0:
+            sys.exit(f"make_stubs: {CORE_STUBS} has no class {declared['python_class']}: add an empty one")
+        start += 1
+        end = current.find("\n\n", start)
+        current = current[:start] + declared_class_text(declared) + current[end + 1:]
+    return current
+
+
 def main(argv):
-    text = stub_text()
+    with open(CORE_STUBS) as f:
+        core_now = f.read()
+    files = [(STUBS, stub_text()), (CORE_STUBS, core_stub_text(core_now))]
     if "--check" in argv:
-        with open(STUBS) as f:
-            if f.read() != text:
-                print(f"{STUBS} is stale: run python/tools/make_stubs.py")
-                return 1
-        return 0
-    with open(STUBS, "w") as f:
-        f.write(text)
-    print(f"wrote {STUBS}")
+        stale = 0
+        for path, text in files:
+            with open(path) as f:
+                if f.read() != text:
+                    print(f"{path} is stale: run python/tools/make_stubs.py")
+                    stale = 1
+        return stale
+    for path, text in files:
+        with open(path, "w") as f:
+            f.write(text)
+        print(f"wrote {path}")
     return 0
 
 

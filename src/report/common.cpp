@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "report/common.hpp"
+#include "report/fields_json.hpp"
 
 #include <cmath>
 #include <locale>
@@ -61,14 +62,7 @@ ordered_json series_point(const char* key, double where, const Estimate& e) {
     return j;
 }
 
-ordered_json long_excursion_json(const LongExcursionEstimates& e) {
-    ordered_json j;
-    j["diffusivity"] = estimate_json(e.diffusivity);
-    j["mobility"] = estimate_json(e.mobility);
-    j["mean_duration"] = estimate_json(e.mean_duration, false);
-    j["completed"] = e.excursions;
-    return j;
-}
+ordered_json long_excursion_json(const LongExcursionEstimates& e) { return fields_json(e); }
 
 ordered_json report_head(const char* quantity, const EngineSettings& s, const char* estimator,
                          const std::string* stop_rule) {

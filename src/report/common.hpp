@@ -49,7 +49,7 @@ ordered_json exact_estimate_json(double value);
 ordered_json white_reference_json(double value, const ModelParams& p);
 /// {key: where, value, error, ci, kind: "sampled"}: one point of a series (null for NaN).
 ordered_json series_point(const char* key, double where, const Estimate& e);
-/// {diffusivity, mobility, mean_duration, completed}.
+/// {diffusivity, mobility, mean_duration, completed}: the declared fields (fields_json).
 ordered_json long_excursion_json(const LongExcursionEstimates& e);
 
 /// The head of a report: "quantity" (when given), "engine", "estimator" (when

@@ -2,6 +2,7 @@
 // Reports of the long-excursion diffusivity run and the brute-force run
 // (report.hpp): JSON, aligned table, CSV.
 #include "report/common.hpp"
+#include "report/fields_json.hpp"
 #include "stickslip/report.hpp"
 
 #include "core/format.hpp"
@@ -103,18 +104,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
         pr["max_excursions"] = q.max_excursions;
         j["precision"] = pr;
     }
-    if (r.control_variate) {
-        const ControlVariateReport& c = *r.control_variate;
-        ordered_json cv;
-        cv["source"] = c.source;
-        cv["grid"] = c.grid;
-        cv["beta"] = json_number(c.beta);
-        cv["beta_mobility"] = json_number(c.beta_mobility);
-        cv["variance_reduction"] = json_number(c.variance_reduction);
-        cv["variance_reduction_mobility"] = json_number(c.variance_reduction_mobility);
-        cv["plain"] = {{"diffusivity", estimate_json(c.plain_diffusivity)}, {"mobility", estimate_json(c.plain_mobility)}};
-        j["control_variate"] = cv;
-    }
+    if (r.control_variate) j["control_variate"] = fields_json(*r.control_variate);
     if (r.discretisation) {
         const DiscretisationCheck& c = *r.discretisation;
         ordered_json dc;

@@ -4,6 +4,7 @@
 
 #include "core/format.hpp"
 #include "report/common.hpp"
+#include "report/fields_json.hpp"
 #include "report/solved.hpp"
 #include "stickslip/drift_input.hpp"
 #include "stickslip/number_text.hpp"
@@ -52,48 +53,21 @@ std::string exponent_head(const SweepResult& r, const SweepExponent& e) {
            "tau " + pad(format_number(e.tau, 4), 10) + " s: ";
 }
 
-/// The fitted exponents: {tau, exponent, chi2_per_dof, points}, the exponent
-/// an estimate with its interval, or for a solved sweep {value, error}.
-ordered_json exponents_json(const SweepResult& r) {
-    ordered_json ex = ordered_json::array();
-    for (const auto& e : r.exponents) {
-        ordered_json o;
-        if (r.varies()) o["varied"] = e.varied;
-        o["tau"] = e.tau;
-        o["exponent"] = r.solved() ? grid_estimate_json({e.exponent.value, e.exponent.std_error})
-                                   : estimate_json(e.exponent);
-        o["chi2_per_dof"] = json_number(e.chi2_per_dof);
-        o["points"] = e.points;
-        ex.push_back(o);
-    }
-    return ex;
+/// The fitted exponents and D's approach to white noise per noise, each
+/// element its struct's declared fields (fields_json): estimates with their
+/// interval, or for a solved sweep {value, error, kind}.
+template <class Item>
+ordered_json declared_list_json(const SweepResult& r, const std::vector<Item>& items) {
+    const FieldJsonStyle style{r.solved(), &r.request.params};
+    ordered_json out = ordered_json::array();
+    for (const Item& each : items) out.push_back(fields_json(each, style));
+    return out;
 }
 
 /// An estimate of a sweep: with its interval when sampled, as {value, error}
 /// when solved.
 ordered_json sweep_estimate_json(const SweepResult& r, const Estimate& e) {
     return r.solved() ? grid_estimate_json({e.value, e.std_error}) : estimate_json(e);
-}
-
-/// D's approach to white noise per noise (SweepWhiteLimit).
-ordered_json white_limits_json(const SweepResult& r) {
-    ordered_json out = ordered_json::array();
-    for (const auto& w : r.white_limits) {
-        ordered_json o;
-        if (r.varies()) o["varied"] = w.varied;
-        o["noise"] = w.noise;
-        o["white_diffusivity"] = white_reference_json(w.white_diffusivity, r.request.params);
-        o["exponent"] = sweep_estimate_json(r, w.exponent);
-        o["coefficient"] = sweep_estimate_json(r, w.coefficient);
-        o["chi2_per_dof"] = json_number(w.chi2_per_dof);
-        o["half_order"] = sweep_estimate_json(r, w.half_order);
-        o["first_order"] = sweep_estimate_json(r, w.first_order);
-        o["three_half_order"] = sweep_estimate_json(r, w.three_half_order);
-        o["points"] = w.points;
-        o["tau_within_percent"] = json_number(w.tau_within_percent);
-        out.push_back(o);
-    }
-    return out;
 }
 
 /// The table's lines on D's approach to white noise, or "".
@@ -190,8 +164,8 @@ std::string solved_json(const SweepResult& r, int indent) {
         pts.push_back(o);
     }
     j["points"] = pts;
-    j["exponents"] = exponents_json(r);
-    j["white_limits"] = white_limits_json(r);
+    j["exponents"] = declared_list_json(r, r.exponents);
+    j["white_limits"] = declared_list_json(r, r.white_limits);
     ordered_json work = {{"seconds", r.seconds}};
     add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
     return dump(j, indent);
@@ -293,8 +267,8 @@ std::string to_json(const SweepResult& r, int indent) {
         pts.push_back(o);
     }
     j["points"] = pts;
-    j["exponents"] = exponents_json(r);
-    j["white_limits"] = white_limits_json(r);
+    j["exponents"] = declared_list_json(r, r.exponents);
+    j["white_limits"] = declared_list_json(r, r.white_limits);
     ordered_json work = {{"seconds", r.seconds}};
     if (r.resumed) work["resumed_samples"] = r.resumed;
     add_report_tail(j, r.request, &work, r.warnings, r.interrupted);

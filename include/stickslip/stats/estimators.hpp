@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/result_fields.hpp"
 #include "stickslip/setting.hpp"
 
 namespace stickslip {
@@ -229,13 +230,27 @@ private:
 /// its standard error grows with it, so the symmetric interval misses mostly
 /// below and can go negative. M0 and E[t1] keep the symmetric interval.
 struct LongExcursionEstimates {
-    Estimate diffusivity;   ///< [m^2/s]
-    Estimate mobility;      ///< mean velocity M0 [m/s]
-    Estimate mean_duration; ///< E[t1] [s]
-    /// Completed excursions N the estimates are from (capped ones excluded).
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    Estimate diffusivity;
+    Estimate mobility;
+    Estimate mean_duration;
     std::uint64_t excursions = 0;
-    /// The estimator D was computed with.
     Estimator estimator = Estimator::RenewalReward;
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = LongExcursionEstimates;
+        visit(&S::diffusivity, FieldInfo{"diffusivity", "m^2/s", "D, the effective diffusivity"});
+        visit(&S::mobility, FieldInfo{"mobility", "m/s", "M0, the mean velocity"});
+        visit(&S::mean_duration,
+              FieldInfo{"mean_duration", "s", "E[t1], the mean duration of a long excursion", FieldForm::NoInterval});
+        visit(&S::excursions,
+              FieldInfo{"completed", "", "completed long excursions the estimates are from (capped ones excluded)"});
+        visit(&S::estimator, FieldInfo{"estimator", "", "the estimator D was computed with; reported in the head",
+                                       FieldForm::NotInBlock});
+    }
 };
 
 /// Two-sided standard-normal quantile q_{(1+level)/2}; level in (0, 1).

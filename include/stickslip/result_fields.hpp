@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// stickslip/result_fields.hpp -- a result's fields, declared once beside its
+// struct: name, unit, help and how the reports show it.
+//
+// A result's field used to be spelled five times: the struct member, the JSON
+// writer, the Python property and its docstring, the pickling list and the
+// JSON Schema; a new field touched all five and a missed one went unnoticed
+// until a user's script met it. setting.hpp solved this for the inputs; this
+// header does it for the outputs. A struct declares its fields in a static
+// member function fields(visit), right below its members, in report order:
+//
+//     template <class Visit> static constexpr void fields(Visit&& visit) {
+//         visit(&SweepExponent::tau, FieldInfo{"tau", "s", "the correlation time of the fit"});
+//         ...
+//     }
+//
+// and everything else is generated from that list: the JSON block
+// (report/fields_json.hpp), the Python class's properties with their
+// docstrings and pickling (python/src/), the type stubs and the JSON Schema's
+// definition of the block (python/tools/make_stubs.py and make_schema.py, whose
+// --check the tests run). A table keeps its hand layout: it is prose for
+// people, not an interface.
+//
+// The member types a declaration may use are those the writers know: double,
+// int, std::uint64_t, bool, std::string, an enum with a to_string (its name)
+// and Estimate. Declaration order is the
+// order the JSON prints; changing it changes the reports (a CHANGELOG entry).
+#pragma once
+
+/// \file
+/// How each result field is named, described and shown, once for the JSON,
+/// Python, pickling, stubs and schema. The comment at the top of this header
+/// explains the design.
+
+namespace stickslip {
+
+/// How a field appears in its struct's JSON block (and so in the schema).
+enum class FieldForm {
+    /// As it is: a number (inf as "inf", NaN as null), an integer, a boolean,
+    /// a text, or an Estimate {value, error, ci, level, kind} (under a solved
+    /// method {value, error, kind}).
+    Value,
+    /// An Estimate without its interval: {value, error, kind}.
+    NoInterval,
+    /// A number that is a white-noise reference of the report's model: an
+    /// exact estimate for the affine law's closed forms, a solved one (error
+    /// null) for a drift law's quadrature.
+    Reference,
+    /// A number written only when it is not NaN (a sweep's varied constant,
+    /// which is NaN without --vary); not required by the schema.
+    WhenSet,
+    /// Kept, pickled and given to Python, but reported elsewhere than in this
+    /// struct's block (e.g. a time that belongs in the report's "work").
+    NotInBlock,
+};
+
+/// A result field's description: what the reports call it and say about it.
+struct FieldInfo {
+    /// Its name in JSON, CSV and Python (snake_case). A dot nests in JSON:
+    /// "plain.diffusivity" is {"plain": {"diffusivity": ...}}; Python then
+    /// calls it by the part after the last dot's owner joined with '_'
+    /// ("plain_diffusivity"), as the C++ member is.
+    const char* name;
+    /// Its SI unit ("m^2/s", "s", ...), or "" for a pure number.
+    const char* unit;
+    /// One sentence for docstrings and the schema.
+    const char* help;
+    /// How its struct's JSON block shows it.
+    FieldForm form = FieldForm::Value;
+};
+
+/// A visitor that accepts any field: the test of DeclaredFields.
+struct AnyFieldVisitor {
+    /// Takes any member pointer and its description, and does nothing.
+    template <class Member> constexpr void operator()(Member, const FieldInfo&) const {}
+};
+
+/// A struct that declares its fields: T::fields(visit) calls
+/// visit(&T::member, FieldInfo{...}) once per field, in report order.
+template <class T>
+concept DeclaredFields = requires(AnyFieldVisitor v) { T::fields(v); };
+
+} // namespace stickslip

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Internal: the JSON block of a struct that declares its fields
+// (result_fields.hpp), written from the declaration alone, so that a new field
+// reaches the JSON without a line here. The few things a field's value cannot
+// say by itself (whether the report's estimates are sampled or solved, which
+// model a white-noise reference belongs to) come from the report, in
+// FieldJsonStyle.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+#include "report/common.hpp"
+#include "stickslip/result_fields.hpp"
+
+namespace stickslip::detail {
+
+/// What a report tells fields_json about itself.
+struct FieldJsonStyle {
+    /// Estimates of a solved method (the Kolmogorov engine): {value, error,
+    /// kind: "solved"}, no interval; otherwise sampled ones with their interval.
+    bool solved = false;
+    /// The report's model, for FieldForm::Reference fields (white_reference_json).
+    const ModelParams* model = nullptr;
+};
+
+/// One field's value as JSON (the member types result_fields.hpp allows).
+template <class Value>
+ordered_json field_value_json(const Value& x, const FieldInfo& info, const FieldJsonStyle& style) {
+    if constexpr (std::is_same_v<Value, Estimate>) {
+        if (style.solved) return solved_estimate_json(x.value, x.std_error);
+        return estimate_json(x, info.form != FieldForm::NoInterval);
+    } else if constexpr (std::is_same_v<Value, double>) {
+        if (info.form == FieldForm::Reference) return white_reference_json(x, *style.model);
+        return json_number(x);
+    } else if constexpr (std::is_enum_v<Value>) {
+        return to_string(x); // its name, as the settings write it
+    } else {
+        static_assert(std::is_same_v<Value, int> || std::is_same_v<Value, std::uint64_t> ||
+                          std::is_same_v<Value, bool> || std::is_same_v<Value, std::string>,
+                      "result_fields.hpp: a declared field of a type the JSON writer does not know");
+        return x;
+    }
+}
+
+/// The object at a dotted name's owner ("plain.diffusivity" -> j["plain"]),
+/// made when absent, and the last part of the name.
+inline ordered_json& field_owner(ordered_json& j, std::string_view& name) {
+    ordered_json* at = &j;
+    for (auto dot = name.find('.'); dot != std::string_view::npos; dot = name.find('.')) {
+        at = &(*at)[std::string(name.substr(0, dot))];
+        name.remove_prefix(dot + 1);
+    }
+    return *at;
+}
+
+/// The JSON block of x: its declared fields in order, less those reported
+/// elsewhere (FieldForm::NotInBlock) and unset ones (FieldForm::WhenSet, NaN).
+template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJsonStyle& style = {}) {
+    ordered_json j = ordered_json::object();
+    T::fields([&](auto member, const FieldInfo& info) {
+        const auto& value = x.*member;
+        if (info.form == FieldForm::NotInBlock) return;
+        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, double>)
+            if (info.form == FieldForm::WhenSet && std::isnan(value)) return;
+        std::string_view name = info.name;
+        ordered_json& owner = field_owner(j, name);
+        owner[std::string(name)] = field_value_json(value, info, style);
+    });
+    return j;
+}
+
+} // namespace stickslip::detail

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A result's fields declared once (result_fields.hpp): the JSON block is
+// written from the declaration alone, so a struct's new field reaches the
+// report with no writer to edit. A test-only struct shows each FieldForm; the
+// real ones are checked against the golden outputs, the schema
+// (python/tools/make_schema.py --check) and the stubs.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "report/fields_json.hpp"
+#include "stickslip/diffusivity.hpp"
+#include "stickslip/result_fields.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip {
+namespace {
+
+struct Demo {
+    double varied = std::numeric_limits<double>::quiet_NaN();
+    double time = 2.5;
+    std::uint64_t count = 7;
+    bool done = true;
+    std::string name = "demo";
+    Estimate mean{1.0, 0.1, 0.8, 1.2, 0.95};
+    Estimate rate{3.0, 0.3, 2.4, 3.6, 0.95};
+    double seconds = 9.0;
+    double limit = std::numeric_limits<double>::infinity();
+    Estimate inner{4.0, 0.4, 3.2, 4.8, 0.95};
+
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        visit(&Demo::varied, FieldInfo{"varied", "", "set or not", FieldForm::WhenSet});
+        visit(&Demo::time, FieldInfo{"time", "s", "a number"});
+        visit(&Demo::count, FieldInfo{"count", "", "an integer"});
+        visit(&Demo::done, FieldInfo{"done", "", "a flag"});
+        visit(&Demo::name, FieldInfo{"name", "", "a text"});
+        visit(&Demo::mean, FieldInfo{"mean", "m/s", "with its interval"});
+        visit(&Demo::rate, FieldInfo{"rate", "1/s", "without", FieldForm::NoInterval});
+        visit(&Demo::seconds, FieldInfo{"seconds", "s", "elsewhere", FieldForm::NotInBlock});
+        visit(&Demo::limit, FieldInfo{"limit", "", "infinite"});
+        visit(&Demo::inner, FieldInfo{"nested.inner", "m", "one level down"});
+    }
+};
+static_assert(DeclaredFields<Demo>);
+static_assert(DeclaredFields<SweepExponent> && DeclaredFields<SweepWhiteLimit> && DeclaredFields<ControlVariateReport>);
+static_assert(!DeclaredFields<DiffusivityResult>);
+
+TEST(ResultFields, TheJsonBlockFollowsTheDeclaration) {
+    Demo d;
+    const detail::ordered_json j = detail::fields_json(d);
+    // In declaration order, less the unset and the reported-elsewhere fields.
+    EXPECT_EQ(j.dump(),
+              R"({"time":2.5,"count":7,"done":true,"name":"demo",)"
+              R"("mean":{"value":1.0,"error":0.1,"ci":[0.8,1.2],"level":0.95,"kind":"sampled"},)"
+              R"("rate":{"value":3.0,"error":0.3,"kind":"sampled"},"limit":"inf",)"
+              R"("nested":{"inner":{"value":4.0,"error":0.4,"ci":[3.2,4.8],"level":0.95,"kind":"sampled"}}})");
+    d.varied = 1.5;
+    EXPECT_EQ(detail::fields_json(d).begin().key(), "varied");
+    EXPECT_EQ(detail::fields_json(d)["varied"], 1.5);
+}
+
+TEST(ResultFields, ASolvedReportWritesItsEstimatesWithoutAnInterval) {
+    const detail::ordered_json j = detail::fields_json(Demo{}, detail::FieldJsonStyle{true, nullptr});
+    EXPECT_EQ(j["mean"].dump(), R"({"value":1.0,"error":0.1,"kind":"solved"})");
+}
+
+TEST(ResultFields, AReferenceIsExactForTheAffineLawAndSolvedForADriftLaw) {
+    SweepWhiteLimit w;
+    w.white_diffusivity = 0.25;
+    ModelParams affine;
+    const detail::ordered_json j = detail::fields_json(w, detail::FieldJsonStyle{false, &affine});
+    EXPECT_EQ(j["white_diffusivity"].dump(), R"({"value":0.25,"error":0.0,"kind":"exact"})");
+    EXPECT_FALSE(j.contains("varied")); // NaN without --vary
+}
+
+TEST(ResultFields, NamesAreUniqueAndDocumented) {
+    auto check = [](auto tag) {
+        using T = typename decltype(tag)::type;
+        std::vector<std::string> names;
+        T::fields([&](auto, const FieldInfo& f) {
+            EXPECT_FALSE(std::string(f.help).empty()) << f.name;
+            for (const auto& n : names) EXPECT_NE(n, f.name);
+            names.push_back(f.name);
+        });
+        EXPECT_FALSE(names.empty());
+    };
+    check(std::type_identity<SweepExponent>{});
+    check(std::type_identity<SweepWhiteLimit>{});
+    check(std::type_identity<ControlVariateReport>{});
+}
+
+} // namespace
+} // namespace stickslip
