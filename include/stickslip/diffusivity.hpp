@@ -185,13 +185,25 @@ struct ControlVariateReport {
 
 /// How a precision-on-demand run ended.
 struct PrecisionOutcome {
-    double target = 0.0;              ///< requested relative half-width (0: mode off)
-    double relative_half_width = 0.0; ///< achieved (hi - D) / D
-    /// Whether the target was met (true when the mode is off); if not, the
-    /// result carries a warning saying why (max_excursions, interrupted).
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    double target = 0.0;
+    double relative_half_width = 0.0;
     bool reached = true;
-    /// Batches run (1 when the mode is off).
     int batches = 1;
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = PrecisionOutcome;
+        visit(&S::target, FieldInfo{"target", "", "the requested relative half-width of D's interval (0: mode off)"});
+        visit(&S::relative_half_width,
+              FieldInfo{"relative_half_width", "", "the relative half-width (hi - D)/D achieved"});
+        visit(&S::reached, FieldInfo{"reached", "",
+                                     "whether the target was met (true when the mode is off); if not, a warning "
+                                     "says why (max_excursions, interrupted)"});
+        visit(&S::batches, FieldInfo{"batches", "", "batches of excursions run (1 when the mode is off)"});
+    }
 };
 
 /// What compute_diffusivity returns; report.hpp writes it as JSON, a table

@@ -52,8 +52,6 @@ template <class F> void fields(F& f, Scales& x) {
 }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
 template <class F> void fields(F& f, GridEstimateSeries& x) { f(x.items, x.shape); }
-template <class F> void fields(F& f, BruteForceEstimates& x) { f(x.diffusivity, x.mobility, x.trajectories, x.horizon); }
-template <class F> void fields(F& f, PrecisionOutcome& x) { f(x.target, x.relative_half_width, x.reached, x.batches); }
 template <class F> void fields(F& f, DiscretisationCheck& x) {
     f(x.knots, x.check_knots, x.dt, x.check_dt, x.excursions, x.steps, x.diffusivity_difference, x.diffusivity_stderr,
       x.mobility_difference, x.mobility_stderr);

@@ -53,16 +53,23 @@ void add_totals(Cls& cls) {
             "samples restored from a checkpoint (resume=) rather than computed");
 }
 
-/// D, M0, E[t1] and the excursions completed of the long excursions behind a
-/// result: LongExcursionEstimates' declared fields (result_fields.hpp), as
-/// properties of the result.
+/// The declared fields (result_fields.hpp) of the part get(r) of a result, as
+/// properties of the result (an enum as its name), with the declaration's
+/// docstrings: D, M0, E[t1] and the excursions completed of the long
+/// excursions behind a result, D_t and U(t)/t of brute force.
 template <class Cls, class Get>
-void add_long_excursion(Cls& cls, Get get) {
+void add_declared_fields(Cls& cls, Get get) {
     using R = typename Cls::type;
-    LongExcursionEstimates::fields([&](auto member, const FieldInfo& f) {
-        if (f.form == FieldForm::NotInBlock) return;
+    using T = std::remove_cvref_t<decltype(get(std::declval<const R&>()))>;
+    T::fields([&](auto member, const FieldInfo& f) {
         cls.def_property_readonly(
-            field_python_name(f).c_str(), [get, member](const R& r) { return get(r).*member; }, field_doc(f).c_str());
+            field_python_name(f).c_str(),
+            [get, member](const R& r) {
+                const auto& value = get(r).*member;
+                if constexpr (std::is_enum_v<std::remove_cvref_t<decltype(value)>>) return to_string(value);
+                else return value;
+            },
+            field_doc(f).c_str());
     });
 }
 
@@ -91,9 +98,11 @@ py::array_t<double> widths(const std::vector<double>& edges) {
 void bind_results(py::module_& m) {
     // Seen from Python as a dict of its JSON block (DiffusivityResult.control_variate).
     note_declared<ControlVariateReport>("", "control_variate");
+    note_declared<PrecisionOutcome>("", "merged:precision"); // a dict of its JSON block, as above
+    note_declared<BruteForceEstimates>("", "merged:finite_time_diffusivity_report"); // flattened, as above
     // Merged into the top level of these reports, and flattened into their results (add_long_excursion).
     note_declared<LongExcursionEstimates>(
-        "", "merged:diffusivity_report,stationary_density_report,autocorrelation_report,sweep_point");
+        "_LongExcursions", "merged:diffusivity_report,stationary_density_report,autocorrelation_report,sweep_point");
     // ---- histograms and paths ----------------------------------------------------------------
     py::class_<VelocityHistogram>(m, "Histogram",
                                   "A velocity density histogram with error bars. `density` is the density of the "
@@ -149,7 +158,7 @@ void bind_results(py::module_& m) {
         py::class_<DiffusivityResult> c(m, "DiffusivityResult",
                                         "D, M0 and E[t1] from long excursions (stickslip.diffusivity). "
                                         "to_dict() is the CLI's JSON.");
-        add_long_excursion(c, [](const DiffusivityResult& r) -> const LongExcursionEstimates& { return r.estimates; });
+        add_declared_fields(c, [](const DiffusivityResult& r) -> const LongExcursionEstimates& { return r.estimates; });
         add_totals<DiffusivityResult>(c);
         add_request_params<DiffusivityResult>(c);
         add_renderings<DiffusivityResult>(c);
@@ -202,15 +211,11 @@ void bind_results(py::module_& m) {
                 "precision",
                 [](const DiffusivityResult& r) -> py::object {
                     if (r.request.rel_precision <= 0) return py::none();
-                    py::dict d;
-                    d["target"] = r.precision.target;
-                    d["relative_half_width"] = r.precision.relative_half_width;
-                    d["reached"] = r.precision.reached;
-                    d["batches"] = r.precision.batches;
-                    return d;
+                    return json_loads(to_json(r, -1))["precision"]; // the JSON's layout, defined once
                 },
-                "precision on demand (rel_precision > 0): {'target', 'relative_half_width', 'reached', "
-                "'batches'}; None otherwise")
+                ("precision on demand (rel_precision > 0), a dict of the JSON's block: " +
+                 block_doc<PrecisionOutcome>() + "; ['max_excursions'] the request's cap; None otherwise")
+                    .c_str())
             .def_property_readonly(
                 "discretisation",
                 [](const DiffusivityResult& r) -> py::object {
@@ -260,16 +265,8 @@ void bind_results(py::module_& m) {
         add_totals<BruteForceResult>(c);
         add_request_params<BruteForceResult>(c);
         add_renderings<BruteForceResult>(c);
+        add_declared_fields(c, [](const BruteForceResult& r) -> const BruteForceEstimates& { return r.estimates; });
         c.def_property_readonly(
-             "diffusivity", [](const BruteForceResult& r) { return r.estimates.diffusivity; },
-             "D_t = var U(t)/t [m^2/s] (Estimate; biased against D by O(1/t))")
-            .def_property_readonly(
-                "mobility", [](const BruteForceResult& r) { return r.estimates.mobility; },
-                "mean U(t)/t [m/s] (Estimate)")
-            .def_property_readonly("trajectories", [](const BruteForceResult& r) { return r.estimates.trajectories; })
-            .def_property_readonly(
-                "time", [](const BruteForceResult& r) { return r.estimates.horizon; }, "horizon t [s]")
-            .def_property_readonly(
                 "x0", [](const BruteForceResult& r) { return r.start_noise; }, "initial noise used [s^-1/2]")
             .def_property_readonly("v0", [](const BruteForceResult& r) { return r.request.v0; })
             .def_property_readonly("engine", [](const BruteForceResult& r) { return to_string(r.request.engine.engine); })
@@ -289,7 +286,7 @@ void bind_results(py::module_& m) {
                         "Stationary velocity density with error bars (stickslip.density): a histogram of the "
                         "continuous part of the law of V plus the atom P(V = 0), and D, M0, E[t1] of the same "
                         "excursions. to_dict() is the CLI's JSON.");
-        add_long_excursion(c, [](const R& r) -> const LongExcursionEstimates& { return r.estimates; });
+        add_declared_fields(c, [](const R& r) -> const LongExcursionEstimates& { return r.estimates; });
         add_totals<R>(c);
         add_request_params<R>(c);
         add_renderings<R>(c);
@@ -366,7 +363,7 @@ void bind_results(py::module_& m) {
                         "Stationary autocorrelation <V(0)V(r)>, covariance h(r) and h(r)/h(0) against the lag r "
                         "(stickslip.correlation), and D, M0, E[t1] of the same excursions. to_dict() is the "
                         "CLI's JSON.");
-        add_long_excursion(c, [](const R& r) -> const LongExcursionEstimates& { return r.estimates; });
+        add_declared_fields(c, [](const R& r) -> const LongExcursionEstimates& { return r.estimates; });
         add_totals<R>(c);
         add_request_params<R>(c);
         add_renderings<R>(c);

@@ -208,13 +208,15 @@ class _Totals(_Rendered):
 
 class _LongExcursions(_Totals):
     @property
-    def diffusivity(self) -> Estimate: ...    # D [m^2/s]
+    def diffusivity(self) -> Estimate: ...  # [m^2/s]
     @property
-    def mobility(self) -> Estimate: ...       # M0 [m/s]
+    def mobility(self) -> Estimate: ...  # [m/s]
     @property
-    def mean_duration(self) -> Estimate: ...  # E[t1] [s]
+    def mean_duration(self) -> Estimate: ...  # [s]
     @property
     def completed(self) -> int: ...
+    @property
+    def estimator(self) -> str: ...
 
 class DiffusivityResult(_LongExcursions):
     @property
@@ -330,7 +332,7 @@ class SweepExponent:
     @property
     def varied(self) -> float: ...
     @property
-    def tau(self) -> float: ...
+    def tau(self) -> float: ...  # [s]
     @property
     def exponent(self) -> Estimate: ...
     @property
@@ -342,9 +344,9 @@ class SweepWhiteLimit:
     @property
     def varied(self) -> float: ...
     @property
-    def noise(self) -> float: ...
+    def noise(self) -> float: ...  # [m^2 s^-3]
     @property
-    def white_diffusivity(self) -> float: ...
+    def white_diffusivity(self) -> float: ...  # [m^2/s]
     @property
     def exponent(self) -> Estimate: ...
     @property
@@ -360,7 +362,7 @@ class SweepWhiteLimit:
     @property
     def points(self) -> int: ...
     @property
-    def tau_within_percent(self) -> float: ...
+    def tau_within_percent(self) -> float: ...  # [s]
 
 class SweepResult(_Rendered):
     @property

@@ -80,28 +80,35 @@ def stub_text():
     return out
 
 
-def declared_class_text(declared):
-    """The stub of a class that declares its fields: one property per field."""
-    out = f"class {declared['python_class']}:\n"
+def declared_class_body(declared):
+    """The body of a class that declares its fields: one property per field."""
+    out = ""
     for f in declared["fields"]:
         name = f["name"].replace(".", "_")
-        out += f"    @property\n    def {name}(self) -> {f['type']}: ...\n"
+        unit = f"  # [{f['unit']}]" if f["unit"] else ""
+        out += f"    @property\n    def {name}(self) -> {f['type']}: ...{unit}\n"
     return out
 
 
 def core_stub_text(current):
-    """_core.pyi with each declared class's block (from 'class X:' to the next
-    blank line) generated; a declared class missing from it is an error."""
+    """_core.pyi with the body of each declared class (from its 'class X...:'
+    line, kept as written, to the next blank line) generated; a declared class
+    missing from it is an error. A name starting with '_' is a stub-only base
+    of the results its fields are flattened into."""
     for declared in stickslip._core._result_fields():
-        if not declared["python_class"]:
+        name = declared["python_class"]
+        if not name:
             continue  # seen from Python as a dict
-        head = f"\nclass {declared['python_class']}:\n"
-        start = current.find(head)
+        start = -1
+        for head in (f"\nclass {name}:\n", f"\nclass {name}("):
+            start = current.find(head)
+            if start >= 0:
+                break
         if start < 0:
-            sys.exit(f"make_stubs: {CORE_STUBS} has no class {declared['python_class']}: add an empty one")
-        start += 1
-        end = current.find("\n\n", start)
-        current = current[:start] + declared_class_text(declared) + current[end + 1:]
+            sys.exit(f"make_stubs: {CORE_STUBS} has no class {name}: add an empty one")
+        body = current.find("\n", start + 1) + 1
+        end = current.find("\n\n", body)
+        current = current[:body] + declared_class_body(declared) + current[end + 1:]
     return current
 
 

@@ -2,6 +2,7 @@
 // Reports of the long-excursion diffusivity run and the brute-force run
 // (report.hpp): JSON, aligned table, CSV.
 #include "report/common.hpp"
+#include "report/fields_csv.hpp"
 #include "report/fields_json.hpp"
 #include "stickslip/report.hpp"
 
@@ -96,12 +97,8 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     j["completed"] = r.estimates.excursions;
     j["capped"] = r.monte_carlo().totals.capped;
     if (q.rel_precision > 0) {
-        ordered_json pr;
-        pr["target"] = r.precision.target;
-        pr["relative_half_width"] = r.precision.relative_half_width;
-        pr["reached"] = r.precision.reached;
-        pr["batches"] = r.precision.batches;
-        pr["max_excursions"] = q.max_excursions;
+        ordered_json pr = fields_json(r.precision);
+        pr["max_excursions"] = q.max_excursions; // the request's cap, beside what it allowed
         j["precision"] = pr;
     }
     if (r.control_variate) j["control_variate"] = fields_json(*r.control_variate);
@@ -187,17 +184,14 @@ std::string to_csv(const DiffusivityResult& r) {
     const auto& q = r.request;
     const auto& p = q.params;
     std::ostringstream os = report_stream();
-    os << "engine,friction,noise,tau,relaxation,bias,excursions,seed," << csv_estimate_header("diffusivity") << ","
-       << csv_estimate_header("mobility") << ",mean_duration,mean_duration_error"
+    os << "engine,friction,noise,tau,relaxation,bias,seed," << fields_csv_header<LongExcursionEstimates>()
        << (r.discretisation ? ",check_dt,diffusivity_difference,diffusivity_difference_error,mobility_difference,"
                               "mobility_difference_error"
                             : "")
        << "\n";
     os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
        << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
-       << r.estimates.excursions << "," << q.control.seed << "," << csv_estimate(r.estimates.diffusivity) << ","
-       << csv_estimate(r.estimates.mobility) << "," << csv_number(r.estimates.mean_duration.value) << ","
-       << csv_number(r.estimates.mean_duration.std_error);
+       << q.control.seed << "," << fields_csv_row(r.estimates);
     if (r.discretisation) {
         const DiscretisationCheck& c = *r.discretisation;
         os << "," << csv_number(c.check_dt) << "," << csv_number(c.diffusivity_difference) << ","
@@ -226,8 +220,7 @@ std::string to_json(const BruteForceResult& r, int indent) {
     nd["diffusivity"] = r.estimates.diffusivity.value / sc.diffusivity;
     nd["mobility"] = r.estimates.mobility.value / sc.velocity;
     j["nondimensional"] = nd;
-    j["diffusivity"] = estimate_json(r.estimates.diffusivity);
-    j["mobility"] = estimate_json(r.estimates.mobility);
+    append_members(j, fields_json(r.estimates));
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
     add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
@@ -255,12 +248,12 @@ std::string to_csv(const BruteForceResult& r) {
     const auto& q = r.request;
     const auto& p = q.params;
     std::ostringstream os = report_stream();
-    os << "engine,friction,noise,tau,relaxation,bias,time,trajectories,seed," << csv_estimate_header("diffusivity")
-       << "," << csv_estimate_header("mobility") << "\n";
+    os << "engine,friction,noise,tau,relaxation,bias,time,trajectories,seed,"
+       << fields_csv_header<BruteForceEstimates>() << "\n";
     os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
        << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
        << csv_number(q.horizon) << "," << r.estimates.trajectories << "," << q.control.seed << ","
-       << csv_estimate(r.estimates.diffusivity) << "," << csv_estimate(r.estimates.mobility) << "\n";
+       << fields_csv_row(r.estimates) << "\n";
     return csv_provenance(r.request) + os.str();
 }
 

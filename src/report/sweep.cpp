@@ -4,6 +4,7 @@
 
 #include "core/format.hpp"
 #include "report/common.hpp"
+#include "report/fields_csv.hpp"
 #include "report/fields_json.hpp"
 #include "report/solved.hpp"
 #include "stickslip/drift_input.hpp"
@@ -319,20 +320,16 @@ std::string to_table(const SweepResult& r) {
 std::string to_csv(const SweepResult& r) {
     if (r.solved()) return solved_csv(r);
     std::ostringstream os = report_stream();
-    os << (r.varies() ? "varied," : "") << "tau,noise," << csv_estimate_header("diffusivity") << "," << csv_estimate_header("mobility")
-       << ",mean_duration,mean_duration_error,slope,slope_error,tau_nondim,diffusivity_nondim,excursions,"
-       << csv_estimate_header("white_ratio")
+    os << (r.varies() ? "varied," : "") << "tau,noise," << fields_csv_header<LongExcursionEstimates>()
+       << ",slope,slope_error,tau_nondim,diffusivity_nondim," << csv_estimate_header("white_ratio")
        << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
        << "\n";
     for (const auto& p : r.points) {
         const Scales sc = scales_of(point_params(r, p));
         if (r.varies()) os << csv_number(p.varied) << ",";
-        os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << csv_estimate(p.estimates.diffusivity) << ","
-           << csv_estimate(p.estimates.mobility) << "," << csv_number(p.estimates.mean_duration.value) << ","
-           << csv_number(p.estimates.mean_duration.std_error) << "," << csv_number(p.slope.value) << ","
-           << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time) << ","
-           << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << ","
-           << p.estimates.excursions << "," << csv_estimate(p.white_ratio);
+        os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << fields_csv_row(p.estimates) << ","
+           << csv_number(p.slope.value) << "," << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time)
+           << "," << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << "," << csv_estimate(p.white_ratio);
         if (dt_per_point(r.request.engine)) os << "," << csv_number(p.dt);
         if (scheme_per_point(r.request.engine)) os << "," << to_string(p.scheme);
         os << "\n";

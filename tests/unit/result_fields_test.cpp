@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "report/fields_csv.hpp"
 #include "report/fields_json.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/result_fields.hpp"
@@ -60,6 +61,16 @@ TEST(ResultFields, TheJsonBlockFollowsTheDeclaration) {
     d.varied = 1.5;
     EXPECT_EQ(detail::fields_json(d).begin().key(), "varied");
     EXPECT_EQ(detail::fields_json(d)["varied"], 1.5);
+}
+
+TEST(ResultFields, TheCsvColumnsFollowTheDeclaration) {
+    Demo d;
+    d.name = "a, \"b\"";
+    // An unset WhenSet field keeps its column (empty); a dotted name's dots are '_'.
+    EXPECT_EQ(detail::fields_csv_header<Demo>(),
+              "varied,time,count,done,name,mean,mean_error,mean_lo,mean_hi,rate,rate_error,limit,"
+              "nested_inner,nested_inner_error,nested_inner_lo,nested_inner_hi");
+    EXPECT_EQ(detail::fields_csv_row(d), ",2.5,7,true,\"a, \"\"b\"\"\",1,0.1,0.8,1.2,3,0.3,inf,4,0.4,3.2,4.8");
 }
 
 TEST(ResultFields, ASolvedReportWritesItsEstimatesWithoutAnInterval) {

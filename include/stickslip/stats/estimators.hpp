@@ -265,11 +265,24 @@ LongExcursionEstimates estimate_long_excursion(const BivariateMoments& ut, doubl
 /// relative-error interval (make_relative_interval), and M0_t = mean U(t) / t
 /// with the symmetric one.
 struct BruteForceEstimates {
-    Estimate diffusivity; ///< D_t [m^2/s]: biased by O(1/t) against D
-    Estimate mobility;    ///< [m/s]
-    /// Trajectories N' the estimates are from.
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    Estimate diffusivity;
+    Estimate mobility;
     std::uint64_t trajectories = 0;
-    double horizon = 0.0; ///< t [s]
+    double horizon = 0.0;
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = BruteForceEstimates;
+        visit(&S::diffusivity,
+              FieldInfo{"diffusivity", "m^2/s", "D_t = var U(t)/t, biased against D by O(1/t)"});
+        visit(&S::mobility, FieldInfo{"mobility", "m/s", "the mean of U(t)/t"});
+        visit(&S::trajectories, FieldInfo{"trajectories", "", "trajectories the estimates are from; reported in "
+                                                               "the params", FieldForm::NotInBlock});
+        visit(&S::horizon, FieldInfo{"time", "s", "the horizon t; reported in the params", FieldForm::NotInBlock});
+    }
 };
 /// Brute-force estimates from the moments of (U(t), .) over the
 /// trajectories (x = U(horizon) [m]; y unused) at horizon t [s]: D_t from the
