@@ -10,6 +10,7 @@
 /// The comment at the top of this header explains the design.
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -124,23 +125,38 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
 /// --check-knots one: with knots twice as far apart; then dt == check_dt and
 /// knots, check_knots give the knot counts).
 struct DiscretisationCheck {
-    int knots = 0;         ///< --check-knots: the run's knots
-    int check_knots = 0;   ///< --check-knots: the coarse run's
-    double dt = 0.0;       ///< the run's step [s]
-    double check_dt = 0.0; ///< twice it [s]
-    /// Excursions completed at check_dt.
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    int knots = 0;
+    int check_knots = 0;
+    double dt = std::numeric_limits<double>::quiet_NaN();
+    double check_dt = std::numeric_limits<double>::quiet_NaN();
     std::uint64_t excursions = 0;
-    /// Steps made at check_dt.
     std::uint64_t steps = 0;
-    /// D at check_dt minus D at dt [m^2/s].
-    double diffusivity_difference = 0.0;
-    /// Its standard error [m^2/s] (the runs are independent: the two
-    /// standard errors add in quadrature).
-    double diffusivity_stderr = 0.0;
-    /// M0 at check_dt minus M0 at dt [m/s].
-    double mobility_difference = 0.0;
-    /// Its standard error [m/s].
-    double mobility_stderr = 0.0;
+    Estimate diffusivity_difference;
+    Estimate mobility_difference;
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp). A --check-dt run sets
+    /// dt, check_dt and steps, a --check-knots run knots and check_knots.
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = DiscretisationCheck;
+        visit(&S::knots, FieldInfo{"knots", "", "--check-knots: the run's knots", FieldForm::WhenSet});
+        visit(&S::check_knots, FieldInfo{"check_knots", "", "--check-knots: the coarse run's knots (about half)",
+                                         FieldForm::WhenSet});
+        visit(&S::dt, FieldInfo{"dt", "s", "--check-dt: the run's step", FieldForm::WhenSet});
+        visit(&S::check_dt, FieldInfo{"check_dt", "s", "--check-dt: twice it", FieldForm::WhenSet});
+        visit(&S::excursions, FieldInfo{"excursions", "", "excursions completed by the coarse run"});
+        visit(&S::steps, FieldInfo{"steps", "", "--check-dt: steps made by the coarse run", FieldForm::WhenSet});
+        visit(&S::diffusivity_difference,
+              FieldInfo{"diffusivity", "m^2/s",
+                        "D of the coarse run minus D of the run, with the standard error of the difference (the runs "
+                        "are independent: their standard errors add in quadrature)",
+                        FieldForm::NoInterval});
+        visit(&S::mobility_difference,
+              FieldInfo{"mobility", "m/s", "M0 of the coarse run minus M0 of the run, with its standard error",
+                        FieldForm::NoInterval});
+    }
 };
 
 /// How the control variate of a diffusivity run went (theory.md, section 12).

@@ -46,8 +46,10 @@ enum class FieldForm {
     /// exact estimate for the affine law's closed forms, a solved one (error
     /// null) for a drift law's quadrature.
     Reference,
-    /// A number written only when it is not NaN (a sweep's varied constant,
-    /// which is NaN without --vary); not required by the schema.
+    /// A number written only when it is not NaN, an integer only when it is
+    /// not 0 (a sweep's varied constant, which is NaN without --vary; the
+    /// parts of a check that only one kind of check sets); not required by the
+    /// schema.
     WhenSet,
     /// Kept, pickled and given to Python, but reported elsewhere than in this
     /// struct's block (e.g. a time that belongs in the report's "work").

@@ -52,10 +52,6 @@ template <class F> void fields(F& f, Scales& x) {
 }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
 template <class F> void fields(F& f, GridEstimateSeries& x) { f(x.items, x.shape); }
-template <class F> void fields(F& f, DiscretisationCheck& x) {
-    f(x.knots, x.check_knots, x.dt, x.check_dt, x.excursions, x.steps, x.diffusivity_difference, x.diffusivity_stderr,
-      x.mobility_difference, x.mobility_stderr);
-}
 template <class F> void fields(F& f, ResolvedEngine& x) {
     f(x.stop_rule, x.lattice_bound, x.lattice_points, x.truncated_mass, x.jump_rate, x.white_level, x.upper_threshold,
       x.lower_threshold);

@@ -99,6 +99,7 @@ void bind_results(py::module_& m) {
     // Seen from Python as a dict of its JSON block (DiffusivityResult.control_variate).
     note_declared<ControlVariateReport>("", "control_variate");
     note_declared<PrecisionOutcome>("", "merged:precision"); // a dict of its JSON block, as above
+    note_declared<DiscretisationCheck>("", "difference_check"); // the same
     note_declared<BruteForceEstimates>("", "merged:finite_time_diffusivity_report"); // flattened, as above
     // Merged into the top level of these reports, and flattened into their results (add_long_excursion).
     note_declared<LongExcursionEstimates>(
@@ -222,10 +223,9 @@ void bind_results(py::module_& m) {
                     if (!r.discretisation) return py::none();
                     return json_loads(to_json(r, -1))["discretisation"]; // the JSON's layout, defined once
                 },
-                "check_dt=True: {'dt', 'check_dt', 'excursions', 'steps', 'diffusivity': {'value', "
-                "'error', 'kind'}, 'mobility': {...}}, the values at 2 dt minus those at dt [m^2/s, m/s] "
-                "with their standard errors; None "
-                "otherwise")
+                ("check_dt=True, a dict of the JSON's block: " + block_doc<DiscretisationCheck>() +
+                 " (the coarse run at 2 dt); None otherwise")
+                    .c_str())
             .def_property_readonly(
                 "control_variate",
                 [](const DiffusivityResult& r) -> py::object {

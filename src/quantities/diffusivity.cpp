@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "core/format.hpp"
@@ -171,20 +172,23 @@ DiscretisationCheck run_check(const DiffusivityRequest& req, const DiffusivityRe
     }
     detail::check_finite(est);
     DiscretisationCheck c;
-    c.dt = main.request.engine.dt;
-    c.check_dt = coarse.engine.dt;
     if (knots) {
         c.knots = req.params.knots;
         c.check_knots = coarse.params.knots;
+    } else {
+        c.dt = main.request.engine.dt;
+        c.check_dt = coarse.engine.dt;
+        c.steps = t.work;
     }
     c.excursions = t.moments.count();
-    c.steps = t.work;
     const auto& d = main.estimates.diffusivity;
     const auto& m = main.estimates.mobility;
-    c.diffusivity_difference = est.diffusivity.value - d.value;
-    c.diffusivity_stderr = std::hypot(est.diffusivity.std_error, d.std_error);
-    c.mobility_difference = est.mobility.value - m.value;
-    c.mobility_stderr = std::hypot(est.mobility.std_error, m.std_error);
+    // Differences of independent runs: no interval (a difference's sign is the news).
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    c.diffusivity_difference = Estimate{est.diffusivity.value - d.value, std::hypot(est.diffusivity.std_error, d.std_error),
+                                        nan, nan, req.level};
+    c.mobility_difference =
+        Estimate{est.mobility.value - m.value, std::hypot(est.mobility.std_error, m.std_error), nan, nan, req.level};
     if (t.interrupted) {
         interrupted = true;
         warnings.push_back(std::string("interrupted during the ") + flag + " run: its difference is from the first " +
@@ -193,8 +197,9 @@ DiscretisationCheck run_check(const DiffusivityRequest& req, const DiffusivityRe
     using detail::format_number;
     // Significant at |z| > 3: a false alarm in about 0.3% of runs per quantity.
     for (const auto& [name, diff, se, value] :
-         {std::tuple<const char*, double, double, double>{"D", c.diffusivity_difference, c.diffusivity_stderr, d.value},
-          {"M0", c.mobility_difference, c.mobility_stderr, m.value}}) {
+         {std::tuple<const char*, double, double, double>{"D", c.diffusivity_difference.value,
+                                                          c.diffusivity_difference.std_error, d.value},
+          {"M0", c.mobility_difference.value, c.mobility_difference.std_error, m.value}}) {
         const double z = diff / se;
         if (std::fabs(z) > 3 && knots)
             warnings.push_back(std::string("the drift law's interpolation is visible: ") + name + " with " +

@@ -66,16 +66,6 @@ std::string solved_csv(const DiffusivityResult& r) {
 
 } // namespace
 
-namespace {
-/// The D and M0 differences of a --check-dt or --check-knots run into j, as
-/// sampled estimates {value, error, kind} (error: the difference's standard
-/// error; no interval).
-void add_differences(ordered_json& j, const DiscretisationCheck& c) {
-    j["diffusivity"] = estimate_json(Estimate{c.diffusivity_difference, c.diffusivity_stderr}, false);
-    j["mobility"] = estimate_json(Estimate{c.mobility_difference, c.mobility_stderr}, false);
-}
-} // namespace
-
 std::string to_json(const DiffusivityResult& r, int indent) {
     if (r.solution) return solved_json(r, indent);
     const auto& q = r.request;
@@ -102,25 +92,8 @@ std::string to_json(const DiffusivityResult& r, int indent) {
         j["precision"] = pr;
     }
     if (r.control_variate) j["control_variate"] = fields_json(*r.control_variate);
-    if (r.discretisation) {
-        const DiscretisationCheck& c = *r.discretisation;
-        ordered_json dc;
-        dc["dt"] = c.dt;
-        dc["check_dt"] = c.check_dt;
-        dc["excursions"] = c.excursions;
-        dc["steps"] = c.steps;
-        add_differences(dc, c);
-        j["discretisation"] = dc;
-    }
-    if (r.knots_check) {
-        const DiscretisationCheck& c = *r.knots_check;
-        ordered_json kc;
-        kc["knots"] = c.knots;
-        kc["check_knots"] = c.check_knots;
-        kc["excursions"] = c.excursions;
-        add_differences(kc, c);
-        j["knots_check"] = kc;
-    }
+    if (r.discretisation) j["discretisation"] = fields_json(*r.discretisation);
+    if (r.knots_check) j["knots_check"] = fields_json(*r.knots_check);
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     ordered_json work = work_json(q.engine, r.monte_carlo().totals);
     if (r.control_variate) work["corrector_seconds"] = r.control_variate->corrector_seconds; // prepared once per run
@@ -130,9 +103,9 @@ std::string to_json(const DiffusivityResult& r, int indent) {
 
 namespace {
 /// "a +- b unit (z = ...)" for a --check-dt difference.
-std::string difference_text(double difference, double stderr_, const char* unit) {
-    return format_number(difference, 3) + " +- " + format_number(stderr_, 2) + " " + unit + " (z = " +
-           format_number(difference / stderr_, 2) + ")";
+std::string difference_text(const Estimate& difference, const char* unit) {
+    return format_number(difference.value, 3) + " +- " + format_number(difference.std_error, 2) + " " + unit +
+           " (z = " + format_number(difference.value / difference.std_error, 2) + ")";
 }
 } // namespace
 
@@ -161,16 +134,16 @@ std::string to_table(const DiffusivityResult& r) {
         const DiscretisationCheck& c = *r.discretisation;
         os << "\ncheck at 2 dt = " << format_number(c.check_dt) << " s (" << c.excursions
            << " excursions): D(2 dt) - D(dt) = "
-           << difference_text(c.diffusivity_difference, c.diffusivity_stderr, "m^2/s")
+           << difference_text(c.diffusivity_difference, "m^2/s")
            << "\n                                   M0(2 dt) - M0(dt) = "
-           << difference_text(c.mobility_difference, c.mobility_stderr, "m/s") << "\n";
+           << difference_text(c.mobility_difference, "m/s") << "\n";
     }
     if (r.knots_check) {
         const DiscretisationCheck& c = *r.knots_check;
         os << "\ncheck with " << c.check_knots << " knots (" << c.excursions << " excursions): D - D("
-           << c.knots << " knots) = " << difference_text(c.diffusivity_difference, c.diffusivity_stderr, "m^2/s")
+           << c.knots << " knots) = " << difference_text(c.diffusivity_difference, "m^2/s")
            << "\n                                  M0 - M0(" << c.knots << " knots) = "
-           << difference_text(c.mobility_difference, c.mobility_stderr, "m/s") << "\n";
+           << difference_text(c.mobility_difference, "m/s") << "\n";
     }
     os << "\n"
        << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.monte_carlo().totals,
@@ -194,9 +167,9 @@ std::string to_csv(const DiffusivityResult& r) {
        << q.control.seed << "," << fields_csv_row(r.estimates);
     if (r.discretisation) {
         const DiscretisationCheck& c = *r.discretisation;
-        os << "," << csv_number(c.check_dt) << "," << csv_number(c.diffusivity_difference) << ","
-           << csv_number(c.diffusivity_stderr) << "," << csv_number(c.mobility_difference) << ","
-           << csv_number(c.mobility_stderr);
+        os << "," << csv_number(c.check_dt) << "," << csv_number(c.diffusivity_difference.value) << ","
+           << csv_number(c.diffusivity_difference.std_error) << "," << csv_number(c.mobility_difference.value) << ","
+           << csv_number(c.mobility_difference.std_error);
     }
     os << "\n";
     return csv_provenance(r.request) + os.str();

@@ -6,7 +6,7 @@
 // NAME_error), as csv_estimate_header says; a dotted name's dots become '_';
 // a field reported elsewhere (FieldForm::NotInBlock) has no column, and one
 // written only when set (FieldForm::WhenSet) always has one (a CSV's columns
-// do not vary by row), empty when unset.
+// do not vary by row), empty when unset (a number NaN, an integer 0).
 #pragma once
 
 #include <cstdint>
@@ -71,7 +71,7 @@ template <DeclaredFields T> std::string fields_csv_row(const T& x) {
         else {
             static_assert(std::is_integral_v<Value>, "result_fields.hpp: a declared field of a type the CSV writer "
                                                      "does not know");
-            out += std::to_string(v);
+            if (f.form != FieldForm::WhenSet || v != 0) out += std::to_string(v);
         }
     });
     return out;

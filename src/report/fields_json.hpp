@@ -58,14 +58,19 @@ inline ordered_json& field_owner(ordered_json& j, std::string_view& name) {
 }
 
 /// The JSON block of x: its declared fields in order, less those reported
-/// elsewhere (FieldForm::NotInBlock) and unset ones (FieldForm::WhenSet, NaN).
+/// elsewhere (FieldForm::NotInBlock) and unset ones (FieldForm::WhenSet: a
+/// number NaN, an integer 0).
 template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJsonStyle& style = {}) {
     ordered_json j = ordered_json::object();
     T::fields([&](auto member, const FieldInfo& info) {
         const auto& value = x.*member;
         if (info.form == FieldForm::NotInBlock) return;
-        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, double>)
+        using Value = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<Value, double>) {
             if (info.form == FieldForm::WhenSet && std::isnan(value)) return;
+        } else if constexpr (std::is_integral_v<Value> && !std::is_same_v<Value, bool>) {
+            if (info.form == FieldForm::WhenSet && value == 0) return;
+        }
         std::string_view name = info.name;
         ordered_json& owner = field_owner(j, name);
         owner[std::string(name)] = field_value_json(value, info, style);
