@@ -283,31 +283,24 @@ KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const Kol
 /// (drag: the affine law with a finite relaxation, a law's outer pieces).
 bool has_drag_at_both_ends(const ModelParams& p);
 
-/// A value with its estimated discretisation error (an absolute error, in the
-/// value's unit).
-struct KolmogorovEstimate {
-    double value = 0; ///< extrapolated value
-    double error = 0; ///< estimated absolute error of value
-};
-
 /// What solve_kolmogorov returns. details holds GridDetails (solver
 /// "kolmogorov", the largest grid's states, the velocity range and the
 /// relative error estimate of D).
 struct KolmogorovResult : MethodResult {
     ModelParams params;                  ///< the model, SI units
-    KolmogorovEstimate diffusivity;      ///< D [m^2/s]
-    KolmogorovEstimate mobility;         ///< M0 [m/s]
+    Estimate diffusivity;      ///< D [m^2/s]
+    Estimate mobility;         ///< M0 [m/s]
     /// The stationary Var(V) [m^2/s^2], extrapolated like D (the mean E[V] is M0).
-    KolmogorovEstimate velocity_variance;
-    KolmogorovEstimate stuck_probability; ///< P(V = 0)
+    Estimate velocity_variance;
+    Estimate stuck_probability; ///< P(V = 0)
     /// E[t1], the mean duration of a long excursion [s], extrapolated like D
     /// (the continuum's; a time-stepping scheme's depends on its step and stop
     /// rule: compare at steps well below tau)
-    KolmogorovEstimate mean_duration;
+    Estimate mean_duration;
     /// D from the x moves' carre du champ of chi, E[(2/tau^2) chi_x^2], extrapolated
     /// like D: the same continuum limit with a different discretisation error,
     /// a check on the extrapolation [m^2/s].
-    KolmogorovEstimate diffusivity_x;
+    Estimate diffusivity_x;
     /// The grids solved, each once: those of the last round's x sequence, v
     /// sequence and mixed term, and those of earlier rounds. The last one is
     /// the v sequence's finest (the finest velocity cells, coarse in x): its

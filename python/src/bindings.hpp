@@ -54,7 +54,7 @@ struct EstimateSeries {
 /// its estimated discretisation error: GridEstimate as EstimateSeries is to
 /// Estimate, with no standard errors or intervals.
 struct GridEstimateSeries {
-    std::vector<KolmogorovEstimate> items;
+    std::vector<Estimate> items;
     /// The arrays' shape ((n_tau, n_noise) for a sweep); empty: (n,).
     std::vector<py::ssize_t> shape;
 };

@@ -240,17 +240,23 @@ Keyword arguments only; relaxation=float('inf') means no viscous drag (then
 }
 
 std::string estimate_repr(const Estimate& e) {
-    return "Estimate(value=" + float_repr(e.value) + ", stderr=" + float_repr(e.std_error) + ", ci=(" +
+    if (e.kind != EstimateKind::Sampled)
+        return "Estimate(value=" + float_repr(e.value) + ", error=" + float_repr(e.error) + ", kind='" +
+               to_string(e.kind) + "')";
+    return "Estimate(value=" + float_repr(e.value) + ", stderr=" + float_repr(e.error) + ", ci=(" +
            float_repr(e.lo) + ", " + float_repr(e.hi) + "), level=" + float_repr(e.level) + ")";
 }
 
+/// As the CLI's JSON writes it: {value, error, kind} and, when sampled, ci and level.
 py::dict estimate_dict(const Estimate& e) {
     py::dict d;
     d["value"] = e.value;
-    d["error"] = e.std_error;
-    d["ci"] = py::make_tuple(e.lo, e.hi);
-    d["level"] = e.level;
-    d["kind"] = "sampled";
+    d["error"] = e.error;
+    if (e.kind == EstimateKind::Sampled) {
+        d["ci"] = py::make_tuple(e.lo, e.hi);
+        d["level"] = e.level;
+    }
+    d["kind"] = to_string(e.kind);
     return d;
 }
 
@@ -475,17 +481,25 @@ void bind_core(py::module_& m) {
 
     // ---- Estimate ----------------------------------------------------------------------
     py::class_<Estimate>(m, "Estimate",
-                         "A point estimate with its standard error (delta method) and its two-sided interval at "
-                         "`level`: value -+ q*stderr, or for D and D_t the relative-error interval "
-                         "value/(1 +- q*stderr/value), never negative (hi = inf when q*stderr >= value). float(e) "
-                         "is e.value.")
+                         "A value with its uncertainty and the kind that says what the uncertainty is, from every "
+                         "method. kind 'sampled' (Monte Carlo): error is the standard error (also stderr), and "
+                         "[lo, hi] the two-sided interval at `level`: value -+ q*stderr, or for D and D_t the "
+                         "relative-error interval value/(1 +- q*stderr/value), never negative (hi = inf when "
+                         "q*stderr >= value). kind 'solved' (engine='kolmogorov', a quadrature): error is the "
+                         "estimated discretisation error (absolute; NaN when not estimated), no interval (NaN). "
+                         "kind 'exact' (a closed form): error 0. float(e) is e.value.")
         .def_readonly("value", &Estimate::value)
-        .def_readonly("stderr", &Estimate::std_error, "the standard error")
-        .def_readonly("error", &Estimate::std_error,
-                      "the uncertainty every estimate has under this name (GridEstimate.error too): here the "
-                      "standard error")
-        .def_property_readonly("kind", [](const Estimate&) { return "sampled"; },
-                               "'sampled': error is a standard error, ci an interval at level")
+        .def_property_readonly(
+            "stderr",
+            [](const Estimate& e) {
+                return e.kind == EstimateKind::Sampled ? e.error : std::numeric_limits<double>::quiet_NaN();
+            },
+            "the standard error (NaN unless kind is 'sampled')")
+        .def_readonly("error", &Estimate::error,
+                      "the uncertainty, in the value's unit: the standard error (sampled), the estimated "
+                      "discretisation error (solved) or 0 (exact)")
+        .def_property_readonly("kind", [](const Estimate& e) { return to_string(e.kind); },
+                               "'sampled', 'solved' or 'exact': what error means")
         .def_readonly("lo", &Estimate::lo)
         .def_readonly("hi", &Estimate::hi)
         .def_readonly("level", &Estimate::level)
@@ -495,46 +509,29 @@ void bind_core(py::module_& m) {
         .def("__float__", [](const Estimate& e) { return e.value; })
         .def("__repr__", &estimate_repr);
 
-    py::class_<KolmogorovEstimate>(m, "GridEstimate",
-                                   "A value computed by a grid solver (engine='kolmogorov') with its estimated "
-                                   "discretisation error (absolute, in the value's unit): no standard error or "
-                                   "interval, which a solver does not have. float(e) is e.value.")
-        .def_readonly("value", &KolmogorovEstimate::value)
-        .def_readonly("error", &KolmogorovEstimate::error, "estimated discretisation error (absolute)")
-        .def_property_readonly("kind", [](const KolmogorovEstimate&) { return "solved"; },
-                               "'solved': error is the estimated discretisation error")
-        .def("to_dict", [](const KolmogorovEstimate& e) {
-            py::dict d;
-            d["value"] = e.value;
-            d["error"] = e.error;
-            d["kind"] = "solved";
-            return d;
-        }, "{'value', 'error', 'kind'}: as in the CLI's JSON")
-        .def("__float__", [](const KolmogorovEstimate& e) { return e.value; })
-        .def("__repr__", [](const KolmogorovEstimate& e) {
-            return "GridEstimate(value=" + number_text::general(e.value, 6) + ", error=" +
-                   number_text::general(e.error, 3) + ")";
-        });
+    // The Kolmogorov engine's values were a class of their own until every
+    // estimate carried its kind: the old name stays, for isinstance checks.
+    m.attr("GridEstimate") = m.attr("Estimate");
 
     py::class_<GridEstimateSeries> grid_series(m, "GridEstimateSeries",
                                    "Values of a grid solver (engine='kolmogorov') along an axis, with their "
                                    "estimated discretisation errors, as NumPy arrays: value, error (shape (n,), or "
                                    "(n_tau, n_noise) for a sweep). np.asarray(s) is s.value; s[k] is the k-th "
-                                   "GridEstimate (flat order), s[i, j] that of a 2-D series.");
+                                   "Estimate (kind 'solved', flat order), s[i, j] that of a 2-D series.");
     grid_series
         .def_property_readonly("value", [](const GridEstimateSeries& s) {
-            return series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
+            return series_column(s, [](const Estimate& e) { return e.value; });
         })
         .def_property_readonly("error", [](const GridEstimateSeries& s) {
-            return series_column(s, [](const KolmogorovEstimate& e) { return e.error; });
+            return series_column(s, [](const Estimate& e) { return e.error; });
         }, "estimated discretisation errors (absolute)");
     add_series_access(grid_series, "GridEstimateSeries");
     grid_series
         .def("to_dict",
              [](const GridEstimateSeries& s) {
                  py::dict d;
-                 d["value"] = series_column(s, [](const KolmogorovEstimate& e) { return e.value; });
-                 d["error"] = series_column(s, [](const KolmogorovEstimate& e) { return e.error; });
+                 d["value"] = series_column(s, [](const Estimate& e) { return e.value; });
+                 d["error"] = series_column(s, [](const Estimate& e) { return e.error; });
                  d["kind"] = "solved";
                  return d;
              },
@@ -552,10 +549,10 @@ void bind_core(py::module_& m) {
             return series_column(s, [](const Estimate& e) { return e.value; });
         })
         .def_property_readonly("stderr", [](const EstimateSeries& s) {
-            return series_column(s, [](const Estimate& e) { return e.std_error; });
+            return series_column(s, [](const Estimate& e) { return e.error; });
         }, "the standard errors")
         .def_property_readonly("error", [](const EstimateSeries& s) {
-            return series_column(s, [](const Estimate& e) { return e.std_error; });
+            return series_column(s, [](const Estimate& e) { return e.error; });
         }, "the uncertainties under the name every series has (GridEstimateSeries.error too): here the standard errors")
         .def_property_readonly("lo", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.lo; });
@@ -583,7 +580,7 @@ void bind_core(py::module_& m) {
              [](const EstimateSeries& s) {
                  py::dict d;
                  d["value"] = series_column(s, [](const Estimate& e) { return e.value; });
-                 d["error"] = series_column(s, [](const Estimate& e) { return e.std_error; });
+                 d["error"] = series_column(s, [](const Estimate& e) { return e.error; });
                  d["lo"] = series_column(s, [](const Estimate& e) { return e.lo; });
                  d["hi"] = series_column(s, [](const Estimate& e) { return e.hi; });
                  d["level"] = s.level;

@@ -45,8 +45,7 @@ template <class F, DeclaredFields T> void fields(F& f, T& x) {
     T::fields([&](auto member, const FieldInfo&) { f(x.*member); });
 }
 
-template <class F> void fields(F& f, Estimate& x) { f(x.value, x.std_error, x.lo, x.hi, x.level); }
-template <class F> void fields(F& f, KolmogorovEstimate& x) { f(x.value, x.error); }
+template <class F> void fields(F& f, Estimate& x) { f(x.value, x.error, x.lo, x.hi, x.level, x.kind); }
 template <class F> void fields(F& f, Scales& x) {
     f(x.time, x.length, x.velocity, x.acceleration, x.diffusivity, x.noise_level);
 }
@@ -335,7 +334,6 @@ void bind_pickling(py::module_& m) {
     pickled<ModelParams>(m, "Params");
     pickled<Scales>(m, "Scales");
     pickled<Estimate>(m, "Estimate");
-    pickled<KolmogorovEstimate>(m, "GridEstimate");
     pickled<EstimateSeries>(m, "EstimateSeries");
     pickled<GridEstimateSeries>(m, "GridEstimateSeries");
     pickled<VelocityHistogram>(m, "Histogram");

@@ -77,7 +77,7 @@ EstimateSeries series(const std::vector<Estimate>& v, double level) { return Est
 
 std::string g4(double x) { return number_text::general(x, 4); }
 
-std::string estimate_short(const Estimate& e) { return g4(e.value) + " +- " + g4(e.std_error); }
+std::string estimate_short(const Estimate& e) { return g4(e.value) + " +- " + g4(e.error); }
 
 py::array_t<double> centers(const std::vector<double>& edges) {
     const std::size_t n = edges.empty() ? 0 : edges.size() - 1;
@@ -171,28 +171,28 @@ void bind_results(py::module_& m) {
                  if (r.solution) return py::cast(r.solution->diffusivity);
                  return py::cast(r.estimates.diffusivity);
              },
-             "D [m^2/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+             "D [m^2/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "mobility",
                 [](const DiffusivityResult& r) -> py::object {
                     if (r.solution) return py::cast(r.solution->mobility);
                     return py::cast(r.estimates.mobility);
                 },
-                "M0, the mean velocity [m/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+                "M0, the mean velocity [m/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "stuck_probability",
                 [](const DiffusivityResult& r) -> py::object {
                     if (r.solution) return py::cast(r.solution->stuck_probability);
                     return py::none();
                 },
-                "P(V = 0) (GridEstimate) with engine='kolmogorov'; None for a sampled result")
+                "P(V = 0) (Estimate of kind 'solved') with engine='kolmogorov'; None for a sampled result")
             .def_property_readonly(
                 "mean_duration",
                 [](const DiffusivityResult& r) -> py::object {
                     if (r.solution) return py::cast(r.solution->mean_duration);
                     return py::cast(r.estimates.mean_duration);
                 },
-                "E[t1], mean duration of a long excursion [s] (Estimate; a GridEstimate with engine='kolmogorov')")
+                "E[t1], mean duration of a long excursion [s] (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "method", [](const DiffusivityResult& r) -> std::string {
                     return r.sampled() ? std::string("monte carlo") : r.grid().solver;
@@ -318,21 +318,21 @@ void bind_results(py::module_& m) {
                     if (r.solution) return py::cast(r.solution->stuck_probability);
                     return py::cast(r.histogram.stuck);
                 },
-                "P(V = 0) (Estimate; a GridEstimate with engine='kolmogorov')")
+                "P(V = 0) (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "diffusivity",
                 [](const R& r) -> py::object {
                     if (r.solution) return py::cast(r.solution->diffusivity);
                     return py::cast(r.estimates.diffusivity);
                 },
-                "D [m^2/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+                "D [m^2/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "mobility",
                 [](const R& r) -> py::object {
                     if (r.solution) return py::cast(r.solution->mobility);
                     return py::cast(r.estimates.mobility);
                 },
-                "M0 [m/s] (Estimate; a GridEstimate with engine='kolmogorov')")
+                "M0 [m/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "below", [](const R& r) { return r.histogram.below; }, "P(V < edges[0], V != 0) (Estimate)")
             .def_property_readonly(
@@ -513,7 +513,7 @@ void bind_results(py::module_& m) {
         auto solved_column = [grid_shape, grid_size](const R& r, auto get) {
             const double nan = std::numeric_limits<double>::quiet_NaN();
             GridEstimateSeries out;
-            out.items.assign(grid_size(r), KolmogorovEstimate{nan, nan});
+            out.items.assign(grid_size(r), solved_estimate(nan, nan));
             for (std::size_t k = 0; k < r.points.size() && k < out.items.size(); ++k) out.items[k] = get(r.points[k]);
             out.shape = grid_shape(r);
             return out;
@@ -603,13 +603,13 @@ void bind_results(py::module_& m) {
             .def_property_readonly(
                 "slope",
                 column_of(column, [](const SweepPoint& p) { return p.slope; },
-                          [](const SweepPoint& p) { return KolmogorovEstimate{p.slope.value, p.slope.std_error}; }),
+                          [](const SweepPoint& p) { return solved_estimate(p.slope.value, p.slope.error); }),
                 "local d log D / d log noise per point (EstimateSeries, shape `shape`; NaN with one "
                 "noise value; a GridEstimateSeries with engine='kolmogorov', its error propagated from D's)")
             .def_property_readonly(
                 "white_ratio",
                 column_of(column, [](const SweepPoint& p) { return p.white_ratio; },
-                          [](const SweepPoint& p) { return KolmogorovEstimate{p.white_ratio.value, p.white_ratio.std_error}; }),
+                          [](const SweepPoint& p) { return solved_estimate(p.white_ratio.value, p.white_ratio.error); }),
                 "D over the white-noise D at every point (EstimateSeries, shape `shape`; a "
                 "GridEstimateSeries with engine='kolmogorov', its error D's)")
             .def_property_readonly(

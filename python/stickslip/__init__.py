@@ -58,12 +58,13 @@ Results (and Params, the requests) pickle, bit for bit, for
 version that wrote it.
 
 Results are objects with NumPy-array attributes; estimates are ``Estimate``
-(``.value``, ``.stderr``, ``.ci``) or, along an axis, ``EstimateSeries``
-(arrays ``.value``, ``.stderr``, ``.lo``, ``.hi``, ``.ci`` of shape (n, 2));
-the Kolmogorov engine's are ``GridEstimate`` (``.value``, ``.error``). Every
-estimate has ``.value``, ``.error`` (the standard error, or the estimated
-discretisation error) and ``.kind`` (``'sampled'``, ``'solved'``), as in the
-CLI's JSON.
+or, along an axis, ``EstimateSeries`` (arrays ``.value``, ``.stderr``,
+``.lo``, ``.hi``, ``.ci`` of shape (n, 2)); the Kolmogorov engine's series are
+``GridEstimateSeries`` (``.value``, ``.error``). Every estimate, from every
+method, has ``.value``, ``.error`` and ``.kind``: ``'sampled'`` (``.error`` the
+standard error, also ``.stderr``, with ``.ci`` at ``.level``), ``'solved'``
+(the estimated discretisation error, no interval) or ``'exact'`` (0), as in
+the CLI's JSON. ``GridEstimate`` is another name of ``Estimate``.
 Invalid input raises ``InvalidParameterError`` (a ValueError) whose text is
 the CLI's: ``--<parameter>: <message>``. Runs whose excursions hit the runaway
 guard raise ``CappedExcursionsError`` unless ``allow_capped=True``; it is an
@@ -121,7 +122,7 @@ _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityR
              SweepRequest, TrajectoryRequest)
 # Show (and pickle) the compiled classes under the names users import.
 for _cls in (BruteForceResult, CorrelationResult, DensityResult, DiffusivityResult, Estimate, EstimateSeries,
-             GridEstimate, GridEstimateSeries, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
+             GridEstimateSeries, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
              SweepWhiteLimit, TrajectoryResult,
              InvalidParameterError, UntrustworthyResultError, CappedExcursionsError, StickslipWarning) + _REQUESTS:
     _cls.__module__ = __name__
@@ -169,8 +170,8 @@ D, mobility M0 and mean long-excursion duration E[t1] from N long excursions.
         .value, .stderr, .ci), .completed, .capped, .warnings, .params;
         .to_dict() is the CLI's JSON (nondimensional values included). With
         engine="kolmogorov": .diffusivity, .mobility, .stuck_probability and
-        .mean_duration are GridEstimate (.value, .error: the estimated
-        discretisation error), and .method is "kolmogorov".""", """
+        .mean_duration are Estimates of kind 'solved' (.value, .error: the
+        estimated discretisation error), and .method is "kolmogorov".""", """
 
     Example
     -------

@@ -4,7 +4,7 @@
 # Written by hand, except the classes of results that declare their fields
 # (SweepExponent, SweepWhiteLimit, ...), which python/tools/make_stubs.py
 # rewrites from the declarations (result_fields.hpp).
-from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Literal, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -79,17 +79,17 @@ class Params:
     def __eq__(self, other: object) -> bool: ...
     def __hash__(self) -> int: ...
 
-class Estimate:
+class Estimate:  # every method's: kind says what error is
     @property
     def value(self) -> float: ...
     @property
-    def stderr(self) -> float: ...
+    def stderr(self) -> float: ...  # the standard error; NaN unless kind == 'sampled'
     @property
-    def error(self) -> float: ...  # the standard error, under the name every estimate has
+    def error(self) -> float: ...   # standard error, discretisation error or 0, by kind
     @property
-    def kind(self) -> str: ...     # 'sampled'
+    def kind(self) -> Literal['sampled', 'solved', 'exact']: ...
     @property
-    def lo(self) -> float: ...
+    def lo(self) -> float: ...      # NaN unless sampled
     @property
     def hi(self) -> float: ...
     @property
@@ -99,15 +99,7 @@ class Estimate:
     def to_dict(self) -> dict[str, Any]: ...
     def __float__(self) -> float: ...
 
-class GridEstimate:
-    @property
-    def value(self) -> float: ...
-    @property
-    def error(self) -> float: ...  # estimated discretisation error (absolute)
-    @property
-    def kind(self) -> str: ...     # 'solved'
-    def to_dict(self) -> dict[str, Any]: ...
-    def __float__(self) -> float: ...
+GridEstimate = Estimate  # the Kolmogorov engine's values (kind 'solved'); the name before estimates had kinds
 
 class EstimateSeries:
     @property

@@ -67,9 +67,9 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
 void check_finite(const LongExcursionEstimates& est) {
     for (const auto& [name, x] : {std::pair<const char*, const Estimate*>{"D", &est.diffusivity},
                                   {"M0", &est.mobility}, {"E[t1]", &est.mean_duration}})
-        if (!std::isfinite(x->value) || !std::isfinite(x->std_error))
+        if (!std::isfinite(x->value) || !std::isfinite(x->error))
             throw UntrustworthyResult(std::string("the estimate of ") + name + " (" + format_number(x->value) +
-                                      " +- " + format_number(x->std_error) +
+                                      " +- " + format_number(x->error) +
                                       ") is not a finite number: the model's scales overflow double precision "
                                       "in this run; rescale friction and noise towards 1");
 }

@@ -206,11 +206,9 @@ DensityResult solve_density(const DensityRequest& req) {
     out.request = req;
     out.solution = detail::solve(req, 0.0, out.warnings);
     out.details = out.solution->details;
-    // The stationary mean and variance of V, with their discretisation errors
-    // (std_error holds the error: a solver has no sampling distribution).
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    out.mean = {out.solution->mobility.value, out.solution->mobility.error, nan, nan, req.level};
-    out.variance = {out.solution->velocity_variance.value, out.solution->velocity_variance.error, nan, nan, req.level};
+    // The stationary mean and variance of V, with their discretisation errors.
+    out.mean = out.solution->mobility;
+    out.variance = out.solution->velocity_variance;
     const KolmogorovGridSolution& fine = out.solution->levels.back();
     out.warnings.push_back("the density is that of the solver's grid with the finest velocity cells, one value per cell (" +
                            std::to_string(fine.velocity_density.size()) +

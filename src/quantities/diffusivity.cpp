@@ -185,10 +185,10 @@ DiscretisationCheck run_check(const DiffusivityRequest& req, const DiffusivityRe
     const auto& m = main.estimates.mobility;
     // Differences of independent runs: no interval (a difference's sign is the news).
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    c.diffusivity_difference = Estimate{est.diffusivity.value - d.value, std::hypot(est.diffusivity.std_error, d.std_error),
+    c.diffusivity_difference = Estimate{est.diffusivity.value - d.value, std::hypot(est.diffusivity.error, d.error),
                                         nan, nan, req.level};
     c.mobility_difference =
-        Estimate{est.mobility.value - m.value, std::hypot(est.mobility.std_error, m.std_error), nan, nan, req.level};
+        Estimate{est.mobility.value - m.value, std::hypot(est.mobility.error, m.error), nan, nan, req.level};
     if (t.interrupted) {
         interrupted = true;
         warnings.push_back(std::string("interrupted during the ") + flag + " run: its difference is from the first " +
@@ -198,8 +198,8 @@ DiscretisationCheck run_check(const DiffusivityRequest& req, const DiffusivityRe
     // Significant at |z| > 3: a false alarm in about 0.3% of runs per quantity.
     for (const auto& [name, diff, se, value] :
          {std::tuple<const char*, double, double, double>{"D", c.diffusivity_difference.value,
-                                                          c.diffusivity_difference.std_error, d.value},
-          {"M0", c.mobility_difference.value, c.mobility_difference.std_error, m.value}}) {
+                                                          c.diffusivity_difference.error, d.value},
+          {"M0", c.mobility_difference.value, c.mobility_difference.error, m.value}}) {
         const double z = diff / se;
         if (std::fabs(z) > 3 && knots)
             warnings.push_back(std::string("the drift law's interpolation is visible: ") + name + " with " +

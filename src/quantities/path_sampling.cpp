@@ -65,7 +65,7 @@ VelocityHistogram make_histogram(const VelocityBins& b, const RatioMoments& m, s
     for (int k = 0; k < b.count; ++k) {
         Estimate e = m.estimate(first + static_cast<std::size_t>(k), level);
         e.value /= width;
-        e.std_error /= width;
+        e.error /= width;
         e.lo /= width;
         e.hi /= width;
         h.density.push_back(within(e, 0.0, HUGE_VAL));

@@ -204,7 +204,7 @@ void add_white_limits(SweepResult& out) {
     const double level = out.request.level;
     const bool solved = out.solved();
     auto spread = [&](double value, double error) {
-        return solved ? Estimate{value, error, nan, nan, level} : make_interval(value, error, level);
+        return solved ? Estimate{value, error, nan, nan, level, EstimateKind::Solved} : make_interval(value, error, level);
     };
     std::vector<bool> done(out.points.size(), false);
     for (std::size_t first = 0; first < out.points.size(); ++first) {
@@ -223,7 +223,7 @@ void add_white_limits(SweepResult& out) {
         for (std::size_t i : group) {
             SweepPoint& p = out.points[i];
             const double d = p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
-            const double e = p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.std_error;
+            const double e = p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.error;
             p.white_ratio = spread(d / d_white, e / d_white);
             if (p.tau > 0) {
                 tau_prime.push_back(p.tau / time_unit);
@@ -378,14 +378,15 @@ SweepResult compute_sweep(const SweepRequest& req) {
             auto logd = [&](std::size_t i) { return std::log(d_value(i)); };
             auto sig = [&](std::size_t i) {
                 const SweepPoint& p = out.points[first + i];
-                return (p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.std_error) / d_value(i);
+                return (p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.error) / d_value(i);
             };
             auto spread = [&](double value, double error) {
-                return out.solved() ? Estimate{value, error, nan, nan, req.level} : make_interval(value, error, req.level);
+                return out.solved() ? Estimate{value, error, nan, nan, req.level, EstimateKind::Solved}
+                                   : make_interval(value, error, req.level);
             };
             for (std::size_t i = 0; i < n; ++i) {
                 if (n < 2) {
-                    out.points[first + i].slope = make_interval(nan, nan, req.level);
+                    out.points[first + i].slope = spread(nan, nan);
                     continue;
                 }
                 const std::size_t a = i == 0 ? 0 : i - 1, b = i + 1 == n ? n - 1 : i + 1;

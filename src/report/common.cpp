@@ -21,9 +21,11 @@ ordered_json json_number(double x) {
 }
 
 ordered_json estimate_json(const Estimate& e, bool with_ci) {
+    if (e.kind == EstimateKind::Solved) return solved_estimate_json(e.value, e.error);
+    if (e.kind == EstimateKind::Exact) return exact_estimate_json(e.value);
     ordered_json j;
     j["value"] = e.value;
-    j["error"] = e.std_error;
+    j["error"] = e.error;
     if (with_ci) {
         j["ci"] = {json_number(e.lo), json_number(e.hi)}; // D's upper end is "inf" when se >= D / q
         j["level"] = e.level;
@@ -56,7 +58,7 @@ ordered_json series_point(const char* key, double where, const Estimate& e) {
     ordered_json j;
     j[key] = where;
     j["value"] = json_number(e.value);
-    j["error"] = json_number(e.std_error);
+    j["error"] = json_number(e.error);
     j["ci"] = {json_number(e.lo), json_number(e.hi)};
     j["kind"] = estimate_kind_sampled;
     return j;
@@ -307,12 +309,12 @@ void table_row(std::ostringstream& os, const std::string& name, const Estimate& 
     std::string interval = pad("", 27);
     if (ci) // appended: GCC 12 warns (-Wrestrict, a false positive) on "[" + std::string
         interval = std::string("[").append(pad(format_number(e.lo), 11)).append(", ").append(pad(format_number(e.hi), 11)).append("]");
-    os << pad(name, -14) << " " << pad(format_number(e.value), 13) << "  +- " << pad(format_number(e.std_error, 3), -10)
+    os << pad(name, -14) << " " << pad(format_number(e.value), 13) << "  +- " << pad(format_number(e.error, 3), -10)
        << " " << interval << "  " << pad(units, -7) << " " << pad(format_number(e.value / unit), 11) << "\n";
 }
 
 std::string estimate_cell(const Estimate& e) {
-    return number_text::pad(format_number(e.value), 12) + " +- " + number_text::pad(format_number(e.std_error, 3), -10);
+    return number_text::pad(format_number(e.value), 12) + " +- " + number_text::pad(format_number(e.error, 3), -10);
 }
 
 // ---- CSV --------------------------------------------------------------------------
@@ -329,7 +331,7 @@ std::string csv_estimate_header(const std::string& name) {
 }
 
 std::string csv_estimate(const Estimate& e) {
-    return csv_number(e.value) + "," + csv_number(e.std_error) + "," + csv_number(e.lo) + "," + csv_number(e.hi);
+    return csv_number(e.value) + "," + csv_number(e.error) + "," + csv_number(e.lo) + "," + csv_number(e.hi);
 }
 
 std::string csv_provenance(const char* command_name, const std::string& command,

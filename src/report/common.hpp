@@ -35,8 +35,9 @@ inline constexpr const char* estimate_kind_sampled = "sampled";
 inline constexpr const char* estimate_kind_solved = "solved";
 inline constexpr const char* estimate_kind_exact = "exact";
 /// @}
-/// {value, error, ci, level, kind: "sampled"} (without ci and level when
-/// !with_ci); error is the standard error.
+/// e as its kind says: {value, error, ci, level, kind: "sampled"} (without ci
+/// and level when !with_ci; error the standard error), solved_estimate_json or
+/// exact_estimate_json.
 ordered_json estimate_json(const Estimate& e, bool with_ci = true);
 /// {value, error, kind: "solved"}: a solver's value and its estimated
 /// discretisation error (NaN, written null, where it has none).

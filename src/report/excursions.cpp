@@ -104,8 +104,8 @@ std::string to_json(const DiffusivityResult& r, int indent) {
 namespace {
 /// "a +- b unit (z = ...)" for a --check-dt difference.
 std::string difference_text(const Estimate& difference, const char* unit) {
-    return format_number(difference.value, 3) + " +- " + format_number(difference.std_error, 2) + " " + unit +
-           " (z = " + format_number(difference.value / difference.std_error, 2) + ")";
+    return format_number(difference.value, 3) + " +- " + format_number(difference.error, 2) + " " + unit +
+           " (z = " + format_number(difference.value / difference.error, 2) + ")";
 }
 } // namespace
 
@@ -168,8 +168,8 @@ std::string to_csv(const DiffusivityResult& r) {
     if (r.discretisation) {
         const DiscretisationCheck& c = *r.discretisation;
         os << "," << csv_number(c.check_dt) << "," << csv_number(c.diffusivity_difference.value) << ","
-           << csv_number(c.diffusivity_difference.std_error) << "," << csv_number(c.mobility_difference.value) << ","
-           << csv_number(c.mobility_difference.std_error);
+           << csv_number(c.diffusivity_difference.error) << "," << csv_number(c.mobility_difference.value) << ","
+           << csv_number(c.mobility_difference.error);
     }
     os << "\n";
     return csv_provenance(r.request) + os.str();

@@ -62,7 +62,7 @@ template <DeclaredFields T> std::string fields_csv_row(const T& x) {
         first = false;
         const Value& v = x.*member;
         if constexpr (std::is_same_v<Value, Estimate>)
-            out += f.form == FieldForm::NoInterval ? csv_number(v.value) + "," + csv_number(v.std_error)
+            out += f.form == FieldForm::NoInterval ? csv_number(v.value) + "," + csv_number(v.error)
                                                    : csv_estimate(v);
         else if constexpr (std::is_same_v<Value, double>) out += csv_number(v);
         else if constexpr (std::is_same_v<Value, bool>) out += v ? "true" : "false";

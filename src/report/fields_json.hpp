@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal: the JSON block of a struct that declares its fields
 // (result_fields.hpp), written from the declaration alone, so that a new field
-// reaches the JSON without a line here. The few things a field's value cannot
-// say by itself (whether the report's estimates are sampled or solved, which
-// model a white-noise reference belongs to) come from the report, in
-// FieldJsonStyle.
+// reaches the JSON without a line here. What a field's value cannot say by
+// itself (which model a white-noise reference belongs to) comes from the
+// report, in FieldJsonStyle.
 #pragma once
 
 #include <cmath>
@@ -20,9 +19,6 @@ namespace stickslip::detail {
 
 /// What a report tells fields_json about itself.
 struct FieldJsonStyle {
-    /// Estimates of a solved method (the Kolmogorov engine): {value, error,
-    /// kind: "solved"}, no interval; otherwise sampled ones with their interval.
-    bool solved = false;
     /// The report's model, for FieldForm::Reference fields (white_reference_json).
     const ModelParams* model = nullptr;
 };
@@ -31,8 +27,7 @@ struct FieldJsonStyle {
 template <class Value>
 ordered_json field_value_json(const Value& x, const FieldInfo& info, const FieldJsonStyle& style) {
     if constexpr (std::is_same_v<Value, Estimate>) {
-        if (style.solved) return solved_estimate_json(x.value, x.std_error);
-        return estimate_json(x, info.form != FieldForm::NoInterval);
+        return estimate_json(x, info.form != FieldForm::NoInterval); // as its kind says
     } else if constexpr (std::is_same_v<Value, double>) {
         if (info.form == FieldForm::Reference) return white_reference_json(x, *style.model);
         return json_number(x);

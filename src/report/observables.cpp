@@ -66,8 +66,8 @@ std::string solved_json(const DensityResult& r, int indent) {
     h["below"] = solved_estimate_json(0.0, tail_mass);
     h["above"] = solved_estimate_json(0.0, tail_mass);
     j["histogram"] = h;
-    j["mean"] = grid_estimate_json(s.mobility);
-    j["variance"] = grid_estimate_json(s.velocity_variance);
+    j["mean"] = estimate_json(s.mobility);
+    j["variance"] = estimate_json(s.velocity_variance);
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
     add_report_tail(j, r.request, &work, r.warnings, s.interrupted);
@@ -241,7 +241,7 @@ std::string to_csv(const MomentsResult& r) {
         const auto& h = r.density[k];
         for (std::size_t b = 0; b < h.density.size(); ++b)
             os << csv_number(r.time[k]) << "," << csv_number(h.edges[b]) << "," << csv_number(h.edges[b + 1]) << ","
-               << csv_number(h.density[b].value) << "," << csv_number(h.density[b].std_error) << "\n";
+               << csv_number(h.density[b].value) << "," << csv_number(h.density[b].error) << "\n";
     }
     return os.str();
 }

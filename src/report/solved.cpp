@@ -13,12 +13,10 @@
 
 namespace stickslip::detail {
 
-ordered_json grid_estimate_json(const KolmogorovEstimate& e) { return solved_estimate_json(e.value, e.error); }
-
 namespace {
 
 /// "value +- error" in the columns of the solved table.
-void solved_row(std::ostringstream& os, const std::string& name, const KolmogorovEstimate& e, double unit,
+void solved_row(std::ostringstream& os, const std::string& name, const Estimate& e, double unit,
                 const std::string& units) {
     using number_text::pad;
     os << pad(name, -14) << " " << pad(format_number(e.value), 13) << "  +- " << pad(format_number(e.error, 3), -22)
@@ -36,10 +34,10 @@ ordered_json solved_head(const char* quantity, const RunSettings& r) {
 }
 
 void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const KolmogorovSettings& settings) {
-    j["diffusivity"] = grid_estimate_json(s.diffusivity);
-    j["mobility"] = grid_estimate_json(s.mobility);
-    j["stuck_probability"] = grid_estimate_json(s.stuck_probability);
-    j["mean_duration"] = grid_estimate_json(s.mean_duration);
+    j["diffusivity"] = estimate_json(s.diffusivity);
+    j["mobility"] = estimate_json(s.mobility);
+    j["stuck_probability"] = estimate_json(s.stuck_probability);
+    j["mean_duration"] = estimate_json(s.mean_duration);
     ordered_json pr;
     pr["target"] = settings.rel_precision;
     pr["relative_error"] = json_number(relative_error(s));
@@ -59,7 +57,7 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
     g["v_upper"] = fine.v_upper;
     g["grids_solved"] = s.levels.size();
     g["tail_mass"] = json_number(span.tail_mass);
-    g["diffusivity_x"] = grid_estimate_json(s.diffusivity_x);
+    g["diffusivity_x"] = estimate_json(s.diffusivity_x);
     details["grid"] = g;
     j["engine_details"] = details;
 }

@@ -13,9 +13,6 @@
 
 namespace stickslip::detail {
 
-/// solved_estimate_json of e: {value, error, kind: "solved"}.
-ordered_json grid_estimate_json(const KolmogorovEstimate& e);
-
 /// The head of a solved report: "quantity" (when given), "engine" and
 /// "params" (the model, no step or seed).
 ordered_json solved_head(const char* quantity, const RunSettings& r);

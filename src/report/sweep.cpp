@@ -55,20 +55,13 @@ std::string exponent_head(const SweepResult& r, const SweepExponent& e) {
 }
 
 /// The fitted exponents and D's approach to white noise per noise, each
-/// element its struct's declared fields (fields_json): estimates with their
-/// interval, or for a solved sweep {value, error, kind}.
+/// element its struct's declared fields (fields_json).
 template <class Item>
 ordered_json declared_list_json(const SweepResult& r, const std::vector<Item>& items) {
-    const FieldJsonStyle style{r.solved(), &r.request.params};
+    const FieldJsonStyle style{&r.request.params};
     ordered_json out = ordered_json::array();
     for (const Item& each : items) out.push_back(fields_json(each, style));
     return out;
-}
-
-/// An estimate of a sweep: with its interval when sampled, as {value, error}
-/// when solved.
-ordered_json sweep_estimate_json(const SweepResult& r, const Estimate& e) {
-    return r.solved() ? grid_estimate_json({e.value, e.std_error}) : estimate_json(e);
 }
 
 /// The table's lines on D's approach to white noise, or "".
@@ -88,17 +81,17 @@ std::string white_limits_text(const SweepResult& r) {
            << "noise " << format_number(w.noise, 4) << ": D_white " << format_number(w.white_diffusivity, 6)
            << " m^2/s; ";
         if (w.points >= 2)
-            os << "p = " << fixed(w.exponent.value, 3) << " +- " << format_number(w.exponent.std_error, 2)
-               << ", c1 = " << format_number(w.coefficient.value, 4) << " +- " << format_number(w.coefficient.std_error, 2)
+            os << "p = " << fixed(w.exponent.value, 3) << " +- " << format_number(w.exponent.error, 2)
+               << ", c1 = " << format_number(w.coefficient.value, 4) << " +- " << format_number(w.coefficient.error, 2)
                << " over " << w.points << " points";
         else
             os << "fewer than 2 points resolved for a fit";
         if (!std::isnan(w.chi2_per_dof)) os << " (chi2/dof " << format_number(w.chi2_per_dof, 2) << ")";
         if (!std::isnan(w.half_order.value))
-            os << "; a = " << format_number(w.half_order.value, 3) << " +- " << format_number(w.half_order.std_error, 2)
-               << ", b = " << format_number(w.first_order.value, 4) << " +- " << format_number(w.first_order.std_error, 2)
+            os << "; a = " << format_number(w.half_order.value, 3) << " +- " << format_number(w.half_order.error, 2)
+               << ", b = " << format_number(w.first_order.value, 4) << " +- " << format_number(w.first_order.error, 2)
                << ", c = " << format_number(w.three_half_order.value, 3) << " +- "
-               << format_number(w.three_half_order.std_error, 2);
+               << format_number(w.three_half_order.error, 2);
         os << "; within 1% of white below tau = "
            << (std::isnan(w.tau_within_percent) ? std::string("- (not bracketed by the taus)")
                                                 : format_number(w.tau_within_percent, 3) + " s")
@@ -150,13 +143,13 @@ std::string solved_json(const SweepResult& r, int indent) {
         if (r.varies()) o["varied"] = p.varied;
         o["noise"] = p.noise;
         o["tau"] = p.tau;
-        o["diffusivity"] = grid_estimate_json(s.diffusivity);
-        o["mobility"] = grid_estimate_json(s.mobility);
-        o["stuck_probability"] = grid_estimate_json(s.stuck_probability);
-        o["mean_duration"] = grid_estimate_json(s.mean_duration);
+        o["diffusivity"] = estimate_json(s.diffusivity);
+        o["mobility"] = estimate_json(s.mobility);
+        o["stuck_probability"] = estimate_json(s.stuck_probability);
+        o["mean_duration"] = estimate_json(s.mean_duration);
         o["precision_reached"] = s.converged;
-        o["slope"] = grid_estimate_json({p.slope.value, p.slope.std_error});
-        o["white_ratio"] = sweep_estimate_json(r, p.white_ratio);
+        o["slope"] = estimate_json(p.slope);
+        o["white_ratio"] = estimate_json(p.white_ratio);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", s.diffusivity.value / sc.diffusivity},
                                {"mobility", s.mobility.value / sc.velocity},
@@ -173,7 +166,7 @@ std::string solved_json(const SweepResult& r, int indent) {
 }
 
 /// "value +- error" in a column of the solved sweep table.
-std::string solved_cell(const KolmogorovEstimate& e) {
+std::string solved_cell(const Estimate& e) {
     using number_text::pad;
     return pad(format_number(e.value, 6), 12) + " +- " + pad(format_number(e.error, 2), -8);
 }
@@ -195,18 +188,18 @@ std::string solved_table(const SweepResult& r) {
         const KolmogorovResult& s = *p.solution;
         const std::string slope = std::isnan(p.slope.value)
                                       ? std::string("-")
-                                      : pad(fixed(p.slope.value, 4), 7) + " +- " + pad(format_number(p.slope.std_error, 2), -8);
+                                      : pad(fixed(p.slope.value, 4), 7) + " +- " + pad(format_number(p.slope.error, 2), -8);
         os << varied_cell(r, p.varied) << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10)
            << "  "
            << solved_cell(s.diffusivity) << " " << solved_cell(s.mobility) << " " << solved_cell(s.mean_duration) << " "
            << pad(format_number(s.stuck_probability.value, 4), -10) << " " << pad(slope, -20) << " "
-           << fixed(p.white_ratio.value, 6) << " +- " << format_number(p.white_ratio.std_error, 2) << "\n";
+           << fixed(p.white_ratio.value, 6) << " +- " << format_number(p.white_ratio.error, 2) << "\n";
     }
     if (!r.exponents.empty()) {
         os << "\nfitted D ~ noise^alpha per " << (r.varies() ? r.request.vary + " and " : "") << "tau (least squares in log-log, weighted by the discretisation errors):\n";
         for (const auto& e : r.exponents)
             os << exponent_head(r, e) << "alpha = " << fixed(e.exponent.value, 4)
-               << " +- " << format_number(e.exponent.std_error, 2) << " over " << e.points << " points\n";
+               << " +- " << format_number(e.exponent.error, 2) << " over " << e.points << " points\n";
     }
     os << white_limits_text(r);
     os << "\n" << r.points.size() << " points in " << format_number(r.seconds, 3)
@@ -225,11 +218,11 @@ std::string solved_csv(const SweepResult& r) {
         const Scales sc = scales_of(point_params(r, p));
         if (r.varies()) os << csv_number(p.varied) << ",";
         os << csv_number(p.tau) << "," << csv_number(p.noise);
-        for (const KolmogorovEstimate* e : {&s.diffusivity, &s.mobility, &s.stuck_probability, &s.mean_duration})
+        for (const Estimate* e : {&s.diffusivity, &s.mobility, &s.stuck_probability, &s.mean_duration})
             os << "," << csv_number(e->value) << "," << csv_number(e->error);
-        os << "," << csv_number(p.slope.value) << "," << csv_number(p.slope.std_error) << ","
+        os << "," << csv_number(p.slope.value) << "," << csv_number(p.slope.error) << ","
            << csv_number(p.tau / sc.time) << "," << csv_number(s.diffusivity.value / sc.diffusivity) << "," << p.work
-           << "," << csv_number(p.white_ratio.value) << "," << csv_number(p.white_ratio.std_error) << "\n";
+           << "," << csv_number(p.white_ratio.value) << "," << csv_number(p.white_ratio.error) << "\n";
     }
     return csv_provenance(r.request) + os.str();
 }
@@ -259,7 +252,7 @@ std::string to_json(const SweepResult& r, int indent) {
         if (own_scheme) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
         append_members(o, long_excursion_json(p.estimates));
         o["slope"] = estimate_json(p.slope, false);
-        o["white_ratio"] = sweep_estimate_json(r, p.white_ratio);
+        o["white_ratio"] = estimate_json(p.white_ratio);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},
                                {"mobility", p.estimates.mobility.value / sc.velocity},
@@ -291,13 +284,13 @@ std::string to_table(const SweepResult& r) {
     for (const auto& p : r.points) {
         const std::string slope = std::isnan(p.slope.value)
                                       ? std::string("-")
-                                      : pad(fixed(p.slope.value, 3), 7) + " +- " + pad(fixed(p.slope.std_error, 3), -7);
+                                      : pad(fixed(p.slope.value, 3), 7) + " +- " + pad(fixed(p.slope.error, 3), -7);
         os << varied_cell(r, p.varied) << pad(format_number(p.tau, 4), 10) << " " << pad(format_number(p.noise, 4), 10)
            << "  "
            << estimate_cell(p.estimates.diffusivity) << " " << estimate_cell(p.estimates.mobility) << " "
            << pad(format_number(p.estimates.mean_duration.value, 4), 10) << " +- "
-           << pad(format_number(p.estimates.mean_duration.std_error, 2), -7) << " " << pad(slope, -20) << " "
-           << fixed(p.white_ratio.value, 4) << " +- " << pad(format_number(p.white_ratio.std_error, 2), -7);
+           << pad(format_number(p.estimates.mean_duration.error, 2), -7) << " " << pad(slope, -20) << " "
+           << fixed(p.white_ratio.value, 4) << " +- " << pad(format_number(p.white_ratio.error, 2), -7);
         if (dt_per_point(q.engine)) os << "  dt " << format_number(p.dt) << " s";
         if (scheme_per_point(q.engine)) os << "  " << to_string(p.scheme);
         os << "\n";
@@ -307,7 +300,7 @@ std::string to_table(const SweepResult& r) {
         for (const auto& e : r.exponents) {
             const std::string chi2 = std::isnan(e.chi2_per_dof) ? "-" : format_number(e.chi2_per_dof, 2);
             os << exponent_head(r, e) << "alpha = " << fixed(e.exponent.value, 3)
-               << " +- " << fixed(e.exponent.std_error, 3) << " (chi2/dof " << chi2 << " over " << e.points
+               << " +- " << fixed(e.exponent.error, 3) << " (chi2/dof " << chi2 << " over " << e.points
                << " points)\n";
         }
     }
@@ -328,7 +321,7 @@ std::string to_csv(const SweepResult& r) {
         const Scales sc = scales_of(point_params(r, p));
         if (r.varies()) os << csv_number(p.varied) << ",";
         os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << fields_csv_row(p.estimates) << ","
-           << csv_number(p.slope.value) << "," << csv_number(p.slope.std_error) << "," << csv_number(p.tau / sc.time)
+           << csv_number(p.slope.value) << "," << csv_number(p.slope.error) << "," << csv_number(p.tau / sc.time)
            << "," << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << "," << csv_estimate(p.white_ratio);
         if (dt_per_point(r.request.engine)) os << "," << csv_number(p.dt);
         if (scheme_per_point(r.request.engine)) os << "," << to_string(p.scheme);

@@ -108,11 +108,30 @@ double normal_quantile_two_sided(double level) {
     return boost::math::quantile(boost::math::normal_distribution<double>(), 0.5 * (1.0 + level));
 }
 
+const char* to_string(EstimateKind kind) {
+    switch (kind) {
+    case EstimateKind::Sampled: return "sampled";
+    case EstimateKind::Solved: return "solved";
+    case EstimateKind::Exact: return "exact";
+    }
+    return "?";
+}
+
+Estimate solved_estimate(double value, double error) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return Estimate{value, error, nan, nan, nan, EstimateKind::Solved};
+}
+
+Estimate exact_estimate(double value) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return Estimate{value, 0.0, nan, nan, nan, EstimateKind::Exact};
+}
+
 Estimate make_interval(double value, double std_error, double level) {
     const double q = normal_quantile_two_sided(level);
     Estimate e;
     e.value = value;
-    e.std_error = std_error;
+    e.error = std_error;
     e.lo = value - q * std_error;
     e.hi = value + q * std_error;
     e.level = level;
@@ -137,7 +156,7 @@ Estimate make_relative_interval(double value, double std_error, double level) {
     const double q = normal_quantile_two_sided(level);
     Estimate e;
     e.value = value;
-    e.std_error = std_error;
+    e.error = std_error;
     e.level = level;
     const double h = q * std_error / value; // relative half-width q r
     if (std::isnan(h)) {

@@ -23,8 +23,8 @@ TEST(BruteForce, AgreesWithLongExcursionsOnFig2Case) {
     e.grid = 0.125;
     const auto le = run_le(p, e, 20000, 51);
     const auto bf = run_bf(p, e, 10.0, 20000, 52);
-    const auto c = compare(le.estimates.diffusivity.value, le.estimates.diffusivity.std_error,
-                           bf.estimates.diffusivity.value, bf.estimates.diffusivity.std_error,
+    const auto c = compare(le.estimates.diffusivity.value, le.estimates.diffusivity.error,
+                           bf.estimates.diffusivity.value, bf.estimates.diffusivity.error,
                            0.04 * le.estimates.diffusivity.value);
     EXPECT_TRUE(check(c, "D long-excursion vs brute force (t = 10 s)"));
 }
@@ -40,13 +40,13 @@ TEST(BruteForce, DrivenCaseRenewalAgreesAndPaperEq12Disagrees) {
     const auto paper = run_le(p, e, 20000, 61, 0, ss::Estimator::Paper);
     const auto bf = run_bf(p, e, 10.0, 3000, 62);
     // The mobility is far from 0 here.
-    EXPECT_GT(renewal.estimates.mobility.value, 20 * renewal.estimates.mobility.std_error);
-    const auto ok = compare(renewal.estimates.diffusivity.value, renewal.estimates.diffusivity.std_error,
-                            bf.estimates.diffusivity.value, bf.estimates.diffusivity.std_error,
+    EXPECT_GT(renewal.estimates.mobility.value, 20 * renewal.estimates.mobility.error);
+    const auto ok = compare(renewal.estimates.diffusivity.value, renewal.estimates.diffusivity.error,
+                            bf.estimates.diffusivity.value, bf.estimates.diffusivity.error,
                             0.04 * renewal.estimates.diffusivity.value);
     EXPECT_TRUE(check(ok, "driven case: renewal D vs brute force"));
-    const auto bad = compare(paper.estimates.diffusivity.value, paper.estimates.diffusivity.std_error,
-                             bf.estimates.diffusivity.value, bf.estimates.diffusivity.std_error);
+    const auto bad = compare(paper.estimates.diffusivity.value, paper.estimates.diffusivity.error,
+                             bf.estimates.diffusivity.value, bf.estimates.diffusivity.error);
     std::cout << "[measured] " << bad.message("driven case: paper eq. (12) vs brute force (must differ, z > 6)") << std::endl;
     EXPECT_GT(bad.z(), 6.0) << bad.message("driven case: paper eq. (12) should be far above brute force");
     EXPECT_GT(paper.estimates.diffusivity.value, 1.4 * renewal.estimates.diffusivity.value);

@@ -57,8 +57,8 @@ Coverage measure(const ss::ModelParams& p, double dt, std::uint64_t n, int runs,
         EXPECT_EQ(x.level, 0.95);
         c.below += x.hi < c.reference;
         c.above += x.lo > c.reference;
-        c.below_sym += x.value + q * x.std_error < c.reference;
-        c.above_sym += x.value - q * x.std_error > c.reference;
+        c.below_sym += x.value + q * x.error < c.reference;
+        c.above_sym += x.value - q * x.error > c.reference;
         c.nonpositive_lo += !(x.lo > 0);
         c.infinite_hi += std::isinf(x.hi);
     }

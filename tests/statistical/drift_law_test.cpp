@@ -53,14 +53,14 @@ TEST_P(WhiteNoiseDriftLaw, ResolventMatchesTheQuadrature) {
     const std::string law = GetParam();
     const double allowance = 0.015;
     const auto& d = res.estimates.diffusivity;
-    EXPECT_TRUE(check(compare(d.value, d.std_error, ref.diffusivity, 0.0, allowance * ref.diffusivity),
+    EXPECT_TRUE(check(compare(d.value, d.error, ref.diffusivity, 0.0, allowance * ref.diffusivity),
                       "white noise, b = " + law + ": D' vs quadrature"));
     const auto& m = res.estimates.mobility;
     const double scale = std::sqrt(ref.variance); // M0 may be 0: its allowance in velocity units
-    EXPECT_TRUE(check(compare(m.value, m.std_error, ref.mobility, 0.0, allowance * scale),
+    EXPECT_TRUE(check(compare(m.value, m.error, ref.mobility, 0.0, allowance * scale),
                       "white noise, b = " + law + ": M0' vs quadrature"));
     const auto& var = res.variance;
-    EXPECT_TRUE(check(compare(var.value, var.std_error, ref.variance, 0.0, allowance * ref.variance),
+    EXPECT_TRUE(check(compare(var.value, var.error, ref.variance, 0.0, allowance * ref.variance),
                       "white noise, b = " + law + ": Var V' vs quadrature"));
 }
 
@@ -95,11 +95,11 @@ TEST_P(ColouredDriftLaw, PdmpResolventEventAndKolmogorovAgree) {
     for (const Pair& c : pairs) {
         const auto& da = c.a.estimates.diffusivity;
         const auto& db = c.b.estimates.diffusivity;
-        EXPECT_TRUE(check(compare(da.value, da.std_error, db.value, db.std_error, allowance * db.value),
+        EXPECT_TRUE(check(compare(da.value, da.error, db.value, db.error, allowance * db.value),
                           "tau' = 1, b = " + law + ": D' " + c.what));
         const auto& ma = c.a.estimates.mobility;
         const auto& mb = c.b.estimates.mobility;
-        EXPECT_TRUE(check(compare(ma.value, ma.std_error, mb.value, mb.std_error, allowance * std::sqrt(db.value)),
+        EXPECT_TRUE(check(compare(ma.value, ma.error, mb.value, mb.error, allowance * std::sqrt(db.value)),
                           "tau' = 1, b = " + law + ": M0' " + c.what));
     }
     // The event scheme against the Kolmogorov engine (no sampling): its control
@@ -110,11 +110,11 @@ TEST_P(ColouredDriftLaw, PdmpResolventEventAndKolmogorovAgree) {
     // drift law").
     const ss::KolmogorovResult k = ss::solve_kolmogorov(p);
     const auto& de = exact_pieces.estimates.diffusivity;
-    EXPECT_TRUE(check(compare(de.value, de.std_error, k.diffusivity.value, 0.0,
+    EXPECT_TRUE(check(compare(de.value, de.error, k.diffusivity.value, 0.0,
                               k.diffusivity.error + 0.002 * k.diffusivity.value),
                       "tau' = 1, b = " + law + ": D' event dt auto vs kolmogorov"));
     const auto& me = exact_pieces.estimates.mobility;
-    EXPECT_TRUE(check(compare(me.value, me.std_error, k.mobility.value, 0.0,
+    EXPECT_TRUE(check(compare(me.value, me.error, k.mobility.value, 0.0,
                               k.mobility.error + 0.002 * std::sqrt(k.diffusivity.value)),
                       "tau' = 1, b = " + law + ": M0' event dt auto vs kolmogorov"));
 }
@@ -137,10 +137,10 @@ TEST(DriftLawExpression, AffineExpressionIsTheAffineModel) {
     const auto b = run_le(expr, pdmp, 40000, 42);
     const auto& da = a.estimates.diffusivity;
     const auto& db = b.estimates.diffusivity;
-    EXPECT_TRUE(check(compare(db.value, db.std_error, da.value, da.std_error), "D' of b = 0.3 - 2v: expression vs affine"));
+    EXPECT_TRUE(check(compare(db.value, db.error, da.value, da.error), "D' of b = 0.3 - 2v: expression vs affine"));
     const auto& ma = a.estimates.mobility;
     const auto& mb = b.estimates.mobility;
-    EXPECT_TRUE(check(compare(mb.value, mb.std_error, ma.value, ma.std_error), "M0' of b = 0.3 - 2v: expression vs affine"));
+    EXPECT_TRUE(check(compare(mb.value, mb.error, ma.value, ma.error), "M0' of b = 0.3 - 2v: expression vs affine"));
 }
 
 } // namespace

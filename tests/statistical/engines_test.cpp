@@ -23,12 +23,12 @@ TEST(Engines, PdmpAgreesWithInclusionOnFig4Case) {
     const auto a = run_le(p, pd, 20000, 41);
     const auto b = run_le(p, in, 6000, 42);
     EXPECT_EQ(b.monte_carlo().engine.stop_rule, "bridge");
-    const auto d = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.std_error,
-                           b.estimates.diffusivity.value, b.estimates.diffusivity.std_error,
+    const auto d = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.error,
+                           b.estimates.diffusivity.value, b.estimates.diffusivity.error,
                            0.02 * a.estimates.diffusivity.value);
     EXPECT_TRUE(check(d, "D pdmp vs inclusion"));
-    const auto m = compare(a.estimates.mobility.value, a.estimates.mobility.std_error, b.estimates.mobility.value,
-                           b.estimates.mobility.std_error, 0.03 * a.estimates.mobility.value);
+    const auto m = compare(a.estimates.mobility.value, a.estimates.mobility.error, b.estimates.mobility.value,
+                           b.estimates.mobility.error, 0.03 * a.estimates.mobility.value);
     EXPECT_TRUE(check(m, "M0 pdmp vs inclusion"));
 }
 
@@ -42,12 +42,12 @@ TEST(Engines, PdmpWithoutViscousDragAgreesWithInclusion) {
     in.dt = 1e-3;
     const auto a = run_le(p, pd, 20000, 43);
     const auto b = run_le(p, in, 10000, 44);
-    const auto d = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.std_error,
-                           b.estimates.diffusivity.value, b.estimates.diffusivity.std_error,
+    const auto d = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.error,
+                           b.estimates.diffusivity.value, b.estimates.diffusivity.error,
                            0.03 * a.estimates.diffusivity.value);
     EXPECT_TRUE(check(d, "D pdmp vs inclusion, relaxation inf"));
-    const auto m = compare(a.estimates.mobility.value, a.estimates.mobility.std_error, b.estimates.mobility.value,
-                           b.estimates.mobility.std_error, 0.03 * a.estimates.mobility.value);
+    const auto m = compare(a.estimates.mobility.value, a.estimates.mobility.error, b.estimates.mobility.value,
+                           b.estimates.mobility.error, 0.03 * a.estimates.mobility.value);
     EXPECT_TRUE(check(m, "M0 pdmp vs inclusion, relaxation inf"));
 }
 

@@ -54,13 +54,13 @@ int compare_moments(const ss::MomentsResult& a, const ss::MomentsResult& b, cons
     int failures = 0;
     for (std::size_t i = 0; i < a.time.size(); ++i) {
         const std::string at = what + ", t = " + std::to_string(a.time[i]) + " s";
-        failures += !check(compare(a.first_moment[i].value, a.first_moment[i].std_error, b.first_moment[i].value,
-                                   b.first_moment[i].std_error),
+        failures += !check(compare(a.first_moment[i].value, a.first_moment[i].error, b.first_moment[i].value,
+                                   b.first_moment[i].error),
                            "E[V(t)], " + at);
-        failures += !check(compare(a.second_moment[i].value, a.second_moment[i].std_error, b.second_moment[i].value,
-                                   b.second_moment[i].std_error),
+        failures += !check(compare(a.second_moment[i].value, a.second_moment[i].error, b.second_moment[i].value,
+                                   b.second_moment[i].error),
                            "E[V(t)^2], " + at);
-        failures += !check(compare(a.stuck[i].value, a.stuck[i].std_error, b.stuck[i].value, b.stuck[i].std_error,
+        failures += !check(compare(a.stuck[i].value, a.stuck[i].error, b.stuck[i].value, b.stuck[i].error,
                                    stuck_allowance),
                            "P(V(t) = 0), " + at);
     }

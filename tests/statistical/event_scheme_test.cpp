@@ -33,11 +33,11 @@ TEST(EventSchemeStatistics, Fig4CaseAgreesWithPdmpAtACoarseStep) {
     pdmp.engine = ss::Engine::Pdmp;
     const auto a = run_le(p, event(2e-2), 60000, 2024);
     const auto b = run_le(p, pdmp, 60000, 2025);
-    EXPECT_TRUE(check(compare(a.estimates.diffusivity.value, a.estimates.diffusivity.std_error,
-                              b.estimates.diffusivity.value, b.estimates.diffusivity.std_error),
+    EXPECT_TRUE(check(compare(a.estimates.diffusivity.value, a.estimates.diffusivity.error,
+                              b.estimates.diffusivity.value, b.estimates.diffusivity.error),
                       "D, event dt 2e-2 s vs pdmp grid 0.125"));
-    EXPECT_TRUE(check(compare(a.estimates.mobility.value, a.estimates.mobility.std_error, b.estimates.mobility.value,
-                              b.estimates.mobility.std_error),
+    EXPECT_TRUE(check(compare(a.estimates.mobility.value, a.estimates.mobility.error, b.estimates.mobility.value,
+                              b.estimates.mobility.error),
                       "M0, event dt 2e-2 s vs pdmp grid 0.125"));
 }
 
@@ -57,7 +57,7 @@ TEST(EventSchemeStatistics, StuckFractionAgreesWithPdmp) {
     const auto a = stuck(event(1e-2), 1), b = stuck(pdmp, 2);
     // Allowance 0.002: the launch cascade resolved to h/64 (measured here:
     // 0.8800 against the PDMP's 0.8812, z = -1.0).
-    EXPECT_TRUE(check(compare(a.value, a.std_error, b.value, b.std_error, 0.002, 3.0),
+    EXPECT_TRUE(check(compare(a.value, a.error, b.value, b.error, 0.002, 3.0),
                       "P(V = 0), event dt 1e-2 s vs pdmp grid 0.125"));
 }
 
@@ -81,7 +81,7 @@ TEST(EventSchemeStatistics, StuckFractionHasNoStepPartAtTauOverTen) {
     r.bins.count = 4;
     r.control.seed = 17;
     const auto stuck = ss::compute_density(r).histogram.stuck;
-    EXPECT_TRUE(check(compare(stuck.value, stuck.std_error, 0.0800, 0.0002, 0.001, 3.0),
+    EXPECT_TRUE(check(compare(stuck.value, stuck.error, 0.0800, 0.0002, 0.001, 3.0),
                       "P(V = 0), event dt = tau/10 vs its dt -> 0 limit"));
 }
 
@@ -201,10 +201,10 @@ TEST(EventSchemeStatistics, WhiteNoiseAtTheAutomaticStepMatchesTheQuadrature) {
         const ss::WhiteNoiseReference exact = ss::white_noise_reference(p);
         const std::string at = " (relaxation " + std::to_string(k.relaxation) + ", bias " + std::to_string(k.bias) +
                                ", dt " + std::to_string(r.request.engine.dt) + ")";
-        EXPECT_TRUE(check(compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, exact.diffusivity,
+        EXPECT_TRUE(check(compare(r.estimates.diffusivity.value, r.estimates.diffusivity.error, exact.diffusivity,
                                   0.0, 0.005 * exact.diffusivity, 3.0),
                           "D, white-noise event scheme vs quadrature" + at));
-        EXPECT_TRUE(check(compare(r.estimates.mobility.value, r.estimates.mobility.std_error, exact.mobility, 0.0,
+        EXPECT_TRUE(check(compare(r.estimates.mobility.value, r.estimates.mobility.error, exact.mobility, 0.0,
                                   0.005 * std::fabs(exact.mobility), 3.0),
                           "M0, white-noise event scheme vs quadrature" + at));
     }

@@ -40,7 +40,7 @@ TEST(Transient, TableIFirstMomentMatchesTouchette) {
         const double ef = ss::dry_friction_first_moment(r.params, res.time[k], 1.0);
         EXPECT_NEAR(ef, paper_ef[k], 0.001) << "closed form vs the paper's EF row at t' = " << r.times[k];
         const auto& m = res.first_moment[k];
-        const auto c = compare(m.value, m.std_error, ef, 0.0, 0.0, 4.0);
+        const auto c = compare(m.value, m.error, ef, 0.0, 0.0, 4.0);
         EXPECT_TRUE(check(c, "Table I E[V(t')] at t' = " + std::to_string(r.times[k])));
         EXPECT_LE(std::fabs(m.value - ef), 0.005) << c.message("Table I");
     }
@@ -66,7 +66,7 @@ TEST(StationaryDensity, FigureSixMatchesHayakawa) {
         const double w = h.edges[k + 1] - h.edges[k];
         const double want = hay.probability(h.edges[k], h.edges[k + 1]) / w;
         if (want * w < 2e-3) continue; // too few samples for a normal interval
-        const auto c = compare(h.density[k].value, h.density[k].std_error, want, 0.0, 0.0, 4.5);
+        const auto c = compare(h.density[k].value, h.density[k].error, want, 0.0, 0.0, 4.5);
         max_z = std::max(max_z, std::fabs(c.z()));
         ++used;
         EXPECT_TRUE(c.ok()) << c.message("bin [" + std::to_string(h.edges[k]) + ", " + std::to_string(h.edges[k + 1]) + ")");
@@ -75,9 +75,9 @@ TEST(StationaryDensity, FigureSixMatchesHayakawa) {
               << " bins; stuck probability " << h.stuck.value << std::endl;
     EXPECT_GE(used, 20u);
     EXPECT_LT(h.stuck.value, 0.005) << "dt = tau = 1e-5 s: the stuck atom should be a small O(dt) artefact";
-    const auto mean = compare(res.mean.value, res.mean.std_error, hay.mean(), 0.0);
+    const auto mean = compare(res.mean.value, res.mean.error, hay.mean(), 0.0);
     EXPECT_TRUE(check(mean, "Fig. 6 stationary mean vs Hayakawa"));
-    const auto var = compare(res.variance.value, res.variance.std_error, hay.variance(), 0.0);
+    const auto var = compare(res.variance.value, res.variance.error, hay.variance(), 0.0);
     EXPECT_TRUE(check(var, "Fig. 6 stationary variance vs Hayakawa"));
 }
 
@@ -97,7 +97,7 @@ TEST(Correlation, NearWhiteNoiseMatchesTouchette) {
         const double want = ss::dry_friction_autocorrelation(r.params, res.lag[k]);
         const auto& e = res.autocorrelation[k];
         // Allowance: the inclusion scheme's sqrt(dt') bias, about 1% of C(0) at dt' = 1e-3.
-        const auto c = compare(e.value, e.std_error, want, 0.0, 0.005);
+        const auto c = compare(e.value, e.error, want, 0.0, 0.005);
         EXPECT_TRUE(check(c, "<V(t')V(0)> at t' = " + std::to_string(res.lag[k])));
     }
     EXPECT_DOUBLE_EQ(res.normalised[0].value, 1.0);
@@ -117,14 +117,14 @@ TEST(StationaryDensity, StuckProbabilityVanishesForWhiteNoiseAndGrowsWithTau) {
         r.control.seed = 11;
         const auto res = ss::compute_density(r);
         std::cout << "[measured] tau' = " << tau << ": P(V = 0) = " << res.histogram.stuck.value << " +- "
-                  << res.histogram.stuck.std_error << std::endl;
+                  << res.histogram.stuck.error << std::endl;
         stuck.push_back(res.histogram.stuck);
     }
     // White noise: per step the scheme sticks with probability ~ 2 dt' p(0) = 2e-3.
     EXPECT_LT(stuck[0].value, 3e-3) << "white noise has no atom at 0 (only an O(dt) artefact)";
     for (std::size_t k = 1; k < stuck.size(); ++k) {
         const double z = (stuck[k].value - stuck[k - 1].value) /
-                         std::hypot(stuck[k].std_error, stuck[k - 1].std_error);
+                         std::hypot(stuck[k].error, stuck[k - 1].error);
         EXPECT_GT(z, 4.0) << "stuck probability must grow with tau: step " << k << " has z = " << z;
     }
 }
@@ -141,16 +141,16 @@ TEST(StationaryDensity, PdmpAndInclusionAgree) {
     r.engine.engine = ss::Engine::Pdmp;
     r.sample_dt = 1e-3;
     const auto pd = ss::compute_density(r);
-    EXPECT_TRUE(check(compare(inc.histogram.stuck.value, inc.histogram.stuck.std_error, pd.histogram.stuck.value,
-                              pd.histogram.stuck.std_error),
+    EXPECT_TRUE(check(compare(inc.histogram.stuck.value, inc.histogram.stuck.error, pd.histogram.stuck.value,
+                              pd.histogram.stuck.error),
                       "Fig. 2 case P(V = 0): inclusion vs pdmp"));
-    EXPECT_TRUE(check(compare(inc.variance.value, inc.variance.std_error, pd.variance.value, pd.variance.std_error),
+    EXPECT_TRUE(check(compare(inc.variance.value, inc.variance.error, pd.variance.value, pd.variance.error),
                       "Fig. 2 case Var(V): inclusion vs pdmp"));
     for (std::size_t k = 0; k < inc.histogram.density.size(); ++k) {
         const auto& a = inc.histogram.density[k];
         const auto& b = pd.histogram.density[k];
         if (a.value < 0.05) continue;
-        const auto c = compare(a.value, a.std_error, b.value, b.std_error, 0.0, 4.5);
+        const auto c = compare(a.value, a.error, b.value, b.error, 0.0, 4.5);
         EXPECT_TRUE(c.ok()) << c.message("density bin " + std::to_string(k) + ": inclusion vs pdmp");
     }
 }
@@ -172,7 +172,7 @@ TEST(Correlation, PdmpAndInclusionAgree) {
     for (std::size_t k = 1; k < inc.lag.size(); ++k) {
         const auto& a = inc.normalised[k];
         const auto& b = pd.normalised[k];
-        EXPECT_TRUE(check(compare(a.value, a.std_error, b.value, b.std_error),
+        EXPECT_TRUE(check(compare(a.value, a.error, b.value, b.error),
                           "h(r)/h(0) at r = " + std::to_string(inc.lag[k]) + " s: inclusion vs pdmp"));
     }
 }
@@ -192,9 +192,9 @@ TEST(StationaryDensity, WhiteNoiseWithDragAndBiasMatchesHayakawa) {
     // deviation for the mean; for the variance -2.4% +- 0.3% (three seeds of 3e4
     // excursions; -0.9% +- 0.6% at dt' = 2.5e-4), hence a 3% allowance.
     const double sd = std::sqrt(hay.variance());
-    EXPECT_TRUE(check(compare(res.mean.value, res.mean.std_error, hay.mean(), 0.0, 0.01 * sd),
+    EXPECT_TRUE(check(compare(res.mean.value, res.mean.error, hay.mean(), 0.0, 0.01 * sd),
                       "white noise E[V] vs Hayakawa"));
-    EXPECT_TRUE(check(compare(res.variance.value, res.variance.std_error, hay.variance(), 0.0, 0.03 * hay.variance()),
+    EXPECT_TRUE(check(compare(res.variance.value, res.variance.error, hay.variance(), 0.0, 0.03 * hay.variance()),
                       "white noise Var(V) vs Hayakawa"));
 }
 
@@ -213,9 +213,9 @@ TEST(Sweep, WhiteNoiseExponentIsThree) {
     ASSERT_EQ(res.points.size(), 3u);
     ASSERT_EQ(res.exponents.size(), 1u);
     const auto& a = res.exponents[0].exponent;
-    EXPECT_TRUE(check(compare(a.value, a.std_error, 3.0, 0.0), "white-noise exponent of D vs Gamma"));
+    EXPECT_TRUE(check(compare(a.value, a.error, 3.0, 0.0), "white-noise exponent of D vs Gamma"));
     for (const auto& p : res.points)
-        EXPECT_TRUE(check(compare(p.slope.value, p.slope.std_error, 3.0, 0.0),
+        EXPECT_TRUE(check(compare(p.slope.value, p.slope.error, 3.0, 0.0),
                           "local slope at Gamma = " + std::to_string(p.noise)));
 }
 
@@ -242,6 +242,6 @@ TEST(Correlation, EventSchemeSampledWithinItsStepsAgreesWithAFinerStep) {
     ASSERT_EQ(coarse.lag, fine.lag);
     const auto& a = coarse.normalised[1];
     const auto& b = fine.normalised[1];
-    EXPECT_TRUE(check(compare(a.value, a.std_error, b.value, b.std_error),
+    EXPECT_TRUE(check(compare(a.value, a.error, b.value, b.error),
                       "h(0.025 s)/h(0), event scheme: dt auto sampled every 2.5 ms vs dt = 2.5 ms"));
 }

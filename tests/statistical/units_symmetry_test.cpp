@@ -32,9 +32,9 @@ void expect_twins(const ss::EngineSettings& phys, std::uint64_t n) {
               {"mean_duration", a.estimates.mean_duration, b.estimates.mean_duration, sc.time}};
     for (const auto& q : qs) {
         // Rounding can flip a rare threshold decision; allow 2% of a standard error.
-        const auto c = compare(q.x.value / q.unit, 0.0, q.y.value, q.y.std_error, 0.0, 0.02);
+        const auto c = compare(q.x.value / q.unit, 0.0, q.y.value, q.y.error, 0.0, 0.02);
         EXPECT_TRUE(check(c, std::string(q.name) + " physical/unit vs nondimensional"));
-        EXPECT_NEAR(q.x.std_error / q.unit, q.y.std_error, 0.02 * q.y.std_error) << q.name;
+        EXPECT_NEAR(q.x.error / q.unit, q.y.error, 0.02 * q.y.error) << q.name;
     }
 }
 
@@ -55,7 +55,7 @@ TEST(Symmetry, ZeroBiasGivesZeroMobility) {
     ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.engine = ss::Engine::Pdmp;
     const auto r = run_le(p, e, 20000, 4);
-    const auto c = compare(r.estimates.mobility.value, r.estimates.mobility.std_error, 0.0, 0.0);
+    const auto c = compare(r.estimates.mobility.value, r.estimates.mobility.error, 0.0, 0.0);
     EXPECT_TRUE(check(c, "mobility with bias 0 against 0"));
 }
 
@@ -65,14 +65,14 @@ void expect_mirror(const ss::EngineSettings& e, std::uint64_t n) {
     minus.bias = -0.342;
     const auto a = run_le(plus, e, n, 11);
     const auto b = run_le(minus, e, n, 12);
-    const auto cm = compare(a.estimates.mobility.value, a.estimates.mobility.std_error, -b.estimates.mobility.value,
-                            b.estimates.mobility.std_error);
+    const auto cm = compare(a.estimates.mobility.value, a.estimates.mobility.error, -b.estimates.mobility.value,
+                            b.estimates.mobility.error);
     EXPECT_TRUE(check(cm, "M0(bias) vs -M0(-bias)"));
-    const auto cd = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.std_error,
-                            b.estimates.diffusivity.value, b.estimates.diffusivity.std_error);
+    const auto cd = compare(a.estimates.diffusivity.value, a.estimates.diffusivity.error,
+                            b.estimates.diffusivity.value, b.estimates.diffusivity.error);
     EXPECT_TRUE(check(cd, "D(bias) vs D(-bias)"));
     // The mobility is clearly non-zero here, so the sign flip is a real test.
-    EXPECT_GT(std::fabs(a.estimates.mobility.value), 5 * a.estimates.mobility.std_error);
+    EXPECT_GT(std::fabs(a.estimates.mobility.value), 5 * a.estimates.mobility.error);
     EXPECT_LT(b.estimates.mobility.value, 0.0);
 }
 

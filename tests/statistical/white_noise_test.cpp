@@ -25,9 +25,9 @@ TEST(WhiteNoise, PureDryFrictionGivesFiveQuarters) {
     EXPECT_EQ(r.monte_carlo().engine.stop_rule, "velocity-levels");
     const double ref = 1.25;
     EXPECT_DOUBLE_EQ(ss::white_noise_reference(p).diffusivity, ref);
-    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref, 0.0, 0.015 * ref);
+    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.error, ref, 0.0, 0.015 * ref);
     EXPECT_TRUE(check(c, "white-noise D' vs 5/4 (dt' = 1e-3, allowance 1.5%)"));
-    const auto m = compare(r.estimates.mobility.value, r.estimates.mobility.std_error, 0.0, 0.0);
+    const auto m = compare(r.estimates.mobility.value, r.estimates.mobility.error, 0.0, 0.0);
     EXPECT_TRUE(check(m, "white-noise M0' vs 0"));
 }
 
@@ -39,10 +39,10 @@ TEST(WhiteNoise, RelaxationAndBiasMatchQuadrature) {
     e.dt = 1e-3;
     const auto ref = ss::white_noise_reference(p);
     const auto r = run_le(p, e, 200000, 77);
-    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref.diffusivity, 0.0,
+    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.error, ref.diffusivity, 0.0,
                            0.015 * ref.diffusivity);
     EXPECT_TRUE(check(c, "white-noise D' vs quadrature (relaxation' 0.2, bias' 0.3, allowance 1.5%)"));
-    const auto m = compare(r.estimates.mobility.value, r.estimates.mobility.std_error, ref.mobility, 0.0,
+    const auto m = compare(r.estimates.mobility.value, r.estimates.mobility.error, ref.mobility, 0.0,
                            0.015 * ref.mobility);
     EXPECT_TRUE(check(m, "white-noise M0' vs quadrature (allowance 1.5%)"));
 }
@@ -54,7 +54,7 @@ TEST(WhiteNoise, PhysicalUnitsScaleLikeGammaCubedOverDeltaFourth) {
     ss::EngineSettings e = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4);
     e.dt = 1e-3 * ss::scales_of(p).time;
     const auto r = run_le(p, e, 50000, 5);
-    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, ref, 0.0, 0.015 * ref);
+    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.error, ref, 0.0, 0.015 * ref);
     EXPECT_TRUE(check(c, "white-noise D vs 5/4 Gamma^3/Delta^4 (physical units)"));
 }
 
@@ -66,7 +66,7 @@ TEST(WhiteNoise, ColoredNoiseWithTinyTauConverges) {
     e.dt = 1e-3;
     const auto r = run_le(p, e, 3000, 31);
     EXPECT_EQ(r.monte_carlo().engine.stop_rule, "stuck");
-    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.std_error, 1.25, 0.0, 0.03 * 1.25);
+    const auto c = compare(r.estimates.diffusivity.value, r.estimates.diffusivity.error, 1.25, 0.0, 0.03 * 1.25);
     EXPECT_TRUE(check(c, "colored D' at tau' = 1e-4 vs white 5/4"));
 }
 

@@ -124,11 +124,11 @@ void expect_close(double got, long double want, double rel, const char* what) {
 
 void expect_matches(const ControlVariateEstimates& e, const Reference& r, double rel) {
     expect_close(e.diffusivity.value, r.d_cv, rel, "D_cv");
-    expect_close(e.diffusivity.std_error, r.se_d, rel, "se(D_cv)");
+    expect_close(e.diffusivity.error, r.se_d, rel, "se(D_cv)");
     expect_close(e.beta, r.beta, rel, "beta");
     expect_close(e.variance_reduction, r.vr, rel, "variance_reduction");
     expect_close(e.mobility.value, r.m0_cv, rel, "M0_cv");
-    expect_close(e.mobility.std_error, r.se_m, rel, "se(M0_cv)");
+    expect_close(e.mobility.error, r.se_m, rel, "se(M0_cv)");
     expect_close(e.beta_mobility, r.beta_m, rel, "beta'");
     expect_close(e.variance_reduction_mobility, r.vr_m, rel, "variance_reduction_mobility");
 }
@@ -213,11 +213,11 @@ TEST(ControlVariateEstimator, UninformativeControlsChangeNothing) {
     // not the least-squares residual of phi on C.
     EXPECT_GT(e.variance_reduction, 1.0 - 10.0 / nd);
     EXPECT_GT(e.variance_reduction_mobility, 1.0 - 10.0 / nd);
-    EXPECT_LT(std::fabs(e.diffusivity.value - plain.diffusivity.value), 0.5 * e.diffusivity.std_error)
-        << "z = " << (e.diffusivity.value - plain.diffusivity.value) / e.diffusivity.std_error;
-    EXPECT_LT(std::fabs(e.mobility.value - plain.mobility.value), 0.5 * e.mobility.std_error)
-        << "z = " << (e.mobility.value - plain.mobility.value) / e.mobility.std_error;
-    EXPECT_LT(std::fabs(e.diffusivity.std_error / plain.diffusivity.std_error - 1.0), 1e-3);
+    EXPECT_LT(std::fabs(e.diffusivity.value - plain.diffusivity.value), 0.5 * e.diffusivity.error)
+        << "z = " << (e.diffusivity.value - plain.diffusivity.value) / e.diffusivity.error;
+    EXPECT_LT(std::fabs(e.mobility.value - plain.mobility.value), 0.5 * e.mobility.error)
+        << "z = " << (e.mobility.value - plain.mobility.value) / e.mobility.error;
+    EXPECT_LT(std::fabs(e.diffusivity.error / plain.diffusivity.error - 1.0), 1e-3);
 }
 
 TEST(ControlVariateEstimator, MartingaleRemovesMostOfTheVarianceWithoutBias) {
@@ -227,11 +227,11 @@ TEST(ControlVariateEstimator, MartingaleRemovesMostOfTheVarianceWithoutBias) {
     const ControlVariateEstimates e = estimate_control_variate(sums_of(s), 0.95);
     EXPECT_GT(e.variance_reduction, 20.0);
     EXPECT_GT(e.variance_reduction_mobility, 20.0);
-    const double z_d = (e.diffusivity.value - d_true) / e.diffusivity.std_error;
-    const double z_m = (e.mobility.value - m0) / e.mobility.std_error;
-    EXPECT_LT(std::fabs(z_d), 3.0) << "D_cv " << e.diffusivity.value << " +- " << e.diffusivity.std_error
+    const double z_d = (e.diffusivity.value - d_true) / e.diffusivity.error;
+    const double z_m = (e.mobility.value - m0) / e.mobility.error;
+    EXPECT_LT(std::fabs(z_d), 3.0) << "D_cv " << e.diffusivity.value << " +- " << e.diffusivity.error
                                    << " against " << d_true << ": z = " << z_d;
-    EXPECT_LT(std::fabs(z_m), 3.0) << "M0_cv " << e.mobility.value << " +- " << e.mobility.std_error
+    EXPECT_LT(std::fabs(z_m), 3.0) << "M0_cv " << e.mobility.value << " +- " << e.mobility.error
                                    << " against " << m0 << ": z = " << z_m;
     // The optimal coefficients are 1 here (U - M0 t - M is independent noise).
     EXPECT_NEAR(e.beta, 1.0, 0.05);
@@ -246,10 +246,10 @@ TEST(ControlVariateEstimator, PlainPartsAreThoseOfTheLongExcursionEstimator) {
     const ControlVariateEstimates e = estimate_control_variate(sums_of(s), 0.9);
     const auto plain = plain_of(s, 0.9);
     // The plain variance E[phi^2] is reduction * E[psi^2]: the plain se is se_cv sqrt(reduction).
-    EXPECT_NEAR(e.diffusivity.std_error * std::sqrt(e.variance_reduction), plain.diffusivity.std_error,
-                1e-12 * plain.diffusivity.std_error);
-    EXPECT_NEAR(e.mobility.std_error * std::sqrt(e.variance_reduction_mobility), plain.mobility.std_error,
-                1e-12 * plain.mobility.std_error);
+    EXPECT_NEAR(e.diffusivity.error * std::sqrt(e.variance_reduction), plain.diffusivity.error,
+                1e-12 * plain.diffusivity.error);
+    EXPECT_NEAR(e.mobility.error * std::sqrt(e.variance_reduction_mobility), plain.mobility.error,
+                1e-12 * plain.mobility.error);
 
     // With no corrector signal (M = C = 0) the estimates are the plain ones.
     Samples bare = s;
@@ -261,17 +261,17 @@ TEST(ControlVariateEstimator, PlainPartsAreThoseOfTheLongExcursionEstimator) {
     EXPECT_EQ(b.variance_reduction, 1.0);
     EXPECT_EQ(b.variance_reduction_mobility, 1.0);
     EXPECT_NEAR(b.diffusivity.value, plain.diffusivity.value, 1e-14 * plain.diffusivity.value);
-    EXPECT_NEAR(b.diffusivity.std_error, plain.diffusivity.std_error, 1e-12 * plain.diffusivity.std_error);
+    EXPECT_NEAR(b.diffusivity.error, plain.diffusivity.error, 1e-12 * plain.diffusivity.error);
     EXPECT_NEAR(b.diffusivity.lo, plain.diffusivity.lo, 1e-12 * plain.diffusivity.lo);
     EXPECT_NEAR(b.diffusivity.hi, plain.diffusivity.hi, 1e-12 * plain.diffusivity.hi);
     EXPECT_NEAR(b.mobility.value, plain.mobility.value, 1e-14 * std::fabs(plain.mobility.value));
-    EXPECT_NEAR(b.mobility.std_error, plain.mobility.std_error, 1e-12 * plain.mobility.std_error);
+    EXPECT_NEAR(b.mobility.error, plain.mobility.error, 1e-12 * plain.mobility.error);
 }
 
 /// The estimate's doubles, bit for bit.
 std::vector<unsigned char> bits(const ControlVariateEstimates& e) {
-    const double v[] = {e.diffusivity.value, e.diffusivity.std_error, e.diffusivity.lo,     e.diffusivity.hi,
-                        e.mobility.value,    e.mobility.std_error,    e.mobility.lo,        e.mobility.hi,
+    const double v[] = {e.diffusivity.value, e.diffusivity.error, e.diffusivity.lo,     e.diffusivity.hi,
+                        e.mobility.value,    e.mobility.error,    e.mobility.lo,        e.mobility.hi,
                         e.beta,              e.beta_mobility,         e.variance_reduction, e.variance_reduction_mobility};
     std::vector<unsigned char> out(sizeof v);
     std::memcpy(out.data(), v, sizeof v);

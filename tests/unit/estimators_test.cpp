@@ -282,7 +282,7 @@ Direct direct_estimates(const Sample& s) {
 /// M0, E[t1], M0_t: the symmetric interval value -+ q se.
 void expect_estimate(const ss::Estimate& e, long double value, long double se, double q, const std::string& what) {
     EXPECT_NEAR(e.value, static_cast<double>(value), 1e-13 * std::fabs(static_cast<double>(value))) << what;
-    EXPECT_NEAR(e.std_error, static_cast<double>(se), 1e-11 * static_cast<double>(se)) << what << " std_error";
+    EXPECT_NEAR(e.error, static_cast<double>(se), 1e-11 * static_cast<double>(se)) << what << " std_error";
     EXPECT_NEAR(e.lo, static_cast<double>(value - q * se), 1e-12 * static_cast<double>(std::fabs(value) + q * se))
         << what << " lo";
     EXPECT_NEAR(e.hi, static_cast<double>(value + q * se), 1e-12 * static_cast<double>(std::fabs(value) + q * se))
@@ -293,7 +293,7 @@ void expect_estimate(const ss::Estimate& e, long double value, long double se, d
 void expect_scale_estimate(const ss::Estimate& e, long double value, long double se, double q,
                            const std::string& what) {
     EXPECT_NEAR(e.value, static_cast<double>(value), 1e-13 * std::fabs(static_cast<double>(value))) << what;
-    EXPECT_NEAR(e.std_error, static_cast<double>(se), 1e-11 * static_cast<double>(se)) << what << " std_error";
+    EXPECT_NEAR(e.error, static_cast<double>(se), 1e-11 * static_cast<double>(se)) << what << " std_error";
     const long double h = q * se / value;
     EXPECT_NEAR(e.lo, static_cast<double>(value / (1 + h)), 1e-11 * static_cast<double>(value)) << what << " lo";
     EXPECT_GT(e.lo, 0.0) << what;
@@ -399,7 +399,7 @@ TEST(Estimators, RelativeErrorInterval) {
     // |value/D - 1| <= q r: value / (1 + q r) <= D <= value / (1 - q r).
     const ss::Estimate e = ss::make_relative_interval(2.0, 0.25, 0.95);
     EXPECT_EQ(e.value, 2.0);
-    EXPECT_EQ(e.std_error, 0.25);
+    EXPECT_EQ(e.error, 0.25);
     EXPECT_EQ(e.level, 0.95);
     const double h = q * 0.25 / 2.0;
     EXPECT_DOUBLE_EQ(e.lo, 2.0 / (1 + h));

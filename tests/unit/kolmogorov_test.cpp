@@ -303,7 +303,7 @@ TEST(KolmogorovLimits, NearWhiteLimitApproachesTheQuadrature) {
 // were 0.10-0.49 of the summed estimates). The default solve takes about 1 s.
 TEST(KolmogorovConvergence, EstimatesCoverTheDistanceToAFinerSolve) {
     struct Finer {
-        ss::KolmogorovEstimate d, m, p, t;
+        ss::Estimate d, m, p, t;
     };
     ss::ModelParams driven;
     driven.noise = 3.0;

@@ -178,7 +178,7 @@ TEST(NearWhiteSolver, AgreesWithTheChainWhereBothRun) {
         for (const ss::ModelParams& p : {dry(tau), fig2(tau)}) {
             const ss::KolmogorovResult a = ss::solve_kolmogorov(p, near_white());
             const ss::KolmogorovResult b = ss::solve_kolmogorov(p, chain);
-            auto agree = [&](const char* name, const ss::KolmogorovEstimate& x, const ss::KolmogorovEstimate& y) {
+            auto agree = [&](const char* name, const ss::Estimate& x, const ss::Estimate& y) {
                 EXPECT_LE(std::abs(x.value - y.value), x.error + y.error)
                     << name << " at tau' " << tau << ", bias " << p.bias << ": near-white " << x.value << " +- "
                     << x.error << ", chain " << y.value << " +- " << y.error;

@@ -126,7 +126,7 @@ TEST(Correlation, LagZeroIsTheSecondMomentOfTheSameExcursions) {
         EXPECT_EQ(corr.mean.value, dens.mean.value);
         for (std::size_t k = 1; k < corr.lag.size(); ++k) {
             EXPECT_LT(corr.normalised[k].value, 1.0);
-            EXPECT_GT(corr.normalised[k].std_error, 0.0);
+            EXPECT_GT(corr.normalised[k].error, 0.0);
         }
     }
 }
@@ -146,7 +146,7 @@ TEST(Transient, TimeZeroIsTheStartAndThreadsDoNotMatter) {
         const auto one = ss::compute_moments(r);
         ASSERT_EQ(one.time, (std::vector<double>{0.0, 0.1, 0.5}));
         EXPECT_EQ(one.first_moment[0].value, 0.25);
-        EXPECT_EQ(one.first_moment[0].std_error, 0.0);
+        EXPECT_EQ(one.first_moment[0].error, 0.0);
         EXPECT_EQ(one.stuck[0].value, 0.0);
         ASSERT_EQ(one.density.size(), 3u);
         for (const auto& h : one.density) {

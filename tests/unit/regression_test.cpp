@@ -53,7 +53,7 @@ TEST(Regression, PdmpThresholdOnALatticePoint) {
     EXPECT_GT(on.estimates.diffusivity.value, 0.0);
     // Same seed, almost the same model: the estimates must be close.
     EXPECT_NEAR(on.estimates.diffusivity.value, off.estimates.diffusivity.value,
-                4 * off.estimates.diffusivity.std_error);
+                4 * off.estimates.diffusivity.error);
 }
 
 TEST(Regression, PdmpRoundingGivesWrongSignAtTheStartState) {

@@ -73,16 +73,20 @@ TEST(ResultFields, TheCsvColumnsFollowTheDeclaration) {
     EXPECT_EQ(detail::fields_csv_row(d), ",2.5,7,true,\"a, \"\"b\"\"\",1,0.1,0.8,1.2,3,0.3,inf,4,0.4,3.2,4.8");
 }
 
-TEST(ResultFields, ASolvedReportWritesItsEstimatesWithoutAnInterval) {
-    const detail::ordered_json j = detail::fields_json(Demo{}, detail::FieldJsonStyle{true, nullptr});
+TEST(ResultFields, AnEstimateIsWrittenAsItsKindSays) {
+    Demo d;
+    d.mean = solved_estimate(1.0, 0.1);
+    d.rate = exact_estimate(3.0);
+    const detail::ordered_json j = detail::fields_json(d);
     EXPECT_EQ(j["mean"].dump(), R"({"value":1.0,"error":0.1,"kind":"solved"})");
+    EXPECT_EQ(j["rate"].dump(), R"({"value":3.0,"error":0.0,"kind":"exact"})");
 }
 
 TEST(ResultFields, AReferenceIsExactForTheAffineLawAndSolvedForADriftLaw) {
     SweepWhiteLimit w;
     w.white_diffusivity = 0.25;
     ModelParams affine;
-    const detail::ordered_json j = detail::fields_json(w, detail::FieldJsonStyle{false, &affine});
+    const detail::ordered_json j = detail::fields_json(w, detail::FieldJsonStyle{&affine});
     EXPECT_EQ(j["white_diffusivity"].dump(), R"({"value":0.25,"error":0.0,"kind":"exact"})");
     EXPECT_FALSE(j.contains("varied")); // NaN without --vary
 }

@@ -100,21 +100,49 @@ void parse_setting(const SettingInfo& info, const std::string& text, Estimator& 
 const char* setting_form(const Estimator&);
 /// @}
 
-/// A point estimate with its standard error and a two-sided interval.
+/// How an estimate was made, which says what its error means.
+enum class EstimateKind {
+    /// By Monte Carlo: error is the standard error (delta method), [lo, hi]
+    /// an interval at `level`.
+    Sampled,
+    /// By a solver (the Kolmogorov engine's grids, a quadrature): error is an
+    /// estimated discretisation error (absolute; NaN when the solver has none);
+    /// no interval (lo, hi, level NaN), as a solver has no sampling distribution.
+    Solved,
+    /// By a closed form: error 0, no interval.
+    Exact,
+};
+
+/// "sampled", "solved", "exact": the JSON's and Python's names.
+const char* to_string(EstimateKind kind);
+
+/// A value with its uncertainty and the kind that says what the uncertainty
+/// is: every estimate of every method (Monte Carlo, the solvers, the closed
+/// forms) is one, so that the reports and Python treat them alike.
 struct Estimate {
     /// The point estimate, in the quantity's unit (the field that holds the
     /// Estimate names it).
     double value = 0.0;
-    double std_error = 0.0; ///< standard error (delta method)
+    /// Its uncertainty, in the same unit: the standard error when sampled,
+    /// the estimated discretisation error when solved, 0 when exact.
+    double error = 0.0;
     /// @{
-    /// The interval [lo, hi] at `level`: make_interval (symmetric) or, for D
-    /// and D_t, make_relative_interval (asymmetric, never negative; hi may be
-    /// +inf). Same unit as value.
+    /// The interval [lo, hi] at `level` (sampled only): make_interval
+    /// (symmetric) or, for D and D_t, make_relative_interval (asymmetric,
+    /// never negative; hi may be +inf). Same unit as value.
     double lo = 0.0, hi = 0.0;
     /// @}
     /// Nominal coverage of [lo, hi], in (0, 1).
     double level = 0.95;
+    /// What `error` means (and whether there is an interval).
+    EstimateKind kind = EstimateKind::Sampled;
 };
+
+/// A solver's value with its estimated discretisation error (absolute; NaN:
+/// not estimated), kind Solved, no interval.
+Estimate solved_estimate(double value, double error);
+/// A closed form's value: error 0, kind Exact, no interval.
+Estimate exact_estimate(double value);
 
 /// The relative upper half-width (hi - value) / value [1] of an estimate of a
 /// positive quantity: what --rel-precision and the notes on a run's precision
@@ -123,7 +151,7 @@ inline double relative_upper_half_width(const Estimate& e) {
     return e.value > 0 ? (e.hi - e.value) / e.value : std::numeric_limits<double>::infinity();
 }
 
-/// Estimate with the normal interval value -+ q_{(1+level)/2} * std_error.
+/// Sampled Estimate with the normal interval value -+ q_{(1+level)/2} * std_error.
 Estimate make_interval(double value, double std_error, double level);
 
 /// Estimate of a positive scale quantity (D, D_t) with the interval of its

@@ -537,7 +537,7 @@ KolmogorovResult solve_validated(const ModelParams& p, const KolmogorovSettings&
                                                  value({vx, at.kv - 1}, field), value({vx, at.kv}, field));
             if (lattice) {
                 if (record) v_error = in_v.error;
-                return KolmogorovEstimate{in_v.value, in_v.error};
+                return solved_estimate(in_v.value, in_v.error);
             }
             const Extrapolated in_x = richardson(value({at.kx - 3, at.av}, field), value({at.kx - 2, at.av}, field),
                                                  value({at.kx - 1, at.av}, field), value({at.kx, at.av}, field));
@@ -554,8 +554,8 @@ KolmogorovResult solve_validated(const ModelParams& p, const KolmogorovSettings&
             const bool model_holds = std::abs(mixed_at(at.ax - 1)) >= 3.0 * std::abs(mixed);
             const double mixed_charge = (model_holds ? 4.0 / 3.0 : 8.0) * std::abs(mixed);
             if (record) x_error = in_x.error, v_error = in_v.error, mixed_error = mixed_charge;
-            return KolmogorovEstimate{in_x.value + in_v.value - corner + 8.0 * mixed / 3.0,
-                                      in_x.error + in_v.error + mixed_charge};
+            return solved_estimate(in_x.value + in_v.value - corner + 8.0 * mixed / 3.0,
+                                   in_x.error + in_v.error + mixed_charge);
         };
         result.diffusivity = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity; }, true);
         result.diffusivity_x = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity_x; }, false);

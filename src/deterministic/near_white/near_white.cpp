@@ -132,7 +132,7 @@ std::vector<GridKey> grids_needed(const Levels& l) {
 
 /// The parts of one quantity's estimate.
 struct Parts {
-    KolmogorovEstimate estimate;
+    Estimate estimate;
     double z_error = 0, v_error = 0, mixed_error = 0;
 };
 
@@ -220,17 +220,17 @@ KolmogorovResult white_limit(const ModelParams& p, const KolmogorovSettings& set
     const WhiteNoiseReference white = p.has_drift_law() ? DriftLawWhiteNoise(law, p.friction, p.noise).reference()
                                                         : white_noise_reference(p);
     const double shrink = std::sqrt(tau_prime / kolmogorov_white_limit_below);
-    auto bounded = [&](const KolmogorovEstimate& e, double limit) {
-        return KolmogorovEstimate{limit, (std::abs(e.value - limit) + e.error) * shrink};
+    auto bounded = [&](const Estimate& e, double limit) {
+        return solved_estimate(limit, (std::abs(e.value - limit) + e.error) * shrink);
     };
     r.params = p;
     r.diffusivity = bounded(r.diffusivity, white.diffusivity);
     r.diffusivity_x = bounded(r.diffusivity_x, white.diffusivity);
     r.mobility = bounded(r.mobility, white.mobility);
     r.velocity_variance = bounded(r.velocity_variance, white.variance);
-    r.stuck_probability = {0.0, r.stuck_probability.value + r.stuck_probability.error};
+    r.stuck_probability = solved_estimate(0.0, r.stuck_probability.value + r.stuck_probability.error);
     const double duration = r.mean_duration.value / shrink;
-    r.mean_duration = {duration, duration};
+    r.mean_duration = solved_estimate(duration, duration);
     const double relative = r.diffusivity.error / std::abs(r.diffusivity.value);
     r.converged = relative <= settings.rel_precision;
     r.note = "tau' = " + format_number(tau_prime) + " is below " + format_number(kolmogorov_white_limit_below) +
@@ -353,12 +353,12 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
             out.z_error = in_z.error;
             out.v_error = in_v.error;
             out.mixed_error = 3.0 * std::abs(mixed);
-            out.estimate = {in_z.value + in_v.value - q(at.az, at.av), out.z_error + out.v_error + out.mixed_error};
+            out.estimate = solved_estimate(in_z.value + in_v.value - q(at.az, at.av), out.z_error + out.v_error + out.mixed_error);
             return out;
         };
         auto scaled = [truncation](Parts x, double unit) {
-            return KolmogorovEstimate{x.estimate.value * unit,
-                                      (x.estimate.error + truncation * std::abs(x.estimate.value)) * unit};
+            return solved_estimate(x.estimate.value * unit,
+                                   (x.estimate.error + truncation * std::abs(x.estimate.value)) * unit);
         };
         d_parts = parts([](const GridSolution& s) { return s.diffusivity; });
         result.diffusivity = scaled(d_parts, sc.diffusivity);
