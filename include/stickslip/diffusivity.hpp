@@ -242,8 +242,10 @@ struct DiffusivityResult : MethodResult {
     std::optional<DiscretisationCheck> knots_check;
     /// With --engine kolmogorov, the solver's result (details then hold its
     /// GridDetails): D, M0 and P(V = 0) each with its estimated discretisation
-    /// error, and the grids solved. `estimates` and `precision` are then
-    /// unset (a solved result has no samples, intervals or standard errors).
+    /// error, and the grids solved. `estimates` then holds the solver's D, M0
+    /// and E[t1] (Estimates of kind Solved; no excursions completed), so that
+    /// they are where a sampled run has them; `precision` is unset (a solved
+    /// result has no samples, intervals or standard errors).
     /// Empty for a sampled result.
     std::optional<KolmogorovResult> solution;
     /// When the control variate ran (request.control_variate, and a

@@ -136,8 +136,10 @@ struct DensityResult : MethodResult {
     /// solution->levels.back().velocity_density on velocity_faces, one value
     /// per velocity cell with no standard error (the grid's cells, not
     /// `bins`), and P(V = 0), D and M0 with their estimated discretisation
-    /// errors. The sampled members above are then unset. Empty for a sampled
-    /// result.
+    /// errors. Of the members above, mean, variance, estimates and
+    /// histogram.stuck then hold the solver's values (Estimates of kind
+    /// Solved), so that they are where a sampled run has them; the
+    /// histogram's bins are unset. Empty for a sampled result.
     std::optional<KolmogorovResult> solution;
 };
 

@@ -166,33 +166,12 @@ void bind_results(py::module_& m) {
         // A solved result (engine='kolmogorov') has D, M0 and P(V = 0) as
         // GridEstimates (value, error) and no samples.
         c.def_property_readonly(
-             "diffusivity",
-             [](const DiffusivityResult& r) -> py::object {
-                 if (r.solution) return py::cast(r.solution->diffusivity);
-                 return py::cast(r.estimates.diffusivity);
-             },
-             "D [m^2/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
-            .def_property_readonly(
-                "mobility",
-                [](const DiffusivityResult& r) -> py::object {
-                    if (r.solution) return py::cast(r.solution->mobility);
-                    return py::cast(r.estimates.mobility);
-                },
-                "M0, the mean velocity [m/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
-            .def_property_readonly(
                 "stuck_probability",
                 [](const DiffusivityResult& r) -> py::object {
                     if (r.solution) return py::cast(r.solution->stuck_probability);
                     return py::none();
                 },
                 "P(V = 0) (Estimate of kind 'solved') with engine='kolmogorov'; None for a sampled result")
-            .def_property_readonly(
-                "mean_duration",
-                [](const DiffusivityResult& r) -> py::object {
-                    if (r.solution) return py::cast(r.solution->mean_duration);
-                    return py::cast(r.estimates.mean_duration);
-                },
-                "E[t1], mean duration of a long excursion [s] (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "method", [](const DiffusivityResult& r) -> std::string {
                     return r.sampled() ? std::string("monte carlo") : r.grid().solver;
@@ -313,26 +292,8 @@ void bind_results(py::module_& m) {
                 "density [s/m] per bin (EstimateSeries, shape (bins,)), V = 0 excluded; engine='kolmogorov': "
                 "the grid's values (a NumPy array, no error bars)")
             .def_property_readonly(
-                "stuck_probability",
-                [](const R& r) -> py::object {
-                    if (r.solution) return py::cast(r.solution->stuck_probability);
-                    return py::cast(r.histogram.stuck);
-                },
+                "stuck_probability", [](const R& r) { return r.histogram.stuck; },
                 "P(V = 0) (Estimate; of kind 'solved' with engine='kolmogorov')")
-            .def_property_readonly(
-                "diffusivity",
-                [](const R& r) -> py::object {
-                    if (r.solution) return py::cast(r.solution->diffusivity);
-                    return py::cast(r.estimates.diffusivity);
-                },
-                "D [m^2/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
-            .def_property_readonly(
-                "mobility",
-                [](const R& r) -> py::object {
-                    if (r.solution) return py::cast(r.solution->mobility);
-                    return py::cast(r.estimates.mobility);
-                },
-                "M0 [m/s] (Estimate; of kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "below", [](const R& r) { return r.histogram.below; }, "P(V < edges[0], V != 0) (Estimate)")
             .def_property_readonly(

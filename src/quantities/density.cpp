@@ -209,6 +209,8 @@ DensityResult solve_density(const DensityRequest& req) {
     // The stationary mean and variance of V, with their discretisation errors.
     out.mean = out.solution->mobility;
     out.variance = out.solution->velocity_variance;
+    out.estimates = detail::solved_long_excursion_estimates(*out.solution);
+    out.histogram.stuck = out.solution->stuck_probability;
     const KolmogorovGridSolution& fine = out.solution->levels.back();
     out.warnings.push_back("the density is that of the solver's grid with the finest velocity cells, one value per cell (" +
                            std::to_string(fine.velocity_density.size()) +

@@ -43,6 +43,7 @@ DiffusivityResult solve_diffusivity(const DiffusivityRequest& req) {
     out.request = req;
     out.solution = detail::solve(req, req.rel_precision, out.warnings);
     out.details = out.solution->details;
+    out.estimates = detail::solved_long_excursion_estimates(*out.solution);
     return out;
 }
 

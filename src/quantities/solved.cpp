@@ -33,4 +33,12 @@ KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<s
     return result;
 }
 
+LongExcursionEstimates solved_long_excursion_estimates(const KolmogorovResult& s) {
+    LongExcursionEstimates e;
+    e.diffusivity = s.diffusivity;
+    e.mobility = s.mobility;
+    e.mean_duration = s.mean_duration;
+    return e;
+}
+
 } // namespace stickslip::detail

@@ -34,6 +34,11 @@ void validate_solved(const RunSettings& r, double rel_precision);
 /// remarks: the budget reached before the precision, the drift law used.
 KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes);
 
+/// The solver's D, M0 and E[t1] as the long-excursion estimates a sampled run
+/// fills (kind Solved; no excursions: `completed` 0), so that a result's
+/// estimates are where they are whatever the method.
+LongExcursionEstimates solved_long_excursion_estimates(const KolmogorovResult& s);
+
 /// The settings that only sampling uses (the Kolmogorov engine samples
 /// nothing): given a value other than their default, they are refused, so
 /// that `--excursions 1e6 --engine kolmogorov` does not pass for a run of a
