@@ -32,6 +32,8 @@
 /// Python, pickling, stubs and schema. The comment at the top of this header
 /// explains the design.
 
+#include <string>
+
 namespace stickslip {
 
 /// How a field appears in its struct's JSON block (and so in the schema).
@@ -59,9 +61,9 @@ enum class FieldForm {
 /// A result field's description: what the reports call it and say about it.
 struct FieldInfo {
     /// Its name in JSON, CSV and Python (snake_case). A dot nests in JSON:
-    /// "plain.diffusivity" is {"plain": {"diffusivity": ...}}; Python then
-    /// calls it by the part after the last dot's owner joined with '_'
-    /// ("plain_diffusivity"), as the C++ member is.
+    /// "plain.diffusivity" is {"plain": {"diffusivity": ...}}; Python and the
+    /// CSV, where names cannot nest, call it "plain_diffusivity"
+    /// (field_flat_name).
     const char* name;
     /// Its SI unit ("m^2/s", "s", ...), or "" for a pure number.
     const char* unit;
@@ -70,6 +72,15 @@ struct FieldInfo {
     /// How its struct's JSON block shows it.
     FieldForm form = FieldForm::Value;
 };
+
+/// A field's name where names cannot nest (Python attributes, CSV columns):
+/// its name with '.' read as '_' ("plain.diffusivity" -> "plain_diffusivity").
+inline std::string field_flat_name(const FieldInfo& f) {
+    std::string name = f.name;
+    for (char& c : name)
+        if (c == '.') c = '_';
+    return name;
+}
 
 /// A visitor that accepts any field: the test of DeclaredFields.
 struct AnyFieldVisitor {

@@ -114,9 +114,6 @@ void add_renderings(Cls& cls) {
 
 // ---- results that declare their fields (result_fields.hpp) ---------------------------------
 
-/// A declared field's Python name: its name with '.' read as '_'
-/// ("plain.diffusivity" -> "plain_diffusivity").
-std::string field_python_name(const FieldInfo& f);
 /// A declared field's docstring: its help, then its unit in brackets.
 std::string field_doc(const FieldInfo& f);
 /// The Python type of a member (float, int, bool, str or Estimate; an enum
@@ -167,7 +164,7 @@ template <DeclaredFields T> void note_declared(const std::string& python_class, 
 template <DeclaredFields T, class Cls> Cls& bind_fields(Cls& cls, const std::string& python_class,
                                                          const std::string& schema_definition) {
     T::fields([&](auto member, const FieldInfo& f) {
-        cls.def_readonly(field_python_name(f).c_str(), member, field_doc(f).c_str()); // pybind11 copies both
+        cls.def_readonly(field_flat_name(f).c_str(), member, field_doc(f).c_str()); // pybind11 copies both
     });
     note_declared<T>(python_class, schema_definition);
     return cls;

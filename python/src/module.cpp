@@ -56,13 +56,6 @@ std::string setting_text(const py::handle& v) {
 
 py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
-std::string field_python_name(const FieldInfo& f) {
-    std::string name = f.name;
-    for (char& c : name)
-        if (c == '.') c = '_';
-    return name;
-}
-
 std::string field_doc(const FieldInfo& f) {
     return std::string(f.help) + (*f.unit ? " [" + std::string(f.unit) + "]" : std::string());
 }

@@ -63,7 +63,7 @@ void add_declared_fields(Cls& cls, Get get) {
     using T = std::remove_cvref_t<decltype(get(std::declval<const R&>()))>;
     T::fields([&](auto member, const FieldInfo& f) {
         cls.def_property_readonly(
-            field_python_name(f).c_str(),
+            field_flat_name(f).c_str(),
             [get, member](const R& r) {
                 const auto& value = get(r).*member;
                 if constexpr (std::is_enum_v<std::remove_cvref_t<decltype(value)>>) return to_string(value);

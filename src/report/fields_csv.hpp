@@ -18,14 +18,6 @@
 
 namespace stickslip::detail {
 
-/// A declared field's CSV column name: its name with '.' read as '_'.
-inline std::string field_csv_name(const FieldInfo& f) {
-    std::string name = f.name;
-    for (char& c : name)
-        if (c == '.') c = '_';
-    return name;
-}
-
 /// A text as one CSV cell: quoted (quotes doubled) when it holds a comma, a
 /// quote or a line end (RFC 4180).
 inline std::string csv_text(const std::string& s) {
@@ -42,7 +34,7 @@ template <DeclaredFields T> std::string fields_csv_header() {
         using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
         if (f.form == FieldForm::NotInBlock) return;
         if (!out.empty()) out += ",";
-        const std::string name = field_csv_name(f);
+        const std::string name = field_flat_name(f);
         if constexpr (std::is_same_v<Value, Estimate>)
             out += f.form == FieldForm::NoInterval ? name + "," + name + "_error" : csv_estimate_header(name);
         else
