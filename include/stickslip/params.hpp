@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/result_fields.hpp"
 #include "stickslip/setting.hpp"
 
 namespace stickslip {
@@ -90,12 +91,27 @@ void visit_settings(ModelParams& p, Visitor&& v) {
 
 /// Units of the nondimensional system (theory.md, section 3), in SI.
 struct Scales {
-    double time;         ///< tau0 = noise/friction^2 [s]
-    double length;       ///< u0 = noise^2/friction^3 [m]
-    double velocity;     ///< u0/tau0 = noise/friction [m/s]
-    double acceleration; ///< friction [m s^-2]
-    double diffusivity;  ///< u0^2/tau0 = noise^3/friction^4 [m^2/s]
-    double noise_level;  ///< unit of X: tau0^-1/2 [s^-1/2] (X' = X*sqrt(tau0))
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    double time;
+    double length;
+    double velocity;
+    double acceleration;
+    double diffusivity;
+    double noise_level;
+    /// @}
+
+    /// The fields (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = Scales;
+        visit(&S::time, FieldInfo{"time", "s", "tau0 = noise/friction^2"});
+        visit(&S::length, FieldInfo{"length", "m", "u0 = noise^2/friction^3"});
+        visit(&S::velocity, FieldInfo{"velocity", "m/s", "u0/tau0 = noise/friction"});
+        visit(&S::acceleration, FieldInfo{"acceleration", "m s^-2", "friction"});
+        visit(&S::diffusivity, FieldInfo{"diffusivity", "m^2/s", "u0^2/tau0 = noise^3/friction^4"});
+        visit(&S::noise_level,
+              FieldInfo{"noise_level", "s^-1/2", "unit of X: tau0^-1/2 (X' = X sqrt(tau0))"});
+    }
 };
 
 /// The units of p's nondimensional system (friction = noise = 1), in SI.

@@ -378,22 +378,13 @@ void bind_core(py::module_& m) {
     m.attr("__version__") = STICKSLIP_VERSION_STRING;
 
     // ---- Scales ---------------------------------------------------------------------
-    py::class_<Scales>(m, "Scales", "Units of the nondimensional system (friction = noise = 1), in SI.")
-        .def_readonly("time", &Scales::time, "noise/friction^2 [s]")
-        .def_readonly("length", &Scales::length, "noise^2/friction^3 [m]")
-        .def_readonly("velocity", &Scales::velocity, "noise/friction [m/s]")
-        .def_readonly("acceleration", &Scales::acceleration, "friction [m s^-2]")
-        .def_readonly("diffusivity", &Scales::diffusivity, "noise^3/friction^4 [m^2/s]")
-        .def_readonly("noise_level", &Scales::noise_level, "unit of X: time^-1/2 [s^-1/2]")
+    py::class_<Scales> scales(m, "Scales", "Units of the nondimensional system (friction = noise = 1), in SI.");
+    bind_fields<Scales>(scales, "Scales", "");
+    scales
         .def("to_dict",
              [](const Scales& s) {
                  py::dict d;
-                 d["time"] = s.time;
-                 d["length"] = s.length;
-                 d["velocity"] = s.velocity;
-                 d["acceleration"] = s.acceleration;
-                 d["diffusivity"] = s.diffusivity;
-                 d["noise_level"] = s.noise_level;
+                 Scales::fields([&](auto member, const FieldInfo& f) { d[f.name] = s.*member; });
                  return d;
              })
         .def("__repr__", [](const Scales& s) {

@@ -46,9 +46,6 @@ template <class F, DeclaredFields T> void fields(F& f, T& x) {
 }
 
 template <class F> void fields(F& f, Estimate& x) { f(x.value, x.error, x.lo, x.hi, x.level, x.kind); }
-template <class F> void fields(F& f, Scales& x) {
-    f(x.time, x.length, x.velocity, x.acceleration, x.diffusivity, x.noise_level);
-}
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
 template <class F> void fields(F& f, GridEstimateSeries& x) { f(x.items, x.shape); }
 template <class F> void fields(F& f, ResolvedEngine& x) {

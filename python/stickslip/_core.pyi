@@ -28,17 +28,17 @@ class CappedExcursionsError(UntrustworthyResultError): ...
 
 class Scales:
     @property
-    def time(self) -> float: ...          # noise/friction^2 [s]
+    def time(self) -> float: ...  # [s]
     @property
-    def length(self) -> float: ...        # noise^2/friction^3 [m]
+    def length(self) -> float: ...  # [m]
     @property
-    def velocity(self) -> float: ...      # noise/friction [m/s]
+    def velocity(self) -> float: ...  # [m/s]
     @property
-    def acceleration(self) -> float: ...  # friction [m s^-2]
+    def acceleration(self) -> float: ...  # [m s^-2]
     @property
-    def diffusivity(self) -> float: ...   # noise^3/friction^4 [m^2/s]
+    def diffusivity(self) -> float: ...  # [m^2/s]
     @property
-    def noise_level(self) -> float: ...   # time^-1/2 [s^-1/2]
+    def noise_level(self) -> float: ...  # [s^-1/2]
     def to_dict(self) -> dict[str, float]: ...
 
 class Params:

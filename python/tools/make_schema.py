@@ -62,6 +62,8 @@ def schema_text(current):
     for declared in stickslip._core._result_fields():
         fields = [f for f in declared["fields"] if f["form"] != "not_in_block"]
         where = declared["schema_definition"]
+        if not where:
+            continue  # not in any report (Python only: Scales)
         if where.startswith("merged:"):
             # A block merged into these reports' top level: each field's property
             # (what the report requires stays the report's: it differs by method).

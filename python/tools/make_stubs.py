@@ -91,9 +91,10 @@ def declared_class_body(declared):
 
 
 def core_stub_text(current):
-    """_core.pyi with the body of each declared class (from its 'class X...:'
-    line, kept as written, to the next blank line) generated; a declared class
-    missing from it is an error. A name starting with '_' is a stub-only base
+    """_core.pyi with the properties of each declared class (from its 'class
+    X...:' line, kept as written, to the next blank line) generated, its other
+    lines (methods) kept after them; a declared class missing from it is an
+    error. A name starting with '_' is a stub-only base
     of the results its fields are flattened into."""
     for declared in stickslip._core._result_fields():
         name = declared["python_class"]
@@ -108,7 +109,16 @@ def core_stub_text(current):
             sys.exit(f"make_stubs: {CORE_STUBS} has no class {name}: add an empty one")
         body = current.find("\n", start + 1) + 1
         end = current.find("\n\n", body)
-        current = current[:body] + declared_class_body(declared) + current[end + 1:]
+        # The class's methods (hand-written) stay, after the generated properties.
+        kept, lines = [], current[body:end + 1].splitlines(keepends=True)
+        k = 0
+        while k < len(lines):
+            if lines[k].strip() == "@property":
+                k += 2  # a property and its def: generated
+                continue
+            kept.append(lines[k])
+            k += 1
+        current = current[:body] + declared_class_body(declared) + "".join(kept) + current[end + 1:]
     return current
 
 
