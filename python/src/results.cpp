@@ -101,7 +101,7 @@ void bind_results(py::module_& m) {
     note_declared<PrecisionOutcome>("", "merged:precision"); // a dict of its JSON block, as above
     note_declared<DiscretisationCheck>("", "difference_check"); // the same
     note_declared<BruteForceEstimates>("", "merged:finite_time_diffusivity_report"); // flattened, as above
-    // Merged into the top level of these reports, and flattened into their results (add_long_excursion).
+    // Merged into the top level of these reports, and flattened into their results (add_declared_fields).
     note_declared<LongExcursionEstimates>(
         "_LongExcursions", "merged:diffusivity_report,stationary_density_report,autocorrelation_report,sweep_point");
     // ---- histograms and paths ----------------------------------------------------------------
