@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "stickslip/kernels/corrector.hpp"
+#include "stickslip/model.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {
@@ -65,5 +66,7 @@ bool has_corrector(const ModelParams& p, std::string* why = nullptr);
 /// InvalidParameter("control-variate")). Deterministic: the same p gives the
 /// same table, bit for bit, on every machine with the same build.
 std::shared_ptr<const Corrector> make_corrector(const ModelParams& p);
+/// make_corrector on a model made once (model.hpp): the solve takes its law.
+std::shared_ptr<const Corrector> make_corrector(const Model& m);
 
 } // namespace stickslip

@@ -147,6 +147,7 @@
 #include <vector>
 
 #include "stickslip/method.hpp"
+#include "stickslip/model.hpp"
 #include "stickslip/params.hpp"
 
 namespace stickslip {
@@ -278,10 +279,14 @@ struct KolmogorovSettings {
 /// still turns from the chain to the near-white one when the chain's
 /// velocity range proves too short for the law (its note says so).
 KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const KolmogorovSettings& settings);
+/// resolved_discretisation on a model made once (model.hpp).
+KolmogorovDiscretisation resolved_discretisation(const Model& m, const KolmogorovSettings& settings);
 
 /// Whether p's drift law pulls back with a negative slope beyond both ends
 /// (drag: the affine law with a finite relaxation, a law's outer pieces).
 bool has_drag_at_both_ends(const ModelParams& p);
+/// has_drag_at_both_ends on a model made once (model.hpp).
+bool has_drag_at_both_ends(const Model& m);
 
 /// What solve_kolmogorov returns. details holds GridDetails (solver
 /// "kolmogorov", the largest grid's states, the velocity range and the
@@ -362,6 +367,8 @@ KolmogorovGrid kolmogorov_grid(const ModelParams& p, const KolmogorovSettings& s
 /// kolmogorov_chain_min_tau_prime ("tau"), no stationary state ("bias"),
 /// invalid settings (the field's name).
 void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings);
+/// validate_kolmogorov on a model made once (model.hpp; valid already).
+void validate_kolmogorov(const Model& m, const KolmogorovSettings& settings);
 
 /// D [m^2/s], M0 [m/s], P(V = 0) and E[t1] [s] of p (SI units) by rounds of grid
 /// refinement and Richardson extrapolation, each with its estimated
@@ -369,5 +376,8 @@ void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& setting
 /// settings.rel_precision or a budget stops it (converged false, note says
 /// why). Throws InvalidParameter as validate_kolmogorov.
 KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings = {});
+/// solve_kolmogorov on a model made once (model.hpp): every grid of the solve
+/// takes its law.
+KolmogorovResult solve_kolmogorov(const Model& m, const KolmogorovSettings& settings = {});
 
 } // namespace stickslip

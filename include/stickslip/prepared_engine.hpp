@@ -37,8 +37,9 @@ using EngineConstants = std::variant<ResolventConstants, EventConstants, PdmpCon
 /// The engine of a run, prepared once: the chosen engine's (and scheme's)
 /// constants and the details a report shows.
 struct PreparedEngine {
-    /// The model it was prepared for (SI units).
-    ModelParams params;
+    /// The model it was prepared for (SI units), with its drift law made once
+    /// (model.hpp): whatever runs on this engine takes the law from here.
+    Model model;
     /// The engine settings it was prepared from, with --dt auto resolved (the
     /// other resolved choices, e.g. the stop rule, are in `resolved` and the
     /// constants).
@@ -54,9 +55,9 @@ struct PreparedEngine {
     /// trustworthy D): every report of a run on this engine carries them.
     std::vector<std::string> notes;
 
-    /// Frees `storage` and clears the constants' pointers into it: the
-    /// engine keeps what its preparation found (settings, resolved choices,
-    /// notes) but can no longer run. For keeping the checks of many prepared
+    /// Frees `storage` (and the model's law) and clears the constants'
+    /// pointers into it: the engine keeps what its preparation found (the
+    /// parameters, settings, resolved choices, notes) but can no longer run. For keeping the checks of many prepared
     /// points without their laws (a sweep's preparation). Returns whether
     /// there was storage to free.
     bool release_storage();

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "stickslip/engine.hpp"
+#include "stickslip/model.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/run_control.hpp"
 #include "stickslip/setting.hpp"
@@ -91,6 +92,8 @@ void visit_settings(ExcursionSettings& e, Visitor&& v) {
 ///    (relaxation/8, measured more closely: D within 0.1% on the Fig. 2 case).
 /// Throws InvalidParameter for an invalid model.
 double auto_time_step(const ModelParams& p, Scheme scheme);
+/// auto_time_step on a model made once (model.hpp).
+double auto_time_step(const Model& m, Scheme scheme);
 
 /// What a quantity needs of the inclusion engine's paths, for Scheme::Auto.
 ///  * Events: the long excursions' sums, moments at fixed times, a path with
@@ -108,6 +111,8 @@ enum class PathUse { Events, GridSamples };
 /// where it is the resolvent scheme. Throws InvalidParameter for an invalid
 /// model (coloured noise).
 Scheme auto_scheme(const ModelParams& p, PathUse use);
+/// auto_scheme on a model made once (model.hpp).
+Scheme auto_scheme(const Model& m, PathUse use);
 
 /// s with Scheme::Auto replaced by auto_scheme(p, use) for the inclusion
 /// engine (a PDMP run keeps it: it has no scheme), then dt =
@@ -115,6 +120,8 @@ Scheme auto_scheme(const ModelParams& p, PathUse use);
 /// engine (dt_auto stays true, so that reports say so); the rest unchanged.
 /// Every run resolves its settings so, first; resolving again changes nothing.
 EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, PathUse use = PathUse::Events);
+/// resolve_engine_settings on a model made once (model.hpp).
+EngineSettings resolve_engine_settings(const Model& m, EngineSettings s, PathUse use = PathUse::Events);
 
 /// A request of the library: its settings are a RunSettings plus its own.
 template <class R>

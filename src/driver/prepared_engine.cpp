@@ -14,25 +14,45 @@
 
 namespace stickslip {
 
-double auto_time_step(const ModelParams& p, Scheme scheme) {
-    validate(p);
-    return scheme == Scheme::Resolvent ? detail::resolvent_auto_step(p) : detail::event_auto_step(p);
+double auto_time_step(const ModelParams& p, Scheme scheme) { return auto_time_step(make_model(p), scheme); }
+
+double auto_time_step(const Model& m, Scheme scheme) {
+    return scheme == Scheme::Resolvent ? detail::resolvent_auto_step(m) : detail::event_auto_step(m);
 }
 
-Scheme auto_scheme(const ModelParams& p, PathUse use) {
+namespace {
+/// auto_scheme for white noise, which needs no law (nor a check of the model).
+Scheme white_noise_scheme(const ModelParams& p, PathUse use) {
     // The white-noise event scheme takes the affine law only.
-    if (p.has_drift_law() && p.white()) return Scheme::Resolvent;
-    if (p.white()) return use == PathUse::GridSamples ? Scheme::Resolvent : Scheme::Event;
+    if (p.has_drift_law()) return Scheme::Resolvent;
+    return use == PathUse::GridSamples ? Scheme::Resolvent : Scheme::Event;
+}
+} // namespace
+
+Scheme auto_scheme(const ModelParams& p, PathUse use) {
+    return p.white() ? white_noise_scheme(p, use) : auto_scheme(make_model(p), use);
+}
+
+Scheme auto_scheme(const Model& m, PathUse use) {
+    if (m.params.white()) return white_noise_scheme(m.params, use);
     // Near-white noise (tau' below about 1e-4): the event step must resolve
     // tau, the resolvent's follows the white-noise law and is the longer.
-    return auto_time_step(p, Scheme::Resolvent) > auto_time_step(p, Scheme::Event) ? Scheme::Resolvent
+    return auto_time_step(m, Scheme::Resolvent) > auto_time_step(m, Scheme::Event) ? Scheme::Resolvent
                                                                                     : Scheme::Event;
 }
 
 EngineSettings resolve_engine_settings(const ModelParams& p, EngineSettings s, PathUse use) {
+    // The model is made (and checked) only where a step decides: what is
+    // resolved without one is resolved so, and refuses nothing.
+    if (s.engine != Engine::Inclusion) return s;
+    if (s.scheme == Scheme::Auto && p.white()) s.scheme = white_noise_scheme(p, use);
+    return s.dt_auto || s.scheme == Scheme::Auto ? resolve_engine_settings(make_model(p), s, use) : s;
+}
+
+EngineSettings resolve_engine_settings(const Model& m, EngineSettings s, PathUse use) {
     // The scheme matters to the inclusion engine only (the PDMP's is kept).
-    if (s.scheme == Scheme::Auto && s.engine == Engine::Inclusion) s.scheme = auto_scheme(p, use);
-    if (s.dt_auto && s.engine == Engine::Inclusion) s.dt = auto_time_step(p, s.scheme);
+    if (s.scheme == Scheme::Auto && s.engine == Engine::Inclusion) s.scheme = auto_scheme(m, use);
+    if (s.dt_auto && s.engine == Engine::Inclusion) s.dt = auto_time_step(m, s.scheme);
     return s;
 }
 
@@ -42,15 +62,16 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given,
     if (!samples(given))
         throw InvalidParameter("engine", std::string(kolmogorov_engine_scope) +
                                              ": this command samples paths, use --engine inclusion or pdmp");
-    const EngineSettings s = resolve_engine_settings(p, given);
     PreparedEngine e;
-    e.params = p;
+    e.model = make_model(p); // the one law of the run: every part below takes it from here
+    const Model& m = e.model;
+    const EngineSettings s = resolve_engine_settings(m, given);
     e.settings = s;
     // Building an engine's constants validates the model, both step settings
     // and how they fit together.
     ResolvedEngine& r = e.resolved;
     if (s.engine == Engine::Pdmp) {
-        const PdmpConstants c = make_pdmp_constants(p, s);
+        const PdmpConstants c = make_pdmp_constants(m, s);
         e.constants = c;
         r.stop_rule = "exact";
         r.lattice_bound = c.n_max * c.delta;
@@ -60,13 +81,13 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given,
     } else if (s.scheme == Scheme::Event) {
         // The pieces' laws live in `storage` (release_storage clears the pointer).
         std::shared_ptr<const std::vector<EventDriftPiece>> pieces;
-        const EventConstants c = make_event_constants(p, s, &pieces, stop);
+        const EventConstants c = make_event_constants(m, s, &pieces, stop);
         e.constants = c;
         e.storage = pieces;
         r.stop_rule = c.white ? "velocity-levels" : "exact";
         if (c.white) r.white_level = c.level;
     } else {
-        const ResolventConstants c = make_resolvent_constants(p, s);
+        const ResolventConstants c = make_resolvent_constants(m, s);
         e.constants = c;
         if (c.white) {
             r.stop_rule = "velocity-levels";
@@ -76,8 +97,7 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given,
         }
     }
     if (p.has_drift_law()) {
-        DriftLawReport law;
-        make_drift_law(p, &law);
+        const DriftLawReport& law = m.law_report;
         e.notes.push_back(drift_law_note(law) +
                           (given.scheme == Scheme::Auto && s.engine == Engine::Inclusion && p.white()
                                ? "; the inclusion engine runs the resolvent scheme (the white-noise event scheme "
@@ -86,8 +106,8 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given,
         e.notes.insert(e.notes.end(), law.notes.begin(), law.notes.end());
     }
     if (!p.white()) {
-        r.upper_threshold = p.upper_threshold();
-        r.lower_threshold = p.lower_threshold();
+        r.upper_threshold = m.upper_threshold();
+        r.lower_threshold = m.lower_threshold();
     }
     return e;
 }
@@ -99,6 +119,7 @@ bool PreparedEngine::release_storage() {
     // Only the event scheme's constants point into storage (prepare_engine).
     if (auto* c = std::get_if<EventConstants>(&constants)) c->pieces = nullptr;
     storage.reset();
+    model.law.reset(); // 16 KiB a point of a sweep; an engine that cannot run needs no law
     return true;
 }
 

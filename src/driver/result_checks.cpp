@@ -16,7 +16,7 @@ namespace stickslip::detail {
 
 void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
                                std::vector<std::string>& warnings) {
-    const ModelParams& p = e.params;
+    const ModelParams& p = e.model.params;
     const EngineSettings& s = e.settings;
     const ResolvedEngine& resolved = e.resolved;
     const std::uint64_t done = totals.moments.count();
@@ -116,8 +116,8 @@ void check_start(const ModelParams& p, double x0, double v0) {
 }
 
 double default_start_noise(const PreparedEngine& e) {
-    if (e.params.white()) return 0.0;
-    return visit_engine(e, [&](const auto& engine) { return engine.default_start_noise(e.params); });
+    if (e.model.params.white()) return 0.0;
+    return visit_engine(e, [&](const auto& engine) { return engine.default_start_noise(e.model); });
 }
 
 } // namespace stickslip::detail

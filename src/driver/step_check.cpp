@@ -64,15 +64,16 @@ double ou_first_passage_time(double h, double tau) {
     return tau * std::sqrt(2.0 * std::numbers::pi) * sum * step / 3.0;
 }
 
-double excursion_duration_lower_bound(const ModelParams& p) {
+double excursion_duration_lower_bound(const Model& m) {
+    const ModelParams& p = m.params;
     if (p.white()) return 0.0;
     const double sd = 1.0 / std::sqrt(p.tau); // of the stationary noise X [s^-1/2]
-    const double up = std::fabs(p.upper_threshold()) / sd, down = std::fabs(p.lower_threshold()) / sd;
+    const double up = std::fabs(m.upper_threshold()) / sd, down = std::fabs(m.lower_threshold()) / sd;
     return 0.5 * (ou_first_passage_time(up, p.tau) + ou_first_passage_time(down, p.tau));
 }
 
 double excursion_work_lower_bound(const PreparedEngine& e, double sample_dt) {
-    const double t = excursion_duration_lower_bound(e.params);
+    const double t = excursion_duration_lower_bound(e.model);
     // A sample costs about what a step or an event does (the velocity is
     // interpolated and binned), so it counts as one: `density --sample-dt
     // 5e-324` sampled every 5e-324 s and ran for ever.
@@ -87,7 +88,7 @@ double excursion_work_lower_bound(const PreparedEngine& e, double sample_dt) {
 
 
 void check_step(const PreparedEngine& e, std::vector<std::string>& notes) {
-    visit_engine(e, [&](const auto& engine) { engine.check_step(e.params, notes); });
+    visit_engine(e, [&](const auto& engine) { engine.check_step(e.model, notes); });
 }
 
 namespace {
@@ -117,10 +118,10 @@ std::string sweep_precision_note(std::size_t points, double narrowest) {
 }
 
 void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
-    const ModelParams& p = e.params;
+    const ModelParams& p = e.model.params;
     const EngineSettings& s = e.settings;
     const double work = excursion_work_lower_bound(e, sample_dt);
-    const double t = excursion_duration_lower_bound(p);
+    const double t = excursion_duration_lower_bound(e.model);
     if (sample_dt > 0 && work >= static_cast<double>(s.max_work_per_excursion) && t / sample_dt >= 0.5 * work)
         throw InvalidParameter("sample-dt", "sampling every " + format_number(sample_dt) + " s, an excursion of at "
                                             "least " + duration_text(t) + " on average takes " +
@@ -133,10 +134,10 @@ void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
                                             " s (0: the engine's step)");
     if (work >= static_cast<double>(s.max_work_per_excursion)) {
         const double sd = p.white() ? 0.0 : std::sqrt(p.tau);
-        const double h = std::max(std::fabs(p.upper_threshold()), std::fabs(p.lower_threshold())) * sd;
+        const double h = std::max(std::fabs(e.model.upper_threshold()), std::fabs(e.model.lower_threshold())) * sd;
         const char* unit = work_unit(s);
         const std::string takes =
-            std::isfinite(work) ? "which takes at least " + duration_text(excursion_duration_lower_bound(p)) +
+            std::isfinite(work) ? "which takes at least " + duration_text(excursion_duration_lower_bound(e.model)) +
                                       " on average, about " + rounded(work) + " " + unit + " per excursion"
                                 : std::string("which practically never happens");
         throw InvalidParameter("max-steps", "excursions would mostly hit --max-steps (" +
@@ -151,11 +152,11 @@ void check_excursions_can_end(const PreparedEngine& e, double sample_dt) {
 
 RunPrediction predict_run(const PreparedEngine& e, std::uint64_t samples, const RunControl& ctl,
                           const PathSampling& sampling) {
-    const ModelParams& p = e.params;
+    const ModelParams& p = e.model.params;
     const EngineSettings& s = e.settings;
     RunPrediction r;
     const double friction_time = p.noise / (p.friction * p.friction);
-    r.excursion_seconds = std::max(kBoundFactor * excursion_duration_lower_bound(p), friction_time);
+    r.excursion_seconds = std::max(kBoundFactor * excursion_duration_lower_bound(e.model), friction_time);
     // Near-white coloured noise: an excursion ends stuck with the noise past
     // the opposite threshold, which gets rarer as tau' falls; measured (Fig. 2
     // model, --dt auto) 1.67 friction times at tau' = 0.003 and 383 at 3e-6.

@@ -52,7 +52,7 @@ double ou_first_passage_time(double h, double tau);
 
 /// A lower bound of the mean duration E[t1] [s] of a long excursion of
 /// coloured noise: the mean of T(h) over the two thresholds. 0 for white noise.
-double excursion_duration_lower_bound(const ModelParams& p);
+double excursion_duration_lower_bound(const Model& m);
 
 /// Steps (inclusion) or events (PDMP) a long excursion needs at least, and
 /// with sample_dt > 0 [s] (density, correlation) its samples, one unit each.

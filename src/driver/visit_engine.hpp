@@ -44,14 +44,15 @@ namespace stickslip::detail {
 ///    for density, correlation, moments and trajectory.
 template <class E>
 concept EngineAdapter = requires(const E& e, std::uint64_t n, double t, ExcursionOutcome* out,
-                                 const std::atomic<bool>* cancel, const ModelParams& p,
+                                 const std::atomic<bool>* cancel, const Model& m,
                                  std::vector<std::string>& warnings) {
     { E::work_unit } -> std::convertible_to<const char*>;
     { E::work_per_second } -> std::convertible_to<double>;
     { E::resolution_setting } -> std::convertible_to<const char*>;
     { E::resolution_chosen(EngineSettings{}) } -> std::same_as<bool>;
     { e.clock() } -> std::same_as<double>;
-    { e.default_start_noise(p) } -> std::same_as<double>;
+    { e.default_start_noise(m) } -> std::same_as<double>;
+    { e.check_step(m, warnings) };
     { E::sampling_note(t) } -> std::same_as<std::string>;
     { e.long_excursions(n, n, n, out, cancel) } -> std::same_as<bool>;
     { e.trajectory(n, n, t, t, t) } -> std::same_as<ExcursionOutcome>;

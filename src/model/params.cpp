@@ -3,6 +3,7 @@
 #include "stickslip/params.hpp"
 
 #include "stickslip/drift_input.hpp"
+#include "model/params_checks.hpp"
 
 #include <cmath>
 #include <limits>
@@ -60,7 +61,9 @@ ModelParams from_nondimensional(const ModelParams& nd, double friction, double n
     return p;
 }
 
-void validate(const ModelParams& p) {
+namespace detail {
+
+void validate_numbers(const ModelParams& p) {
     if (!std::isfinite(p.friction) || p.friction <= 0)
         throw InvalidParameter("friction", "friction must be a finite number > 0 (m s^-2), got " + detail::format_number(p.friction));
     if (!std::isfinite(p.noise) || p.noise <= 0)
@@ -102,6 +105,12 @@ void validate(const ModelParams& p) {
     if (p.knots != ModelParams{}.knots && !p.has_drift_law())
         throw InvalidParameter("knots", "knots sets the interpolant of a --drift or --drift-table law, and there is "
                                         "none: the affine law of --relaxation and --bias has no knots");
+}
+
+} // namespace detail
+
+void validate(const ModelParams& p) {
+    detail::validate_numbers(p);
     // A drift law is checked when it is given (parses, finite, confines).
     if (p.has_drift_law()) make_drift_law(p);
 }

@@ -295,7 +295,11 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req) {
 }
 
 DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const PreparedEngine& engine) {
-    const DiffusivityRequest req = with_resolved_engine(req_in);
+    // The settings the engine was prepared with, resolved from its own model
+    // (with_resolved_engine would make the law again, and could read another
+    // from a table rewritten since).
+    DiffusivityRequest req = req_in;
+    req.engine = engine.settings;
     using detail::format_number;
     const std::vector<std::string> notes = detail::start_notes(engine, req.excursions, req.control);
     DiffusivityResult out;
@@ -313,7 +317,7 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
             cv_notes.push_back("control variate off: " + why);
         else {
             const auto start = std::chrono::steady_clock::now();
-            corrector = make_corrector(req.params);
+            corrector = make_corrector(engine.model); // the run's law, as the engine has it
             corrector_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
     }

@@ -130,7 +130,7 @@ MomentsResult compute_moments(const MomentsRequest& req_in) {
         if (nh) out.density.push_back(make_histogram(bins, total, 3 * nt + j * nh, req.level));
     }
     const std::string lattice = detail::visit_engine(
-        prepared, [&](const auto& engine) { return engine.lattice_note(out.monte_carlo().engine, prepared.settings, prepared.params, false); });
+        prepared, [&](const auto& engine) { return engine.lattice_note(out.monte_carlo().engine, prepared.settings, prepared.model.params, false); });
     if (!lattice.empty()) out.warnings.push_back(lattice);
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;

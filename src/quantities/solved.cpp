@@ -3,7 +3,7 @@
 #include "quantities/solved.hpp"
 
 #include "core/format.hpp"
-#include "stickslip/drift_input.hpp"
+#include "stickslip/model.hpp"
 
 namespace stickslip::detail {
 
@@ -22,10 +22,10 @@ void validate_solved(const RunSettings& r, double rel_precision) {
 
 KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes) {
     validate(r.engine);
-    KolmogorovResult result = solve_kolmogorov(r.params, kolmogorov_settings(r, rel_precision));
+    const Model model = make_model(r.params); // the run's law, made once
+    KolmogorovResult result = solve_kolmogorov(model, kolmogorov_settings(r, rel_precision));
     if (r.params.has_drift_law()) {
-        DriftLawReport law;
-        make_drift_law(r.params, &law);
+        const DriftLawReport& law = model.law_report;
         notes.push_back(drift_law_note(law));
         notes.insert(notes.end(), law.notes.begin(), law.notes.end());
     }

@@ -138,11 +138,12 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
                     const DiffusivityRequest point = point_request(req, c, g, t, k++);
                     if (solved) {
                         validate(point);
+                        if (point.params.has_drift_law()) out.laws.push_back(make_model(point.params).law_report);
                     } else {
                         PreparedEngine& e = out.engines.emplace_back(prepare(point));
+                        if (point.params.has_drift_law()) out.laws.push_back(e.model.law_report);
                         out.again.push_back(e.release_storage()); // keep the checks' outcome, not the laws
                     }
-                    if (point.params.has_drift_law()) make_drift_law(point.params, &out.laws.emplace_back());
                 } catch (const InvalidParameter& e) {
                     throw InvalidParameter(e.parameter(), std::string(e.what()) + " (at " + point_text(req, c, g, t) + ")");
                 }

@@ -328,6 +328,7 @@ TEST(DriftLawQuadrature, KnotRefinementConvergesAtSecondOrder) {
 
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/sweep.hpp"
+#include "stickslip/prepared_engine.hpp"
 
 namespace {
 
@@ -371,6 +372,47 @@ TEST(DriftLaw, ARunMakesItsLawOnce) {
     EXPECT_EQ(std::memcmp(&served.first, &made.first, sizeof made.first), 0);
     EXPECT_EQ(std::memcmp(&served.spacing, &made.spacing, sizeof made.spacing), 0);
     EXPECT_EQ(std::memcmp(served.values, made.values, sizeof made.values), 0);
+}
+
+// The run holds its law as data (model.hpp) rather than asking for it again:
+// a callable, which make_drift_law never keeps, is called to make a law once
+// by preparing a run and once by the run's own resolution of --dt auto, and
+// every part of the run (constants, thresholds, step checks, corrector) takes
+// the law from the prepared engine.
+TEST(DriftLaw, ARunTakesItsLawAsData) {
+    ss::DiffusivityRequest req;
+    req.params.drift_function = [](double v) { return -v / 0.067 + 0.342; };
+    req.engine.scheme = ss::Scheme::Event;
+    req.excursions = 64;
+    req.control.threads = 2;
+    const ss::PreparedEngine engine = ss::prepare(req);
+    const std::uint64_t before = ss::drift_laws_made();
+    const ss::DiffusivityResult r = ss::compute_diffusivity(req, engine);
+    EXPECT_EQ(ss::drift_laws_made() - before, 0u) << "laws made by a run on a prepared engine, with its corrector";
+    EXPECT_TRUE(r.control_variate.has_value()) << "the corrector (which needs the law too) ran";
+}
+
+// A table rewritten after a run was prepared changes nothing in that run: the
+// prepared engine holds the law, not the path.
+TEST(DriftLaw, ATableRewrittenAfterPreparationChangesNothing) {
+    const std::string path = temp_file("rewritten_table.csv", "v,b\n-1,15.27\n0,0.342\n1,-14.58\n");
+    ss::DiffusivityRequest req;
+    req.params.drift_table = path;
+    req.engine.scheme = ss::Scheme::Resolvent;
+    req.engine.dt = 4e-3;
+    req.engine.dt_auto = false;
+    req.excursions = 64;
+    req.control.threads = 2;
+    const ss::PreparedEngine engine = ss::prepare(req);
+    const ss::DiffusivityResult first = ss::compute_diffusivity(req, engine);
+    std::ofstream(path, std::ios::trunc) << "v,b\n-1,30\n0,1\n1,-28\n"; // another law
+    const ss::DiffusivityResult second = ss::compute_diffusivity(req, engine);
+    EXPECT_EQ(std::memcmp(&first.estimates.diffusivity.value, &second.estimates.diffusivity.value, sizeof(double)), 0)
+        << first.estimates.diffusivity.value << " then " << second.estimates.diffusivity.value;
+    EXPECT_EQ(std::memcmp(&first.estimates.mobility.value, &second.estimates.mobility.value, sizeof(double)), 0);
+    // A run prepared anew reads the new law: the check above can fail.
+    const ss::DiffusivityResult fresh = ss::compute_diffusivity(req);
+    EXPECT_NE(fresh.estimates.mobility.value, first.estimates.mobility.value);
 }
 
 TEST(DriftLaw, ASweepMakesOneLawPerPoint) {

@@ -50,10 +50,10 @@ TEST(OuFirstPassage, EdgesAndMonotone) {
 // (docs/validation.md, sec. 2), as a lower bound must, and within a factor 3.
 TEST(ExcursionBound, BelowTheMeasuredMeanDurationOfFig2) {
     const ModelParams p; // the paper's Fig. 2 case
-    const double bound = excursion_duration_lower_bound(p);
+    const double bound = excursion_duration_lower_bound(make_model(p));
     EXPECT_GT(bound, 8.04 / 3);
     EXPECT_LT(bound, 8.04);
-    EXPECT_EQ(excursion_duration_lower_bound(ModelParams{1, 1, 0, INFINITY, 0}), 0.0); // white noise
+    EXPECT_EQ(excursion_duration_lower_bound(make_model(ModelParams{1, 1, 0, INFINITY, 0})), 0.0); // white noise
 }
 
 // A sweep point at noise 1 (Fig. 2 otherwise) needs at least 1.1e7 steps per

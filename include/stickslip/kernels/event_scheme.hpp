@@ -81,6 +81,8 @@
 
 namespace stickslip {
 
+struct Model; // model.hpp: the parameters and their drift law, made once per run
+
 /// Depth of the finest refinement: events are placed to h / 2^16.
 inline constexpr int event_depth = 16;
 /// Depth of the refinement within h / 2^6 after a launch (see above).
@@ -207,6 +209,10 @@ struct EventConstants {
 /// into it); without `pieces` such a law is refused (InvalidParameter
 /// "scheme"), as is a knots law with white noise. A set `stop` (a signal)
 /// ends the pieces' construction with RunInterrupted.
+EventConstants make_event_constants(const Model& m, const EngineSettings& s,
+                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces = nullptr,
+                                    const std::atomic<bool>* stop = nullptr);
+/// make_event_constants(make_model(p), ...), for callers that hold no Model.
 EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s,
                                     std::shared_ptr<const std::vector<EventDriftPiece>>* pieces = nullptr,
                                     const std::atomic<bool>* stop = nullptr);

@@ -31,6 +31,8 @@
 
 namespace stickslip {
 
+struct Model; // model.hpp: the parameters and their drift law, made once per run
+
 /// Per-run constants of the PDMP engine (SI units).
 struct PdmpConstants {
     double delta;     ///< lattice step [s^-1/2]
@@ -57,6 +59,8 @@ struct PdmpConstants {
 /// Validates and precomputes; chooses L when s.lattice_bound == 0:
 /// L = 8 tau^-1/2, widened to hold both thresholds plus 4 lattice steps,
 /// and kept below 2/(tau delta). Throws InvalidParameter when impossible.
+PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s);
+/// make_pdmp_constants(make_model(p), s), for callers that hold no Model.
 PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s);
 
 /// Net acceleration in mode y at V = 0 [m s^-2]: gbar + a x_i - y Delta.

@@ -35,6 +35,8 @@
 
 namespace stickslip {
 
+struct Model; // model.hpp: the parameters and their drift law, made once per run
+
 /// Per-run constants of the inclusion engine (SI units). Built once by
 /// make_resolvent_constants; every per-step quantity is precomputed here so the
 /// step has no division or exponential.
@@ -61,11 +63,15 @@ struct ResolventConstants {
 };
 
 /// Validates p and s (throws InvalidParameter) and precomputes the constants.
+ResolventConstants make_resolvent_constants(const Model& m, const EngineSettings& s);
+/// make_resolvent_constants(make_model(p), s), for callers that hold no Model.
 ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSettings& s);
 
 /// Default white-noise regeneration level c [m/s]: half the smaller of the
 /// dry-friction velocity scale 0.7*noise/friction and the viscous one
 /// sqrt(noise*relaxation/2), so that both levels are visited often.
+double white_level_default(const Model& m);
+/// white_level_default(make_model(p)).
 double white_level_default(const ModelParams& p);
 
 /// Resolvent of h*dphi: f - clamp(f, -band, band), i.e. f - band above the band,

@@ -48,9 +48,10 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
 /// at tau' = 1 1e-7.
 constexpr double kCorrectorEdgeMass = 1e-3;
 
-std::shared_ptr<Corrector> coloured_corrector(const ModelParams& p) {
+std::shared_ptr<Corrector> coloured_corrector(const Model& m) {
     namespace k = detail::kolmogorov;
-    const stickslip::DriftLaw law = make_drift_law(p);
+    const ModelParams& p = m.params;
+    const stickslip::DriftLaw& law = *m.law;
     const k::DriftLaw drift(law);
     KolmogorovSettings settings;
     const KolmogorovGrid grid = k::make_kolmogorov_grid(p, settings, corrector_grid_level, drift);
@@ -194,7 +195,10 @@ bool has_corrector(const ModelParams& p, std::string* why) {
     return false;
 }
 
-std::shared_ptr<const Corrector> make_corrector(const ModelParams& p) {
+std::shared_ptr<const Corrector> make_corrector(const ModelParams& p) { return make_corrector(make_model(p)); }
+
+std::shared_ptr<const Corrector> make_corrector(const Model& m) {
+    const ModelParams& p = m.params;
     std::string why;
     if (!has_corrector(p, &why)) throw InvalidParameter("control-variate", "no corrector: " + why);
     // The last corrector made is kept: a sweep's --check-dt twin, a loop of
@@ -218,8 +222,8 @@ std::shared_ptr<const Corrector> make_corrector(const ModelParams& p) {
     std::shared_ptr<Corrector> c =
         p.white() ? white_corrector(p)
                   : (to_nondimensional(p).tau < kolmogorov_near_white_below
-                         ? detail::near_white::make_corrector(p, make_drift_law(p))
-                         : coloured_corrector(p));
+                         ? detail::near_white::make_corrector(p, *m.law)
+                         : coloured_corrector(m));
     c->table.slide = c->slide.data();
     c->table.stuck = c->stuck.empty() ? nullptr : c->stuck.data();
     c->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -279,9 +279,9 @@ constexpr double kChainEdgeMass = 1e-8;
 struct BandMasses {
     double inside = 0, outside = 0;
 };
-BandMasses band_masses(const ModelParams& p) {
-    const double s = std::sqrt(p.tau / 2.0); // X has standard deviation 1/sqrt(tau): erfc(x s) is 2 P(Z > x sqrt(tau))
-    const double lo = p.lower_threshold() * s, hi = p.upper_threshold() * s;
+BandMasses band_masses(const Model& model) {
+    const double s = std::sqrt(model.params.tau / 2.0); // X has standard deviation 1/sqrt(tau): erfc(x s) is 2 P(Z > x sqrt(tau))
+    const double lo = model.lower_threshold() * s, hi = model.upper_threshold() * s;
     BandMasses m;
     m.outside = 0.5 * (std::erfc(hi) + std::erfc(-lo));
     m.inside = lo >= 0 ? 0.5 * (std::erfc(lo) - std::erfc(hi))
@@ -306,8 +306,9 @@ const char* setting_to_change(const ModelParams& p) {
 /// sliding: D = -7.7e-23 "to 100%", E[t1] inf; --tau 1e6 and --bias 1e6 took
 /// 24 GB before they were killed).
 constexpr double kRarestPhase = 1e-12;
-void check_noise_band(const ModelParams& p) {
-    const BandMasses m = band_masses(p);
+void check_noise_band(const Model& model) {
+    const ModelParams& p = model.params;
+    const BandMasses m = band_masses(model);
     const char* name = setting_to_change(p);
     auto probability = [](double x) { return x > 0 ? detail::format_number(x, 2) : std::string("below 1e-300"); };
     if (!(m.outside >= kRarestPhase))
@@ -320,7 +321,7 @@ void check_noise_band(const ModelParams& p) {
                                          detail::format_number(to_nondimensional(p).tau, 3) + ")");
     // Inside: a band far in the noise's tail (|b(0)| above the friction), not a
     // narrow one about 0, which near-white noise has and the solver takes.
-    const bool band_holds_zero = p.lower_threshold() <= 0 && p.upper_threshold() >= 0;
+    const bool band_holds_zero = model.lower_threshold() <= 0 && model.upper_threshold() >= 0;
     if (!band_holds_zero && !(m.inside >= kRarestPhase))
         throw InvalidParameter(name, "the noise is inside the static band with probability " + probability(m.inside) +
                                          " in the stationary state, below the " + detail::format_number(kRarestPhase) +
@@ -331,30 +332,49 @@ void check_noise_band(const ModelParams& p) {
 
 } // namespace
 
-KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const KolmogorovSettings& s) {
+namespace {
+/// resolved_discretisation, with `drag_at_both_ends()` asked only when it decides.
+template <class DragAtBothEnds>
+KolmogorovDiscretisation choose_discretisation(const ModelParams& p, const KolmogorovSettings& s,
+                                               DragAtBothEnds&& drag_at_both_ends) {
     if (s.discretisation != KolmogorovDiscretisation::Automatic) return s.discretisation;
     if (s.pdmp_grid > 0) return KolmogorovDiscretisation::Chain; // the chain's own mode
     if (to_nondimensional(p).tau < kolmogorov_near_white_below) return KolmogorovDiscretisation::NearWhite;
     // Without drag at both ends the chain's velocity range is a guess from
     // tau and the near-white discretisation reached smaller errors sooner
     // (kolmogorov.hpp, top).
-    return has_drag_at_both_ends(p) ? KolmogorovDiscretisation::Chain : KolmogorovDiscretisation::NearWhite;
+    return drag_at_both_ends() ? KolmogorovDiscretisation::Chain : KolmogorovDiscretisation::NearWhite;
+}
+} // namespace
+
+KolmogorovDiscretisation resolved_discretisation(const ModelParams& p, const KolmogorovSettings& s) {
+    return choose_discretisation(p, s, [&] { return has_drag_at_both_ends(p); });
+}
+
+KolmogorovDiscretisation resolved_discretisation(const Model& m, const KolmogorovSettings& s) {
+    return choose_discretisation(m.params, s, [&] { return has_drag_at_both_ends(m); });
 }
 
 bool has_drag_at_both_ends(const ModelParams& p) {
-    if (!p.has_drift_law()) return std::isfinite(p.relaxation);
-    const DriftLaw b = make_drift_law(p);
+    return p.has_drift_law() ? has_drag_at_both_ends(make_model(p)) : std::isfinite(p.relaxation);
+}
+
+bool has_drag_at_both_ends(const Model& m) {
+    if (!m.params.has_drift_law()) return std::isfinite(m.params.relaxation);
+    const DriftLaw& b = *m.law;
     return b.piece_slope(0) < 0 && b.piece_slope(b.pieces() - 1) < 0;
 }
 
-void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
-    validate(p);
+void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) { validate_kolmogorov(make_model(p), s); }
+
+void validate_kolmogorov(const Model& m, const KolmogorovSettings& s) {
+    const ModelParams& p = m.params;
     if (p.white())
         throw InvalidParameter("tau", "the Kolmogorov grid solver needs coloured noise (tau > 0): for white noise "
                                       "(tau = 0) the velocity alone is Markov; use the exact white-noise references "
                                       "(`stickslip analytic`, white_noise_reference())");
     const double tau_prime = to_nondimensional(p).tau;
-    const KolmogorovDiscretisation d = resolved_discretisation(p, s);
+    const KolmogorovDiscretisation d = resolved_discretisation(m, s);
     // Within rounding of the limit is at it: tau' = 0.04999999999999999 from
     // SI units was refused as "0.05 is below 0.05".
     if (d == KolmogorovDiscretisation::Chain && tau_prime < kolmogorov_chain_min_tau_prime * (1 - 1e-9))
@@ -365,20 +385,24 @@ void validate_kolmogorov(const ModelParams& p, const KolmogorovSettings& s) {
     if (d == KolmogorovDiscretisation::NearWhite && s.pdmp_grid > 0)
         throw InvalidParameter("pdmp_grid", "the PDMP lattice mode belongs to the upwind chain, not to the "
                                             "near-white discretisation");
-    require_stationary_state(p);
+    require_stationary_state(m);
     validate_settings(s);
-    check_noise_band(p);
+    check_noise_band(m);
 }
 
 namespace {
 /// solve_kolmogorov after its validation (below).
-KolmogorovResult solve_validated(const ModelParams& p, const KolmogorovSettings& settings);
+KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& settings);
 } // namespace
 
 KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings& settings) {
-    validate_kolmogorov(p, settings);
+    return solve_kolmogorov(make_model(p), settings);
+}
+
+KolmogorovResult solve_kolmogorov(const Model& m, const KolmogorovSettings& settings) {
+    validate_kolmogorov(m, settings);
     try {
-        return solve_validated(p, settings);
+        return solve_validated(m, settings);
     } catch (const std::bad_alloc&) {
         throw std::runtime_error("out of memory in the Kolmogorov engine's sparse LU: its grids need more than the " +
                                  detail::format_number(detail::usable_memory_bytes() / 1e9, 2) +
@@ -388,9 +412,10 @@ KolmogorovResult solve_kolmogorov(const ModelParams& p, const KolmogorovSettings
 
 namespace {
 
-KolmogorovResult solve_validated(const ModelParams& p, const KolmogorovSettings& settings) {
-    const DriftLaw law = make_drift_law(p); // the run's law, made once for every grid of the solve
-    if (resolved_discretisation(p, settings) == KolmogorovDiscretisation::NearWhite)
+KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& settings) {
+    const ModelParams& p = m.params;
+    const DriftLaw& law = *m.law; // the run's law, made once for every grid of the solve
+    if (resolved_discretisation(m, settings) == KolmogorovDiscretisation::NearWhite)
         return detail::near_white::solve(p, settings, law);
     namespace k = detail::kolmogorov;
     const KolmogorovDrift drift{law};

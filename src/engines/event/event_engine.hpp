@@ -194,11 +194,11 @@ public:
     }
     static std::string mean_duration_note(const ModelParams&) { return {}; }
     /// The step against the scheme's measured reach (driver/step_check.hpp).
-    void check_step(const ModelParams& p, std::vector<std::string>& notes) const { check_event_step(p, c_.h, notes); }
+    void check_step(const Model& m, std::vector<std::string>& notes) const { check_event_step(m, c_.h, notes); }
     /// Whether its step blurs the noise at the scale of tau: its steps are exact.
     bool coarse_against_tau(const ModelParams&) const { return false; }
 
-    double default_start_noise(const ModelParams& p) const { return p.upper_threshold(); }
+    double default_start_noise(const Model& m) const { return m.upper_threshold(); }
 
     static std::string sampling_note(double dt) {
         return "event-scheme path sampled every " + format_number(dt) +

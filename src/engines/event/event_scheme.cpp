@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "core/format.hpp"
-#include "stickslip/drift_input.hpp"
+#include "stickslip/model.hpp"
 #include "stickslip/errors.hpp"
 #include "stickslip/kernels/resolvent.hpp"
 
@@ -43,9 +43,15 @@ std::vector<EventDriftPiece> drift_pieces(const DriftLaw& b, const ModelParams& 
 EventConstants make_event_constants(const ModelParams& p, const EngineSettings& s,
                                     std::shared_ptr<const std::vector<EventDriftPiece>>* pieces,
                                     const std::atomic<bool>* stop) {
-    validate(p);
+    return make_event_constants(make_model(p), s, pieces, stop);
+}
+
+EventConstants make_event_constants(const Model& m, const EngineSettings& s,
+                                    std::shared_ptr<const std::vector<EventDriftPiece>>* pieces,
+                                    const std::atomic<bool>* stop) {
+    const ModelParams& p = m.params;
     validate(s);
-    require_stationary_state(p);
+    require_stationary_state(m);
     if (p.has_drift_law() && p.white())
         throw InvalidParameter("scheme", "the white-noise event scheme takes the affine drift law only (--relaxation, "
                                          "--bias); with --drift or --drift-table use --scheme resolvent");
@@ -64,15 +70,15 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
     c.max_work = s.max_work_per_excursion;
     c.white = p.white();
     if (c.white) {
-        c.level = s.white_level > 0 ? s.white_level : white_level_default(p);
+        c.level = s.white_level > 0 ? s.white_level : white_level_default(m);
         double r = c.level * c.level / (36.0 * p.noise);
         if (std::isfinite(p.relaxation)) r = std::fmin(r, p.relaxation / 16.0);
         const double leaves = std::floor(r / c.leaf);
         c.leave_zero_leaves = leaves < 1.0 ? 1 : (leaves >= std::ldexp(1.0, event_depth) ? std::uint64_t{1} << event_depth
                                                                                         : static_cast<std::uint64_t>(leaves));
     } else {
-        c.x_up = p.upper_threshold();
-        c.x_down = p.lower_threshold();
+        c.x_up = m.upper_threshold();
+        c.x_down = m.lower_threshold();
     }
     // The laws reject what they cannot compute (tiny or huge ratios); say it with the flag's name.
     try {
@@ -104,7 +110,7 @@ EventConstants make_event_constants(const ModelParams& p, const EngineSettings& 
         if (p.has_drift_law()) {
             // b(0) sets the static band (c.bias, as the thresholds); the
             // slope and intercept of each piece replace the affine law's.
-            const DriftLaw b = make_drift_law(p);
+            const DriftLaw& b = *m.law;
             auto table = std::make_shared<const std::vector<EventDriftPiece>>(drift_pieces(b, p, s.dt, c.amp, stop));
             c.bias = b(0.0);
             c.inv_relaxation = 0.0;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/format.hpp"
-#include "stickslip/drift_input.hpp"
+#include "stickslip/model.hpp"
 #include "stickslip/errors.hpp"
 
 namespace stickslip::detail {
@@ -65,12 +65,13 @@ std::string rounded(double x) { return format_number(x, 2); }
 
 } // namespace
 
-double event_auto_step(const ModelParams& p) {
+double event_auto_step(const Model& m) {
+    const ModelParams& p = m.params;
     const Scales sc = scales_of(p);
     double dt = kAutoEventFriction * sc.time;
     if (!p.white()) dt = std::fmin(dt, kAutoEventTau * p.tau);
     // A drift law's own time 1/L (L its Lipschitz constant) in place of the relaxation.
-    const double relaxation = drift_time_scale(p);
+    const double relaxation = m.drift_time_scale();
     if (!std::isfinite(relaxation)) return dt;
     if (p.white()) return std::fmin(dt, kAutoEventWhiteRelaxation * relaxation);
     // Coloured noise: the drag's limit stops at the noise's and the
@@ -79,14 +80,15 @@ double event_auto_step(const ModelParams& p) {
     return std::fmin(dt, std::fmax(kAutoEventRelaxation * relaxation, kAutoEventDragFloor * std::fmin(p.tau, sc.time)));
 }
 
-void check_event_step(const ModelParams& p, double dt, std::vector<std::string>& notes) {
+void check_event_step(const Model& m, double dt, std::vector<std::string>& notes) {
+    const ModelParams& p = m.params;
     const Scales sc = scales_of(p);
     const std::string at = "dt = " + format_number(dt) + " s is ";
     const std::string where = " (measured: docs/validation.md, \"The event scheme at coarse steps\")";
     std::string refuse, note, cure;
     if (!p.white()) {
         const double r = dt / p.tau;
-        cure = "use --dt " + rounded(p.tau) + " or smaller (--dt auto: " + rounded(event_auto_step(p)) +
+        cure = "use --dt " + rounded(p.tau) + " or smaller (--dt auto: " + rounded(event_auto_step(m)) +
                "), or --engine pdmp";
         const std::string what = at + format_number(r, 3) + " correlation times of the noise (tau = " + format_number(p.tau) + " s)";
         if (r > kEventTauRefuse)
@@ -99,7 +101,7 @@ void check_event_step(const ModelParams& p, double dt, std::vector<std::string>&
         const double rl = std::isfinite(p.relaxation) ? dt / p.relaxation : 0.0, rf = dt / sc.time;
         const double fine = std::fmin(kEventWhiteFrictionNote * sc.time,
                                       std::isfinite(p.relaxation) ? kEventWhiteRelaxationNote * p.relaxation : HUGE_VAL);
-        cure = "use --dt " + rounded(fine) + " or smaller (--dt auto: " + rounded(event_auto_step(p)) + ")";
+        cure = "use --dt " + rounded(fine) + " or smaller (--dt auto: " + rounded(event_auto_step(m)) + ")";
         const std::string in_relaxation = at + format_number(rl, 3) + " relaxation times (" + format_number(p.relaxation) + " s)";
         const std::string in_friction =
             at + format_number(rf, 3) + " friction times (noise/friction^2 = " + format_number(sc.time) + " s)";

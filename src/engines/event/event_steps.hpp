@@ -9,17 +9,17 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/params.hpp"
+#include "stickslip/model.hpp"
 
 namespace stickslip::detail {
 
 /// The step [s] --dt auto chooses for the event scheme on model p:
 /// min(tau, 4 relaxation, T_f)/16 (coloured), min(T_f, relaxation)/16 (white).
-double event_auto_step(const ModelParams& p);
+double event_auto_step(const Model& m);
 
 /// The event scheme's step dt [s] on model p against its measured reach
 /// (docs/validation.md, "The event scheme at coarse steps" and "... at fine
 /// steps"): InvalidParameter ("dt") far beyond it, a note beyond it.
-void check_event_step(const ModelParams& p, double dt, std::vector<std::string>& notes);
+void check_event_step(const Model& m, double dt, std::vector<std::string>& notes);
 
 } // namespace stickslip::detail

@@ -5,13 +5,17 @@
 #include <cmath>
 
 #include "core/format.hpp"
-#include "stickslip/drift_input.hpp"
+#include "stickslip/model.hpp"
 
 namespace stickslip {
 
 PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s) {
-    validate(p);
-    require_stationary_state(p);
+    return make_pdmp_constants(make_model(p), s);
+}
+
+PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
+    const ModelParams& p = m.params;
+    require_stationary_state(m);
     if (p.white())
         throw InvalidParameter("tau", "the pdmp engine needs colored noise (tau > 0); use --engine inclusion for "
                                       "white noise");
@@ -27,7 +31,7 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
     c.viscous = !std::isinf(p.relaxation);
     c.knots_law = p.has_drift_law();
     if (c.knots_law) {
-        c.drift = make_drift_law(p);
+        c.drift = *m.law;
         c.bias = c.drift(0.0); // b(0): the static band and the acceleration at rest
         c.viscous = false;
         zero_knot(c.drift); // the landing at 0 is a knot (make_drift_law's invariant)
@@ -72,19 +76,19 @@ PdmpConstants make_pdmp_constants(const ModelParams& p, const EngineSettings& s)
                                                     " s^-1/2 is shorter than one grid step (" +
                                                     detail::format_number(s.grid) +
                                                     " s^-1/2): it must reach the noise thresholds x* = " +
-                                                    detail::format_number(p.upper_threshold()) + ", x-* = " +
-                                                    detail::format_number(p.lower_threshold()) +
+                                                    detail::format_number(m.upper_threshold()) + ", x-* = " +
+                                                    detail::format_number(m.lower_threshold()) +
                                                     " (s^-1/2) plus two grid steps, or be 0 (chosen)");
     if (!(n >= 1) || n > 1e8) throw too_many_points(2 * n + 1);
     const bool reaches = kp + 2 <= n && km - 2 >= -n;
     if (!reaches && s.lattice_bound > 0)
         throw InvalidParameter("lattice-bound", "lattice-bound L = " + detail::format_number(n * s.grid) +
                                                     " s^-1/2 does not reach the noise thresholds x* = " +
-                                                    detail::format_number(p.upper_threshold()) + ", x-* = " +
-                                                    detail::format_number(p.lower_threshold()) + " (s^-1/2) plus two grid steps");
+                                                    detail::format_number(m.upper_threshold()) + ", x-* = " +
+                                                    detail::format_number(m.lower_threshold()) + " (s^-1/2) plus two grid steps");
     if (!reaches)
         throw InvalidParameter("grid", "tau*grid*L must be < 2, but the lattice must reach the noise thresholds x* = " +
-                                           detail::format_number(p.upper_threshold()) + ", x-* = " + detail::format_number(p.lower_threshold()) +
+                                           detail::format_number(m.upper_threshold()) + ", x-* = " + detail::format_number(m.lower_threshold()) +
                                            " (s^-1/2); with grid " + detail::format_number(s.grid) + " it only reaches L = " +
                                            detail::format_number(n * s.grid) + ": use a finer grid");
     c.n_max = static_cast<int>(n);

@@ -181,7 +181,7 @@ public:
     /// Work [events] of a path of duration t [s], on average at least.
     double work_for(double t) const { return t * c_.rate; }
     /// Step checks: none (no step).
-    void check_step(const ModelParams&, std::vector<std::string>&) const {}
+    void check_step(const Model&, std::vector<std::string>&) const {}
     /// Whether its step blurs the noise at the scale of tau: no step.
     bool coarse_against_tau(const ModelParams&) const { return false; }
     /// A note when the lattice is truncated (stationary noise mass beyond +-L
@@ -212,7 +212,7 @@ public:
 
     /// The start noise of a path when none is given [s^-1/2]: the lattice
     /// point just above the upper threshold.
-    double default_start_noise(const ModelParams&) const { return (c_.k_plus + 1) * c_.delta; }
+    double default_start_noise(const Model&) const { return (c_.k_plus + 1) * c_.delta; }
 
     /// What a report of a path sampled every dt [s] says about the sampling.
     static std::string sampling_note(double dt) {

@@ -5,21 +5,28 @@
 #include <cmath>
 
 #include "core/format.hpp"
-#include "stickslip/drift_input.hpp"
+#include "stickslip/model.hpp"
 
 namespace stickslip {
 
-double white_level_default(const ModelParams& p) {
+double white_level_default(const ModelParams& p) { return white_level_default(make_model(p)); }
+
+double white_level_default(const Model& m) {
+    const ModelParams& p = m.params;
     double scale = 0.7 * p.noise / p.friction;
-    const double relaxation = drift_time_scale(p); // 1/L for a general law
+    const double relaxation = m.drift_time_scale(); // 1/L for a general law
     if (!std::isinf(relaxation)) scale = std::fmin(scale, std::sqrt(p.noise * relaxation / 2.0));
     return 0.5 * scale;
 }
 
 ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSettings& s) {
-    validate(p);
+    return make_resolvent_constants(make_model(p), s);
+}
+
+ResolventConstants make_resolvent_constants(const Model& m, const EngineSettings& s) {
+    const ModelParams& p = m.params;
     validate(s);
-    require_stationary_state(p);
+    require_stationary_state(m);
     ResolventConstants c{};
     c.h = s.dt;
     c.keep = 1.0 - s.dt * p.inverse_relaxation();
@@ -30,7 +37,7 @@ ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSe
     c.h_bias = s.dt * p.bias;
     c.knots_law = p.has_drift_law();
     if (c.knots_law) {
-        c.drift = make_drift_law(p);
+        c.drift = *m.law;
         c.keep = 1.0;
         c.h_bias = 0.0;
         const double lip = lipschitz_constant(c.drift);
@@ -47,7 +54,7 @@ ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSe
     c.max_steps = s.max_work_per_excursion;
     if (c.white) {
         c.h_amp = std::sqrt(p.noise * s.dt);
-        c.level = s.white_level > 0 ? s.white_level : white_level_default(p);
+        c.level = s.white_level > 0 ? s.white_level : white_level_default(m);
         c.rule = StopRule::Stuck; // unused for white noise
     } else {
         c.h_amp = s.dt * p.force_amplitude();
@@ -67,8 +74,8 @@ ResolventConstants make_resolvent_constants(const ModelParams& p, const EngineSe
             throw InvalidParameter("dt", "dt/tau = " + detail::format_number(s.dt / p.tau) +
                                              " is outside the range where the OU step is computable");
         }
-        c.x_up = p.upper_threshold();
-        c.x_down = p.lower_threshold();
+        c.x_up = m.upper_threshold();
+        c.x_down = m.lower_threshold();
         c.bridge_rate = p.tau * p.tau / s.dt;
         c.rule = s.stop_rule;
         if (c.rule == StopRule::Auto) c.rule = s.dt <= auto_bridge_ratio * p.tau ? StopRule::Bridge : StopRule::Stuck;

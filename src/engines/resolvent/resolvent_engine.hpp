@@ -166,15 +166,15 @@ public:
     }
     static std::string mean_duration_note(const ModelParams&) { return {}; }
     /// The step against the scheme's measured bias law (driver/step_check.hpp).
-    void check_step(const ModelParams& p, std::vector<std::string>& notes) const {
-        check_resolvent_step(p, c_.h, notes);
+    void check_step(const Model& m, std::vector<std::string>& notes) const {
+        check_resolvent_step(m, c_.h, notes);
     }
     /// Whether its step is not small against tau (or the noise is white):
     /// then P(V = 0) carries the scheme's O(dt) quantisation of V near 0 and
     /// E[t1] depends on the step and the stop rule.
     bool coarse_against_tau(const ModelParams& p) const { return p.white() || c_.h > 0.01 * p.tau; }
 
-    double default_start_noise(const ModelParams& p) const { return p.upper_threshold(); }
+    double default_start_noise(const Model& m) const { return m.upper_threshold(); }
 
     /// Nothing to say: the scheme samples at its own steps.
     static std::string sampling_note(double) { return {}; }

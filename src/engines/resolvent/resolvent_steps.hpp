@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/params.hpp"
+#include "stickslip/model.hpp"
 
 namespace stickslip::detail {
 
@@ -25,11 +25,11 @@ double resolvent_step_for_bias(const ModelParams& p, double bias);
 /// The step [s] --dt auto chooses for the resolvent scheme on model p: the
 /// bias law's step for 0.1% of D, and at most relaxation/100
 /// (stickslip::auto_time_step, run.hpp).
-double resolvent_auto_step(const ModelParams& p);
+double resolvent_auto_step(const Model& m);
 
 /// The resolvent scheme's step dt [s] on model p against its measured bias
 /// law: InvalidParameter ("dt") beyond 20% predicted bias of D or a step
 /// longer than the friction time, a note beyond 2% or half a relaxation time.
-void check_resolvent_step(const ModelParams& p, double dt, std::vector<std::string>& notes);
+void check_resolvent_step(const Model& m, double dt, std::vector<std::string>& notes);
 
 } // namespace stickslip::detail
