@@ -41,22 +41,18 @@ py::object json_loads(const std::string& text);
 /// result attached as its `result` attribute.
 [[noreturn]] void raise_untrustworthy(const std::string& what, py::object result);
 
-/// A run of estimates with the same confidence level, shown to Python as
-/// arrays (`value`, `stderr`, `lo`, `hi`, `ci` of shape (n, 2)).
+/// A run of estimates of one kind (and, sampled, one confidence level), shown
+/// to Python as arrays (`value`, `error`, `stderr`, `lo`, `hi`, `ci` of shape
+/// (n, 2)). Sampled or solved alike: the kind is the items' own.
 struct EstimateSeries {
     std::vector<Estimate> items;
+    /// The confidence level of sampled items; NaN for solved ones.
     double level = 0.95;
     /// The arrays' shape ((n_tau, n_noise) for a sweep); empty: (n,).
     std::vector<py::ssize_t> shape;
-};
 
-/// Values of a grid solver along an axis (a solved sweep's points), each with
-/// its estimated discretisation error: GridEstimate as EstimateSeries is to
-/// Estimate, with no standard errors or intervals.
-struct GridEstimateSeries {
-    std::vector<Estimate> items;
-    /// The arrays' shape ((n_tau, n_noise) for a sweep); empty: (n,).
-    std::vector<py::ssize_t> shape;
+    /// The items' kind (they share one); sampled when there is none.
+    EstimateKind kind() const { return items.empty() ? EstimateKind::Sampled : items.front().kind; }
 };
 
 /// A note of the library as Python says it: every flag of a setting

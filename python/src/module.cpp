@@ -275,7 +275,7 @@ std::string series_repr(std::string head, const Series& s) {
     return head + ")";
 }
 
-/// What EstimateSeries and GridEstimateSeries share: shape, len(s), s[k] and
+/// A series' access: shape, len(s), s[k] and
 /// s[i, j] (a 2-D series: a sweep's (tau, noise), row-major; s[h, i, j] when
 /// it sweeps a drift constant too), np.asarray(s)
 /// (the values). `name` is the class's name in the index errors.
@@ -497,47 +497,27 @@ void bind_core(py::module_& m) {
     // estimate carried its kind: the old name stays, for isinstance checks.
     m.attr("GridEstimate") = m.attr("Estimate");
 
-    py::class_<GridEstimateSeries> grid_series(m, "GridEstimateSeries",
-                                   "Values of a grid solver (engine='kolmogorov') along an axis, with their "
-                                   "estimated discretisation errors, as NumPy arrays: value, error (shape (n,), or "
-                                   "(n_tau, n_noise) for a sweep). np.asarray(s) is s.value; s[k] is the k-th "
-                                   "Estimate (kind 'solved', flat order), s[i, j] that of a 2-D series.");
-    grid_series
-        .def_property_readonly("value", [](const GridEstimateSeries& s) {
-            return series_column(s, [](const Estimate& e) { return e.value; });
-        })
-        .def_property_readonly("error", [](const GridEstimateSeries& s) {
-            return series_column(s, [](const Estimate& e) { return e.error; });
-        }, "estimated discretisation errors (absolute)");
-    add_series_access(grid_series, "GridEstimateSeries");
-    grid_series
-        .def("to_dict",
-             [](const GridEstimateSeries& s) {
-                 py::dict d;
-                 d["value"] = series_column(s, [](const Estimate& e) { return e.value; });
-                 d["error"] = series_column(s, [](const Estimate& e) { return e.error; });
-                 d["kind"] = "solved";
-                 return d;
-             },
-             "{'value', 'error'} arrays and 'kind'")
-        .def("__repr__", [](const GridEstimateSeries& s) {
-            return series_repr("GridEstimateSeries(n=" + std::to_string(s.items.size()), s);
-        });
-
     py::class_<EstimateSeries> series(m, "EstimateSeries",
-                               "Estimates along an axis (bins, lags, times, sweep points), as NumPy arrays: "
-                               "value, stderr, lo, hi (shape (n,)) and ci (shape (n, 2)). np.asarray(s) is "
-                               "s.value; s[k] is the k-th Estimate (in flat order), s[i, j] that of a 2-D series (a sweep).");
+                               "Estimates of one kind along an axis (bins, lags, times, sweep points), as NumPy "
+                               "arrays: value, error, stderr, lo, hi (shape (n,)) and ci (shape (n, 2)); a sweep's "
+                               "are 2-D (n_tau, n_noise). kind 'sampled': error is the standard errors, [lo, hi] "
+                               "the intervals at `level`. kind 'solved' (engine='kolmogorov'): error is the "
+                               "estimated discretisation errors; stderr, lo, hi and level NaN. np.asarray(s) is "
+                               "s.value; s[k] is the k-th Estimate (in flat order), s[i, j] that of a 2-D series.");
     series
         .def_property_readonly("value", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.value; });
         })
         .def_property_readonly("stderr", [](const EstimateSeries& s) {
-            return series_column(s, [](const Estimate& e) { return e.error; });
-        }, "the standard errors")
+            return series_column(s, [](const Estimate& e) {
+                return e.kind == EstimateKind::Sampled ? e.error : std::numeric_limits<double>::quiet_NaN();
+            });
+        }, "the standard errors (NaN unless kind is 'sampled')")
         .def_property_readonly("error", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.error; });
-        }, "the uncertainties under the name every series has (GridEstimateSeries.error too): here the standard errors")
+        }, "the uncertainties: the standard errors (sampled) or the estimated discretisation errors (solved)")
+        .def_property_readonly("kind", [](const EstimateSeries& s) { return to_string(s.kind()); },
+                               "'sampled' or 'solved': what error means")
         .def_property_readonly("lo", [](const EstimateSeries& s) {
             return series_column(s, [](const Estimate& e) { return e.lo; });
         })
@@ -565,16 +545,24 @@ void bind_core(py::module_& m) {
                  py::dict d;
                  d["value"] = series_column(s, [](const Estimate& e) { return e.value; });
                  d["error"] = series_column(s, [](const Estimate& e) { return e.error; });
-                 d["lo"] = series_column(s, [](const Estimate& e) { return e.lo; });
-                 d["hi"] = series_column(s, [](const Estimate& e) { return e.hi; });
-                 d["level"] = s.level;
-                 d["kind"] = "sampled";
+                 if (s.kind() == EstimateKind::Sampled) { // a solver has no intervals
+                     d["lo"] = series_column(s, [](const Estimate& e) { return e.lo; });
+                     d["hi"] = series_column(s, [](const Estimate& e) { return e.hi; });
+                     d["level"] = s.level;
+                 }
+                 d["kind"] = to_string(s.kind());
                  return d;
              },
-             "{'value', 'error', 'lo', 'hi'} arrays, 'level' and 'kind'")
+             "{'value', 'error'} arrays and 'kind'; sampled, also the 'lo', 'hi' arrays and 'level'")
         .def("__repr__", [](const EstimateSeries& s) {
-            return series_repr("EstimateSeries(n=" + std::to_string(s.items.size()) + ", level=" + float_repr(s.level), s);
+            const std::string n = "EstimateSeries(n=" + std::to_string(s.items.size());
+            return series_repr(s.kind() == EstimateKind::Sampled ? n + ", level=" + float_repr(s.level)
+                                                                 : n + ", kind='" + to_string(s.kind()) + "'",
+                               s);
         });
+    // A solved series was a class of its own until estimates carried their
+    // kind: the old name stays, for isinstance checks.
+    m.attr("GridEstimateSeries") = m.attr("EstimateSeries");
 
 }
 

@@ -47,7 +47,6 @@ template <class F, DeclaredFields T> void fields(F& f, T& x) {
 
 template <class F> void fields(F& f, Estimate& x) { f(x.value, x.error, x.lo, x.hi, x.level, x.kind); }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
-template <class F> void fields(F& f, GridEstimateSeries& x) { f(x.items, x.shape); }
 template <class F> void fields(F& f, ResolvedEngine& x) {
     f(x.stop_rule, x.lattice_bound, x.lattice_points, x.truncated_mass, x.jump_rate, x.white_level, x.upper_threshold,
       x.lower_threshold);
@@ -332,7 +331,6 @@ void bind_pickling(py::module_& m) {
     pickled<Scales>(m, "Scales");
     pickled<Estimate>(m, "Estimate");
     pickled<EstimateSeries>(m, "EstimateSeries");
-    pickled<GridEstimateSeries>(m, "GridEstimateSeries");
     pickled<VelocityHistogram>(m, "Histogram");
     pickled<SamplePath>(m, "Path");
     pickled<SweepExponent>(m, "SweepExponent");

@@ -473,14 +473,15 @@ void bind_results(py::module_& m) {
         // discretisation errors, NaN where an interrupted sweep did not reach.
         auto solved_column = [grid_shape, grid_size](const R& r, auto get) {
             const double nan = std::numeric_limits<double>::quiet_NaN();
-            GridEstimateSeries out;
+            EstimateSeries out;
+            out.level = nan; // a solver's values have no intervals
             out.items.assign(grid_size(r), solved_estimate(nan, nan));
             for (std::size_t k = 0; k < r.points.size() && k < out.items.size(); ++k) out.items[k] = get(r.points[k]);
             out.shape = grid_shape(r);
             return out;
         };
-        // The column of a quantity: an EstimateSeries, or a GridEstimateSeries
-        // for a solved sweep (`solved` picks the point's value, or nullptr
+        // The column of a quantity: a sampled series, or a solved one for a
+        // solved sweep (`solved` picks the point's value, or nullptr
         // where the solver has none).
         auto column_of = [solved_column](auto column, auto sampled, auto solved) {
             return [column, solved_column, sampled, solved](const R& r) -> py::object {
@@ -541,38 +542,38 @@ void bind_results(py::module_& m) {
                 column_of(column, [](const SweepPoint& p) { return p.estimates.diffusivity; },
                           [](const SweepPoint& p) { return p.solution->diffusivity; }),
                 "D [m^2/s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
-                "did not reach; a GridEstimateSeries with engine='kolmogorov')")
+                "did not reach; kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "mobility",
                 column_of(column, [](const SweepPoint& p) { return p.estimates.mobility; },
                           [](const SweepPoint& p) { return p.solution->mobility; }),
                 "M0 [m/s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
-                "did not reach; a GridEstimateSeries with engine='kolmogorov')")
+                "did not reach; kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "mean_duration",
                 column_of(column, [](const SweepPoint& p) { return p.estimates.mean_duration; },
                           [](const SweepPoint& p) { return p.solution->mean_duration; }),
                 "E[t1] [s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
-                "did not reach; a GridEstimateSeries with engine='kolmogorov')")
+                "did not reach; kind 'solved' with engine='kolmogorov')")
             .def_property_readonly(
                 "stuck_probability",
                 [solved_column](const R& r) -> py::object {
                     if (!r.solved()) return py::none();
                     return py::cast(solved_column(r, [](const SweepPoint& p) { return p.solution->stuck_probability; }));
                 },
-                "P(V = 0) per point (GridEstimateSeries) with engine='kolmogorov'; None for a sampled sweep")
+                "P(V = 0) per point (EstimateSeries, kind 'solved') with engine='kolmogorov'; None for a sampled sweep")
             .def_property_readonly(
                 "slope",
                 column_of(column, [](const SweepPoint& p) { return p.slope; },
                           [](const SweepPoint& p) { return solved_estimate(p.slope.value, p.slope.error); }),
                 "local d log D / d log noise per point (EstimateSeries, shape `shape`; NaN with one "
-                "noise value; a GridEstimateSeries with engine='kolmogorov', its error propagated from D's)")
+                "noise value; kind 'solved' with engine='kolmogorov', its error propagated from D's)")
             .def_property_readonly(
                 "white_ratio",
                 column_of(column, [](const SweepPoint& p) { return p.white_ratio; },
                           [](const SweepPoint& p) { return solved_estimate(p.white_ratio.value, p.white_ratio.error); }),
                 "D over the white-noise D at every point (EstimateSeries, shape `shape`; a "
-                "GridEstimateSeries with engine='kolmogorov', its error D's)")
+                "kind 'solved' with engine='kolmogorov', its error D's)")
             .def_property_readonly(
                 "method", [](const R& r) -> std::string { return r.solved() ? "kolmogorov" : "monte carlo"; },
                 "'monte carlo', or 'kolmogorov' with engine='kolmogorov'")

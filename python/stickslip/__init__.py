@@ -59,12 +59,12 @@ version that wrote it.
 
 Results are objects with NumPy-array attributes; estimates are ``Estimate``
 or, along an axis, ``EstimateSeries`` (arrays ``.value``, ``.stderr``,
-``.lo``, ``.hi``, ``.ci`` of shape (n, 2)); the Kolmogorov engine's series are
-``GridEstimateSeries`` (``.value``, ``.error``). Every estimate, from every
-method, has ``.value``, ``.error`` and ``.kind``: ``'sampled'`` (``.error`` the
-standard error, also ``.stderr``, with ``.ci`` at ``.level``), ``'solved'``
-(the estimated discretisation error, no interval) or ``'exact'`` (0), as in
-the CLI's JSON. ``GridEstimate`` is another name of ``Estimate``.
+``.lo``, ``.hi``, ``.ci`` of shape (n, 2)). Every estimate and series, from
+every method, has ``.value``, ``.error`` and ``.kind``: ``'sampled'``
+(``.error`` the standard error, also ``.stderr``, with ``.ci`` at ``.level``),
+``'solved'`` (the estimated discretisation error, no interval) or ``'exact'``
+(0), as in the CLI's JSON. ``GridEstimate`` and ``GridEstimateSeries`` are
+other names of ``Estimate`` and ``EstimateSeries``.
 Invalid input raises ``InvalidParameterError`` (a ValueError) whose text is
 the CLI's: ``--<parameter>: <message>``. Runs whose excursions hit the runaway
 guard raise ``CappedExcursionsError`` unless ``allow_capped=True``; it is an
@@ -257,6 +257,6 @@ D, M0 and E[t1] over a grid of noise intensities and correlation times.
         .noise, .tau (each point's), .diffusivity, .mobility,
         .mean_duration, .slope (EstimateSeries); .shape; .exponents (one
         SweepExponent per tau). .to_dict() is the CLI's JSON. With
-        engine="kolmogorov" they are GridEstimateSeries (.value, .error:
+        engine="kolmogorov" they are solved series (kind 'solved', .error
         the estimated discretisation errors), .stuck_probability too, and
         .method is "kolmogorov".""")

@@ -107,9 +107,11 @@ class EstimateSeries:
     @property
     def value(self) -> FloatArray: ...   # (n,); a sweep: (n_tau, n_noise)
     @property
-    def stderr(self) -> FloatArray: ...  # (n,)
+    def stderr(self) -> FloatArray: ...  # (n,): NaN unless kind is 'sampled'
     @property
-    def error(self) -> FloatArray: ...   # (n,): the standard errors, under the name every series has
+    def error(self) -> FloatArray: ...   # (n,): standard errors (sampled) or discretisation errors (solved)
+    @property
+    def kind(self) -> str: ...           # 'sampled' or 'solved'
     @property
     def lo(self) -> FloatArray: ...      # (n,)
     @property
@@ -123,17 +125,7 @@ class EstimateSeries:
     def __array__(self, dtype: Any = ...) -> FloatArray: ...
     def to_dict(self) -> dict[str, Any]: ...
 
-class GridEstimateSeries:  # engine="kolmogorov": values with discretisation errors, no stderr or interval
-    @property
-    def shape(self) -> Tuple[int, ...]: ...  # (n,), or (n_tau, n_noise) for a sweep
-    @property
-    def value(self) -> FloatArray: ...
-    @property
-    def error(self) -> FloatArray: ...   # estimated discretisation errors (absolute)
-    def __len__(self) -> int: ...
-    def __getitem__(self, k: int) -> GridEstimate: ...
-    def __array__(self, dtype: Any = ...) -> FloatArray: ...
-    def to_dict(self) -> dict[str, Any]: ...
+GridEstimateSeries = EstimateSeries  # a solved series (kind 'solved'); the name before estimates had kinds
 
 class Histogram:
     @property
@@ -368,17 +360,17 @@ class SweepResult(_Rendered):
     @property
     def tau(self) -> FloatArray: ...  # (n_tau, n_noise)
     @property
-    def diffusivity(self) -> Union[EstimateSeries, GridEstimateSeries]: ...  # GridEstimateSeries with engine="kolmogorov"
+    def diffusivity(self) -> EstimateSeries: ...  # kind 'solved' with engine="kolmogorov"
     @property
-    def mobility(self) -> Union[EstimateSeries, GridEstimateSeries]: ...
+    def mobility(self) -> EstimateSeries: ...
     @property
-    def mean_duration(self) -> Union[EstimateSeries, GridEstimateSeries]: ...
+    def mean_duration(self) -> EstimateSeries: ...
     @property
-    def stuck_probability(self) -> Optional[GridEstimateSeries]: ...  # P(V = 0), engine="kolmogorov"
+    def stuck_probability(self) -> Optional[EstimateSeries]: ...  # P(V = 0), engine="kolmogorov"
     @property
-    def slope(self) -> Union[EstimateSeries, GridEstimateSeries]: ...
+    def slope(self) -> EstimateSeries: ...
     @property
-    def white_ratio(self) -> Union[EstimateSeries, GridEstimateSeries]: ...  # D / D_white
+    def white_ratio(self) -> EstimateSeries: ...  # D / D_white
     @property
     def method(self) -> str: ...  # "monte carlo" or "kolmogorov"
     @property

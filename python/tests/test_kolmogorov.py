@@ -5,6 +5,8 @@ with its estimated discretisation error and no standard error; the engines it
 does not serve refuse it."""
 import unittest
 
+import numpy as np
+
 import stickslip
 
 
@@ -47,7 +49,11 @@ class KolmogorovEngineTest(unittest.TestCase):
         self.assertEqual(s.method, "kolmogorov")
         for name in ("diffusivity", "mobility", "mean_duration", "stuck_probability", "slope"):
             series = getattr(s, name)
-            self.assertIsInstance(series, stickslip.GridEstimateSeries)
+            self.assertIsInstance(series, stickslip.GridEstimateSeries)  # the old name of a solved series
+            self.assertIsInstance(series, stickslip.EstimateSeries)
+            self.assertEqual(series.kind, "solved")
+            self.assertTrue(np.isnan(series.stderr).all(), name)
+            self.assertEqual(set(series.to_dict()), {"value", "error", "kind"})
             self.assertEqual(series.value.shape, (1, 2))
             self.assertTrue((series.error > 0).all(), name)
         # The point at noise 5, tau 0.5 is the default model's diffusivity(), bit for bit.

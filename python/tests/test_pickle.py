@@ -58,7 +58,7 @@ def examples():
         "Estimate": [d.diffusivity],
         "GridEstimate": [stickslip.diffusivity(p, engine="kolmogorov", rel_precision=1e-2).diffusivity],
         "EstimateSeries": [density.density, sweep.diffusivity],
-        "GridEstimateSeries": [solved_sweep.diffusivity],
+        "GridEstimateSeries": [solved_sweep.diffusivity],  # another name of EstimateSeries
         "Histogram": [density.histogram, moments.density[1]],
         "Path": [trajectory.paths[1]],
         "SweepExponent": [sweep.exponents[0]],
