@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -29,7 +30,14 @@ ordered_json field_value_json(const Value& x, const FieldInfo& info, const Field
     if constexpr (std::is_same_v<Value, Estimate>) {
         return estimate_json(x, info.form != FieldForm::NoInterval); // as its kind says
     } else if constexpr (std::is_same_v<Value, double>) {
-        if (info.form == FieldForm::Reference) return white_reference_json(x, *style.model);
+        if (info.form == FieldForm::Reference) {
+            // A report that writes a reference must say whose: a missing model
+            // is the writer's bug, refused loudly rather than dereferenced.
+            if (!style.model)
+                throw std::logic_error(std::string("fields_json: the white-noise reference '") + info.name +
+                                       "' needs the report's model (FieldJsonStyle::model)");
+            return white_reference_json(x, *style.model);
+        }
         return json_number(x);
     } else if constexpr (std::is_enum_v<Value>) {
         return to_string(x); // its name, as the settings write it

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -89,6 +90,9 @@ TEST(ResultFields, AReferenceIsExactForTheAffineLawAndSolvedForADriftLaw) {
     const detail::ordered_json j = detail::fields_json(w, detail::FieldJsonStyle{&affine});
     EXPECT_EQ(j["white_diffusivity"].dump(), R"({"value":0.25,"error":0.0,"kind":"exact"})");
     EXPECT_FALSE(j.contains("varied")); // NaN without --vary
+    // Without the report's model a reference cannot say whose it is: the
+    // writer's bug, refused (it was dereferenced).
+    EXPECT_THROW((void)detail::fields_json(w), std::logic_error);
 }
 
 TEST(ResultFields, NamesAreUniqueAndDocumented) {
