@@ -43,6 +43,7 @@
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/method.hpp"
+#include "stickslip/result_fields.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/excursion.hpp"
 #include "stickslip/params.hpp"
@@ -184,16 +185,30 @@ void visit_settings(CorrelationRequest& r, Visitor&& v) {
 struct CorrelationResult : MethodResult {
     /// The request, with max_lag resolved (0 replaced by the lag used).
     CorrelationRequest request;
-    std::vector<double> lag;               ///< r [s] (multiples of the sampling interval)
-    std::vector<Estimate> autocorrelation; ///< <V(0) V(r)> [m^2/s^2]
-    std::vector<Estimate> covariance;      ///< h(r) = <V(0)V(r)> - M0^2 [m^2/s^2]
-    std::vector<Estimate> normalised;      ///< h(r)/h(0) [1]
-    Estimate mean;                         ///< M0 [m/s]
+    /// The lags and the series along them, each one's unit and meaning
+    /// declared in fields() below.
+    /// @{
+    std::vector<double> lag;
+    std::vector<Estimate> autocorrelation;
+    std::vector<Estimate> covariance;
+    std::vector<Estimate> normalised;
+    Estimate mean;
+    /// @}
     /// D, M0 and E[t1] of the same excursions.
     LongExcursionEstimates estimates;
     /// Notes for the user, one sentence each: those of DiffusivityResult, and
     /// on the sampling of the path.
     std::vector<std::string> warnings;
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = CorrelationResult;
+        visit(&S::lag, FieldInfo{"lag", "s", "the lags r (multiples of the sampling interval)", FieldForm::Axis});
+        visit(&S::autocorrelation, FieldInfo{"autocorrelation", "m^2/s^2", "<V(0)V(r)> at each lag"});
+        visit(&S::covariance, FieldInfo{"covariance", "m^2/s^2", "h(r) = <V(0)V(r)> - M0^2 at each lag"});
+        visit(&S::normalised, FieldInfo{"normalised_covariance", "", "h(r)/h(0) at each lag"});
+        visit(&S::mean, FieldInfo{"mean", "m/s", "the stationary mean velocity E[V] = M0, from the same excursions"});
+    }
 };
 
 /// Every check of the request (InvalidParameter on the first problem): the
@@ -255,14 +270,28 @@ struct MomentsResult : MethodResult {
     /// Table I's in seconds; those used, rounded and sorted, are in `time`)
     /// and the density's bins.
     MomentsRequest request;
-    std::vector<double> time;          ///< times actually used [s] (inclusion: whole steps), sorted
-    std::vector<Estimate> first_moment;  ///< E[V(t) | v_i] [m/s]
-    std::vector<Estimate> second_moment; ///< E[V(t)^2 | v_i] [m^2/s^2]
-    std::vector<Estimate> stuck;         ///< P(V(t) = 0)
+    /// The times and the series along them, each one's unit and meaning
+    /// declared in fields() below.
+    /// @{
+    std::vector<double> time;
+    std::vector<Estimate> first_moment;
+    std::vector<Estimate> second_moment;
+    std::vector<Estimate> stuck;
+    /// @}
     std::vector<VelocityHistogram> density; ///< per time, when requested
     /// Notes for the user, one sentence each (a step too coarse, times
     /// rounded to steps, an interrupted run, ...).
     std::vector<std::string> warnings;
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = MomentsResult;
+        visit(&S::time, FieldInfo{"time", "s", "the times t actually used (sorted; inclusion: whole steps)",
+                                  FieldForm::Axis});
+        visit(&S::first_moment, FieldInfo{"first_moment", "m/s", "E[V(t) | v0] at each time"});
+        visit(&S::second_moment, FieldInfo{"second_moment", "m^2/s^2", "E[V(t)^2 | v0] at each time"});
+        visit(&S::stuck, FieldInfo{"stuck_probability", "", "P(V(t) = 0) at each time"});
+    }
 };
 
 /// Every check of the request (InvalidParameter on the first problem): the

@@ -23,8 +23,14 @@
 //
 // The member types a declaration may use are those the writers know: double,
 // int, std::uint64_t, bool, std::string, an enum with a to_string (its name)
-// and Estimate. Declaration order is the
-// order the JSON prints; changing it changes the reports (a CHANGELOG entry).
+// and Estimate; and for a result along an axis (lags, times) the axis, a
+// std::vector<double> declared FieldForm::Axis (at most one per struct), and
+// its series, each a std::vector<Estimate> of the axis' length. A series is
+// written as JSON points {axis: x, value, error, ci, kind}, as CSV rows (one
+// per point, the axis first) and in Python as an EstimateSeries; the axis is
+// the points' key, the CSV's first column and a NumPy array. Declaration
+// order is the order the JSON prints; changing it changes the reports (a
+// CHANGELOG entry).
 #pragma once
 
 /// \file
@@ -33,6 +39,9 @@
 /// explains the design.
 
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace stickslip {
 
@@ -56,6 +65,10 @@ enum class FieldForm {
     /// Kept, pickled and given to Python, but reported elsewhere than in this
     /// struct's block (e.g. a time that belongs in the report's "work").
     NotInBlock,
+    /// The axis (a std::vector<double>) that the struct's series run along:
+    /// not a key of its own in JSON, but the key of every series point (its
+    /// name, "lag" or "time"), and the CSV's first column.
+    Axis,
 };
 
 /// A result field's description: what the reports call it and say about it.
@@ -92,5 +105,18 @@ struct AnyFieldVisitor {
 /// visit(&T::member, FieldInfo{...}) once per field, in report order.
 template <class T>
 concept DeclaredFields = requires(AnyFieldVisitor v) { T::fields(v); };
+
+/// x's axis (its FieldForm::Axis member) and the axis' name; {nullptr,
+/// nullptr} when T declares none.
+template <DeclaredFields T>
+std::pair<const std::vector<double>*, const char*> declared_axis(const T& x) {
+    std::pair<const std::vector<double>*, const char*> out{nullptr, nullptr};
+    T::fields([&](auto member, const FieldInfo& info) {
+        using Value = std::remove_cvref_t<decltype(x.*member)>;
+        if constexpr (std::is_same_v<Value, std::vector<double>>)
+            if (info.form == FieldForm::Axis) out = {&(x.*member), info.name};
+    });
+    return out;
+}
 
 } // namespace stickslip

@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -113,10 +114,13 @@ void add_renderings(Cls& cls) {
 /// A declared field's docstring: its help, then its unit in brackets.
 std::string field_doc(const FieldInfo& f);
 /// The Python type of a member (float, int, bool, str or Estimate; an enum
-/// is its name, str) and its JSON kind (number, integer, count: an unsigned
-/// integer, boolean, string, estimate).
+/// is its name, str; an axis a NumPy array, a series an EstimateSeries) and
+/// its JSON kind (number, integer, count: an unsigned integer, boolean,
+/// string, estimate, axis, series).
 template <class Value> std::array<const char*, 2> field_types() {
     if constexpr (std::is_same_v<Value, Estimate>) return {"Estimate", "estimate"};
+    else if constexpr (std::is_same_v<Value, std::vector<double>>) return {"FloatArray", "axis"};
+    else if constexpr (std::is_same_v<Value, std::vector<Estimate>>) return {"EstimateSeries", "series"};
     else if constexpr (std::is_same_v<Value, double>) return {"float", "number"};
     else if constexpr (std::is_same_v<Value, bool>) return {"bool", "boolean"};
     else if constexpr (std::is_integral_v<Value> && std::is_unsigned_v<Value>) return {"int", "count"};
@@ -126,6 +130,13 @@ template <class Value> std::array<const char*, 2> field_types() {
         static_assert(std::is_same_v<Value, std::string>, "a declared field of a type Python does not know");
         return {"str", "string"};
     }
+}
+
+/// A series as Python sees it: its estimates, at their level (NaN when
+/// empty or solved).
+inline EstimateSeries estimate_series(const std::vector<Estimate>& items) {
+    const bool sampled = !items.empty() && items.front().kind == EstimateKind::Sampled;
+    return EstimateSeries{items, sampled ? items.front().level : std::numeric_limits<double>::quiet_NaN(), {}};
 }
 
 /// What _result_fields() tells the stub and schema generators of a declared
@@ -148,7 +159,7 @@ template <DeclaredFields T> void note_declared(const std::string& python_class, 
     DeclaredStruct d{python_class, schema_definition, {}};
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
-        static constexpr const char* forms[] = {"value", "no_interval", "reference", "when_set", "not_in_block"};
+        static constexpr const char* forms[] = {"value", "no_interval", "reference", "when_set", "not_in_block", "axis"};
         const auto types = field_types<Value>();
         d.fields.push_back({f.name, f.unit, f.help, types[0], forms[static_cast<int>(f.form)], types[1]});
     });
@@ -160,7 +171,15 @@ template <DeclaredFields T> void note_declared(const std::string& python_class, 
 template <DeclaredFields T, class Cls> Cls& bind_fields(Cls& cls, const std::string& python_class,
                                                          const std::string& schema_definition) {
     T::fields([&](auto member, const FieldInfo& f) {
-        cls.def_readonly(field_flat_name(f).c_str(), member, field_doc(f).c_str()); // pybind11 copies both
+        using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
+        const std::string name = field_flat_name(f), doc = field_doc(f); // pybind11 copies both
+        if constexpr (std::is_same_v<Value, std::vector<double>>)
+            cls.def_property_readonly(name.c_str(), [member](const T& x) { return to_array(x.*member); }, doc.c_str());
+        else if constexpr (std::is_same_v<Value, std::vector<Estimate>>)
+            cls.def_property_readonly(name.c_str(), [member](const T& x) { return estimate_series(x.*member); },
+                                      doc.c_str());
+        else
+            cls.def_readonly(name.c_str(), member, doc.c_str());
     });
     note_declared<T>(python_class, schema_definition);
     return cls;

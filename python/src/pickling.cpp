@@ -41,9 +41,10 @@ namespace {
 
 /// A struct that declares its fields (result_fields.hpp): every one of them,
 /// in declaration order.
-template <class F, DeclaredFields T> void fields(F& f, T& x) {
+template <class F, DeclaredFields T> void declared_fields(F& f, T& x) {
     T::fields([&](auto member, const FieldInfo&) { f(x.*member); });
 }
+template <class F, DeclaredFields T> void fields(F& f, T& x) { declared_fields(f, x); }
 
 template <class F> void fields(F& f, Estimate& x) { f(x.value, x.error, x.lo, x.hi, x.level, x.kind); }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
@@ -119,13 +120,15 @@ template <class F> void fields(F& f, BruteForceResult& x) {
 template <class F> void fields(F& f, DensityResult& x) {
     f(static_cast<MethodResult&>(x), x.request, x.histogram, x.mean, x.variance, x.estimates, x.warnings, x.solution);
 }
+// A result that declares its fields: what it does not declare, then the
+// declared fields (so that a new one is pickled without a line here).
 template <class F> void fields(F& f, CorrelationResult& x) {
-    f(static_cast<MethodResult&>(x), x.request, x.lag, x.autocorrelation, x.covariance, x.normalised, x.mean,
-      x.estimates, x.warnings);
+    f(static_cast<MethodResult&>(x), x.request, x.estimates, x.warnings);
+    declared_fields(f, x);
 }
 template <class F> void fields(F& f, MomentsResult& x) {
-    f(static_cast<MethodResult&>(x), x.request, x.time, x.first_moment, x.second_moment, x.stuck, x.density,
-      x.warnings);
+    f(static_cast<MethodResult&>(x), x.request, x.density, x.warnings);
+    declared_fields(f, x);
 }
 template <class F> void fields(F& f, TrajectoryResult& x) {
     f(x.request, x.resolved, x.paths, x.excursion, x.warnings);

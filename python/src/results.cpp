@@ -324,22 +324,14 @@ void bind_results(py::module_& m) {
                         "Stationary autocorrelation <V(0)V(r)>, covariance h(r) and h(r)/h(0) against the lag r "
                         "(stickslip.correlation), and D, M0, E[t1] of the same excursions. to_dict() is the "
                         "CLI's JSON.");
+        bind_fields<R>(c, "CorrelationResult", "merged:autocorrelation_report");
         add_declared_fields(c, [](const R& r) -> const LongExcursionEstimates& { return r.estimates; });
         add_totals<R>(c);
         add_request_params<R>(c);
         add_renderings<R>(c);
         c.def_property_readonly(
-             "lag", [](const R& r) { return to_array(r.lag); }, "lags r [s], shape (lags + 1,)")
-            .def_property_readonly(
-                "autocorrelation", [](const R& r) { return series(r.autocorrelation, r.request.level); },
-                "<V(0)V(r)> [m^2/s^2] (EstimateSeries, shape (lags + 1,))")
-            .def_property_readonly(
-                "covariance", [](const R& r) { return series(r.covariance, r.request.level); },
-                "h(r) = <V(0)V(r)> - M0^2 [m^2/s^2] (EstimateSeries)")
-            .def_property_readonly(
-                "normalised", [](const R& r) { return series(r.normalised, r.request.level); },
-                "h(r)/h(0) (EstimateSeries)")
-            .def_readonly("mean", &R::mean, "M0 [m/s] (Estimate)")
+             "normalised", [](const R& r) { return estimate_series(r.normalised); },
+             "the former name of normalised_covariance (h(r)/h(0), an EstimateSeries)")
             .def("__repr__", [](const R& r) {
                 return "CorrelationResult(lags=" + std::to_string(r.lag.size()) + ", max_lag=" +
                        g4(r.lag.empty() ? 0.0 : r.lag.back()) + " s, h(0)=" +
@@ -356,22 +348,11 @@ void bind_results(py::module_& m) {
                         "Transient statistics from V(0) = v0 (stickslip.moments): E[V(t)|v0], E[V(t)^2|v0] and "
                         "P(V(t) = 0) at the times `time`, and with density=True one Histogram per time. "
                         "to_dict() is the CLI's JSON.");
+        bind_fields<R>(c, "MomentsResult", "merged:transient_report");
         add_totals<R>(c);
         add_request_params<R>(c);
         add_renderings<R>(c);
-        c.def_property_readonly(
-             "time", [](const R& r) { return to_array(r.time); },
-             "times t [s] actually used (sorted; inclusion: whole steps), shape (n,)")
-            .def_property_readonly(
-                "first_moment", [](const R& r) { return series(r.first_moment, r.request.level); },
-                "E[V(t)|v0] [m/s] (EstimateSeries, shape (n,))")
-            .def_property_readonly(
-                "second_moment", [](const R& r) { return series(r.second_moment, r.request.level); },
-                "E[V(t)^2|v0] [m^2/s^2] (EstimateSeries)")
-            .def_property_readonly(
-                "stuck_probability", [](const R& r) { return series(r.stuck, r.request.level); },
-                "P(V(t) = 0) (EstimateSeries)")
-            .def_readonly("density", &R::density,
+        c.def_readonly("density", &R::density,
                           "list of Histogram, one per time (empty unless density=True)")
             .def_property_readonly("v0", [](const R& r) { return r.request.v0; }, "initial velocity [m/s]")
             .def_property_readonly(

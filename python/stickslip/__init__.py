@@ -211,7 +211,7 @@ Stationary autocorrelation <V(0)V(r)>, covariance h(r) = <V(0)V(r)> - M0^2 and h
     intervals (the paper's Figs. 5 and 8). Same as ``stickslip correlation``.""", """\
     CorrelationResult
         .lag (lags + 1,) [s], .autocorrelation, .covariance [m^2/s^2] and
-        .normalised (EstimateSeries, (lags + 1,)), .mean [m/s], .diffusivity,
+        .normalised_covariance (EstimateSeries, (lags + 1,)), .mean [m/s], .diffusivity,
         .mobility, .mean_duration; .to_dict() is the CLI's JSON.""")
 
 moments = _command("moments", MomentsRequest, """\

@@ -272,23 +272,25 @@ class DensityResult(_LongExcursions):
 
 class CorrelationResult(_LongExcursions):
     @property
-    def lag(self) -> FloatArray: ...
+    def lag(self) -> FloatArray: ...  # [s]
     @property
-    def autocorrelation(self) -> EstimateSeries: ...
+    def autocorrelation(self) -> EstimateSeries: ...  # [m^2/s^2]
     @property
-    def covariance(self) -> EstimateSeries: ...
+    def covariance(self) -> EstimateSeries: ...  # [m^2/s^2]
+    @property
+    def normalised_covariance(self) -> EstimateSeries: ...
+    @property
+    def mean(self) -> Estimate: ...  # [m/s]
     @property
     def normalised(self) -> EstimateSeries: ...
-    @property
-    def mean(self) -> Estimate: ...
 
 class MomentsResult(_Totals):
     @property
-    def time(self) -> FloatArray: ...
+    def time(self) -> FloatArray: ...  # [s]
     @property
-    def first_moment(self) -> EstimateSeries: ...
+    def first_moment(self) -> EstimateSeries: ...  # [m/s]
     @property
-    def second_moment(self) -> EstimateSeries: ...
+    def second_moment(self) -> EstimateSeries: ...  # [m^2/s^2]
     @property
     def stuck_probability(self) -> EstimateSeries: ...
     @property

@@ -63,18 +63,22 @@ def _density(r):
     return cols
 
 
-def _correlation(r):
-    cols = {"lag": _np.asarray(r.lag)}
-    for name in ("autocorrelation", "covariance", "normalised"):
-        _estimate(cols, name, getattr(r, name))
+def _series(r):
+    """The columns of a result along an axis, as its CSV has them: the axis,
+    then each series its class declares (result_fields.hpp), in order."""
+    declared = next(d for d in _core._result_fields() if d["python_class"] == type(r).__name__)
+    cols = {}
+    for f in declared["fields"]:
+        name = f["name"].replace(".", "_")
+        if f["form"] == "axis":
+            cols = {name: _np.asarray(getattr(r, name)), **cols}
+        elif f["json"] == "series":
+            _estimate(cols, name, getattr(r, name))
     return cols
 
 
-def _moments(r):
-    cols = {"time": _np.asarray(r.time)}
-    for name in ("first_moment", "second_moment", "stuck_probability"):
-        _estimate(cols, name, getattr(r, name))
-    return cols
+_correlation = _series
+_moments = _series
 
 
 def _trajectory(r):

@@ -43,10 +43,11 @@ class CorrelationTest(unittest.TestCase):
     def test_shapes_and_cli_json(self):
         r = stickslip.correlation(P, engine="pdmp", excursions=128, max_lag=0.5, lags=10, seed=4)
         self.assertEqual(r.lag.shape, (11,))
-        for s in (r.autocorrelation, r.covariance, r.normalised):
+        for s in (r.autocorrelation, r.covariance, r.normalised_covariance):
             self.assertEqual(s.value.shape, (11,))
             self.assertEqual(s.ci.shape, (11, 2))
-        self.assertAlmostEqual(r.normalised.value[0], 1.0)
+        self.assertAlmostEqual(r.normalised_covariance.value[0], 1.0)
+        self.assertEqual(r.normalised.value.tolist(), r.normalised_covariance.value.tolist())  # the former name
         self.assertAlmostEqual(r.lag[-1], 0.5)
         cli = cli_json("correlation", "--engine", "pdmp", "--excursions", "128", "--max-lag", "0.5", "--lags", "10",
                        "--seed", "4")

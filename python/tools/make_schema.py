@@ -21,9 +21,14 @@ import stickslip
 SCHEMA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "schema", "report.schema.json")
 
 
-def field_schema(f):
-    """One field's schema, by its JSON kind and form (result_fields.hpp's FieldForm)."""
-    if f["json"] == "estimate" or f["form"] == "reference":
+def field_schema(f, axis=None):
+    """One field's schema, by its JSON kind and form (result_fields.hpp's FieldForm);
+    a series' points are keyed by `axis` (the struct's axis field's name)."""
+    if f["json"] == "series":
+        if not axis:
+            sys.exit(f"make_schema: the series {f['name']!r} has no axis in its struct")
+        s = {"$ref": f"#/$defs/{axis}_series"}
+    elif f["json"] == "estimate" or f["form"] == "reference":
         s = {"$ref": "#/$defs/estimate"}
     elif f["json"] == "number":
         # A number may be "inf" or null (NaN); one written only when set is never null.
@@ -36,7 +41,7 @@ def field_schema(f):
     return {"description": f["help"] + unit, **s}
 
 
-def block_schema(fields, keep):
+def block_schema(fields, keep, axis=None):
     """The object of the given fields (dotted names nest), keeping keep's other keys."""
     required, properties, nested = [], {}, {}
     for f in fields:
@@ -47,7 +52,7 @@ def block_schema(fields, keep):
                 properties[head] = None  # its place in the order
                 required.append(head)
             continue
-        properties[head] = field_schema(f)
+        properties[head] = field_schema(f, axis)
         if f["form"] != "when_set":
             required.append(head)
     for head, inner in nested.items():
@@ -60,7 +65,9 @@ def block_schema(fields, keep):
 def schema_text(current):
     schema = json.loads(current)
     for declared in stickslip._core._result_fields():
-        fields = [f for f in declared["fields"] if f["form"] != "not_in_block"]
+        fields = [f for f in declared["fields"] if f["form"] not in ("not_in_block", "axis")]
+        axes = [f["name"] for f in declared["fields"] if f["form"] == "axis"]
+        axis = axes[0] if axes else None
         where = declared["schema_definition"]
         if not where:
             continue  # not in any report (Python only: Scales)
@@ -70,11 +77,11 @@ def schema_text(current):
             for name in where[len("merged:"):].split(","):
                 properties = schema["$defs"][name]["properties"]
                 for f in fields:
-                    properties[f["name"]] = field_schema(f)
+                    properties[f["name"]] = field_schema(f, axis)
             continue
         if where not in schema["$defs"]:
             sys.exit(f"make_schema: the schema has no definition {where!r}: add an empty one")
-        schema["$defs"][where] = block_schema(fields, schema["$defs"][where])
+        schema["$defs"][where] = block_schema(fields, schema["$defs"][where], axis)
     return json.dumps(schema, indent=2) + "\n"
 
 

@@ -109,13 +109,17 @@ def core_stub_text(current):
             sys.exit(f"make_stubs: {CORE_STUBS} has no class {name}: add an empty one")
         body = current.find("\n", start + 1) + 1
         end = current.find("\n\n", body)
-        # The class's methods (hand-written) stay, after the generated properties.
+        # The class's methods and the properties it does not declare
+        # (hand-written) stay, after the generated properties.
+        declared_names = {f["name"].replace(".", "_") for f in declared["fields"]}
         kept, lines = [], current[body:end + 1].splitlines(keepends=True)
         k = 0
         while k < len(lines):
-            if lines[k].strip() == "@property":
-                k += 2  # a property and its def: generated
-                continue
+            if lines[k].strip() == "@property" and k + 1 < len(lines):
+                defined = lines[k + 1].strip()[len("def "):].split("(")[0]
+                if defined in declared_names:
+                    k += 2  # a declared property and its def: generated
+                    continue
             kept.append(lines[k])
             k += 1
         current = current[:body] + declared_class_body(declared) + "".join(kept) + current[end + 1:]

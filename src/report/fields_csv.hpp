@@ -10,8 +10,10 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "report/common.hpp"
 #include "stickslip/result_fields.hpp"
@@ -66,6 +68,44 @@ template <DeclaredFields T> std::string fields_csv_row(const T& x) {
             if (f.form != FieldForm::WhenSet || v != 0) out += std::to_string(v);
         }
     });
+    return out;
+}
+
+/// The header line's cells of the CSV of T's series (a struct with an axis,
+/// result_fields.hpp): the axis, then each series' estimate columns, in
+/// declaration order; T's other fields have no column (no line end).
+template <DeclaredFields T> std::string series_csv_header() {
+    std::string out;
+    T::fields([&](auto member, const FieldInfo& f) {
+        using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
+        if constexpr (std::is_same_v<Value, std::vector<double>>) {
+            if (f.form == FieldForm::Axis) out = field_flat_name(f) + out; // first, wherever declared
+        } else if constexpr (std::is_same_v<Value, std::vector<Estimate>>) {
+            out += "," + csv_estimate_header(field_flat_name(f));
+        }
+    });
+    return out;
+}
+
+/// The rows of that CSV, one per point of the axis, each with its line end.
+template <DeclaredFields T> std::string series_csv_rows(const T& x) {
+    const std::vector<double>* axis = declared_axis(x).first;
+    T::fields([&](auto member, const FieldInfo& f) {
+        using Value = std::remove_cvref_t<decltype(x.*member)>;
+        if constexpr (std::is_same_v<Value, std::vector<Estimate>>)
+            if (!axis || (x.*member).size() != axis->size())
+                throw std::logic_error(std::string("series_csv_rows: the series '") + f.name +
+                                       "' has no axis of its length (FieldForm::Axis)");
+    });
+    std::string out;
+    for (std::size_t k = 0; axis && k < axis->size(); ++k) {
+        out += csv_number((*axis)[k]);
+        T::fields([&](auto member, const FieldInfo&) {
+            using Value = std::remove_cvref_t<decltype(x.*member)>;
+            if constexpr (std::is_same_v<Value, std::vector<Estimate>>) out += "," + csv_estimate((x.*member)[k]);
+        });
+        out += "\n";
+    }
     return out;
 }
 

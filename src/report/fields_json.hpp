@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "report/common.hpp"
 #include "stickslip/result_fields.hpp"
@@ -65,18 +66,32 @@ inline ordered_json& field_owner(ordered_json& j, std::string_view& name) {
 /// number NaN, an integer 0).
 template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJsonStyle& style = {}) {
     ordered_json j = ordered_json::object();
+    const auto [axis, axis_name] = declared_axis(x);
     T::fields([&](auto member, const FieldInfo& info) {
         const auto& value = x.*member;
-        if (info.form == FieldForm::NotInBlock) return;
+        if (info.form == FieldForm::NotInBlock || info.form == FieldForm::Axis) return;
         using Value = std::decay_t<decltype(value)>;
-        if constexpr (std::is_same_v<Value, double>) {
-            if (info.form == FieldForm::WhenSet && std::isnan(value)) return;
-        } else if constexpr (std::is_integral_v<Value> && !std::is_same_v<Value, bool>) {
-            if (info.form == FieldForm::WhenSet && value == 0) return;
+        if constexpr (std::is_same_v<Value, std::vector<double>>) {
+            return; // an axis is the key of the series' points, not a key of its own
+        } else if constexpr (std::is_same_v<Value, std::vector<Estimate>>) {
+            // A series: its points along the axis, each keyed by the axis' name.
+            if (!axis || axis->size() != value.size())
+                throw std::logic_error(std::string("fields_json: the series '") + info.name +
+                                       "' has no axis of its length (FieldForm::Axis)");
+            ordered_json points = ordered_json::array();
+            for (std::size_t k = 0; k < value.size(); ++k) points.push_back(series_point(axis_name, (*axis)[k], value[k]));
+            std::string_view name = info.name;
+            field_owner(j, name)[std::string(name)] = std::move(points);
+        } else {
+            if constexpr (std::is_same_v<Value, double>) {
+                if (info.form == FieldForm::WhenSet && std::isnan(value)) return;
+            } else if constexpr (std::is_integral_v<Value> && !std::is_same_v<Value, bool>) {
+                if (info.form == FieldForm::WhenSet && value == 0) return;
+            }
+            std::string_view name = info.name;
+            ordered_json& owner = field_owner(j, name);
+            owner[std::string(name)] = field_value_json(value, info, style);
         }
-        std::string_view name = info.name;
-        ordered_json& owner = field_owner(j, name);
-        owner[std::string(name)] = field_value_json(value, info, style);
     });
     return j;
 }

@@ -7,6 +7,8 @@
 #include "core/format.hpp"
 #include "quantities/solved.hpp"
 #include "report/common.hpp"
+#include "report/fields_csv.hpp"
+#include "report/fields_json.hpp"
 #include "report/solved.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
@@ -179,15 +181,7 @@ std::string to_json(const MomentsResult& r, int indent) {
     params["level"] = q.level;
     j["params"] = params;
     j["nondimensional"] = nondimensional_json(q);
-    ordered_json m1 = ordered_json::array(), m2 = ordered_json::array(), st = ordered_json::array();
-    for (std::size_t k = 0; k < r.time.size(); ++k) {
-        m1.push_back(series_point("time", r.time[k], r.first_moment[k]));
-        m2.push_back(series_point("time", r.time[k], r.second_moment[k]));
-        st.push_back(series_point("time", r.time[k], r.stuck[k]));
-    }
-    j["first_moment"] = m1;
-    j["second_moment"] = m2;
-    j["stuck_probability"] = st;
+    append_members(j, fields_json(r));
     if (!r.density.empty()) {
         ordered_json d = ordered_json::array();
         for (std::size_t k = 0; k < r.time.size(); ++k) {
@@ -229,11 +223,7 @@ std::string to_table(const MomentsResult& r) {
 std::string to_csv(const MomentsResult& r) {
     std::ostringstream os = report_stream();
     if (r.density.empty()) {
-        os << "time," << csv_estimate_header("first_moment") << "," << csv_estimate_header("second_moment") << ","
-           << csv_estimate_header("stuck_probability") << "\n";
-        for (std::size_t k = 0; k < r.time.size(); ++k)
-            os << csv_number(r.time[k]) << "," << csv_estimate(r.first_moment[k]) << "," << csv_estimate(r.second_moment[k])
-               << "," << csv_estimate(r.stuck[k]) << "\n";
+        os << series_csv_header<MomentsResult>() << "\n" << series_csv_rows(r);
         return csv_provenance(r.request) + os.str();
     }
     os << "time,v_lo,v_hi,density,error\n";
@@ -243,7 +233,7 @@ std::string to_csv(const MomentsResult& r) {
             os << csv_number(r.time[k]) << "," << csv_number(h.edges[b]) << "," << csv_number(h.edges[b + 1]) << ","
                << csv_number(h.density[b].value) << "," << csv_number(h.density[b].error) << "\n";
     }
-    return os.str();
+    return csv_provenance(r.request) + os.str(); // what made it, as every CSV says (it was missing here)
 }
 
 // ---- correlation ----------------------------------------------------------------------
@@ -259,16 +249,7 @@ std::string to_json(const CorrelationResult& r, int indent) {
     params["level"] = q.level;
     j["params"] = params;
     j["nondimensional"] = nondimensional_json(q);
-    ordered_json a = ordered_json::array(), h = ordered_json::array(), n = ordered_json::array();
-    for (std::size_t k = 0; k < r.lag.size(); ++k) {
-        a.push_back(series_point("lag", r.lag[k], r.autocorrelation[k]));
-        h.push_back(series_point("lag", r.lag[k], r.covariance[k]));
-        n.push_back(series_point("lag", r.lag[k], r.normalised[k]));
-    }
-    j["autocorrelation"] = a;
-    j["covariance"] = h;
-    j["normalised_covariance"] = n;
-    j["mean"] = estimate_json(r.mean);
+    append_members(j, fields_json(r));
     append_members(j, long_excursion_json(r.estimates));
     j["capped"] = r.monte_carlo().totals.capped;
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
@@ -296,11 +277,7 @@ std::string to_table(const CorrelationResult& r) {
 
 std::string to_csv(const CorrelationResult& r) {
     std::ostringstream os = report_stream();
-    os << "lag," << csv_estimate_header("autocorrelation") << "," << csv_estimate_header("covariance") << ","
-       << csv_estimate_header("normalised") << "\n";
-    for (std::size_t k = 0; k < r.lag.size(); ++k)
-        os << csv_number(r.lag[k]) << "," << csv_estimate(r.autocorrelation[k]) << "," << csv_estimate(r.covariance[k]) << ","
-           << csv_estimate(r.normalised[k]) << "\n";
+    os << series_csv_header<CorrelationResult>() << "\n" << series_csv_rows(r);
     return csv_provenance(r.request) + os.str();
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +73,34 @@ TEST(ResultFields, TheCsvColumnsFollowTheDeclaration) {
               "varied,time,count,done,name,mean,mean_error,mean_lo,mean_hi,rate,rate_error,limit,"
               "nested_inner,nested_inner_error,nested_inner_lo,nested_inner_hi");
     EXPECT_EQ(detail::fields_csv_row(d), ",2.5,7,true,\"a, \"\"b\"\"\",1,0.1,0.8,1.2,3,0.3,inf,4,0.4,3.2,4.8");
+}
+
+/// A result along an axis: the axis declared last, to show it leads the CSV anyway.
+struct DemoSeries {
+    std::vector<Estimate> level{{1.0, 0.1, 0.8, 1.2, 0.95}, {2.0, 0.2, 1.6, 2.4, 0.95}};
+    Estimate total{3.0, 0.3, 2.4, 3.6, 0.95};
+    std::vector<double> depth{0.5, 1.5};
+
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        visit(&DemoSeries::level, FieldInfo{"level", "m", "a series"});
+        visit(&DemoSeries::total, FieldInfo{"total", "m", "a value beside it"});
+        visit(&DemoSeries::depth, FieldInfo{"depth", "m", "the axis", FieldForm::Axis});
+    }
+};
+
+TEST(ResultFields, ASeriesIsWrittenAlongItsAxis) {
+    DemoSeries d;
+    const detail::ordered_json j = detail::fields_json(d);
+    EXPECT_EQ(j.dump(), R"({"level":[{"depth":0.5,"value":1.0,"error":0.1,"ci":[0.8,1.2],"kind":"sampled"},)"
+                        R"({"depth":1.5,"value":2.0,"error":0.2,"ci":[1.6,2.4],"kind":"sampled"}],)"
+                        R"("total":{"value":3.0,"error":0.3,"ci":[2.4,3.6],"level":0.95,"kind":"sampled"}})");
+    // The CSV: a row per point, the axis first; values beside the series have no column.
+    EXPECT_EQ(detail::series_csv_header<DemoSeries>(), "depth,level,level_error,level_lo,level_hi");
+    EXPECT_EQ(detail::series_csv_rows(d), "0.5,1,0.1,0.8,1.2\n1.5,2,0.2,1.6,2.4\n");
+    // A series longer than its axis is the writer's bug: refused, not read past the axis.
+    d.level.push_back(d.total);
+    EXPECT_THROW((void)detail::fields_json(d), std::logic_error);
+    EXPECT_THROW((void)detail::series_csv_rows(d), std::logic_error);
 }
 
 TEST(ResultFields, AnEstimateIsWrittenAsItsKindSays) {
