@@ -126,8 +126,12 @@ struct DensityResult : MethodResult {
     DensityRequest request;
     /// The stationary density of V [s/m] with P(V = 0) and the tails.
     VelocityHistogram histogram;
-    Estimate mean;     ///< stationary E[V] = M0 [m/s]
-    Estimate variance; ///< stationary Var(V) [m^2/s^2]
+    /// The stationary moments, each one's unit and meaning declared in
+    /// fields() below.
+    /// @{
+    Estimate mean;
+    Estimate variance;
+    /// @}
     LongExcursionEstimates estimates; ///< D, M0, E[t1] of the same excursions
     /// Notes for the user, one sentence each: those of DiffusivityResult, and
     /// on the sampling of the path, P(V = 0) and mass outside the range.
@@ -142,6 +146,14 @@ struct DensityResult : MethodResult {
     /// Solved), so that they are where a sampled run has them; the
     /// histogram's bins are unset. Empty for a sampled result.
     std::optional<KolmogorovResult> solution;
+
+    /// The fields, in report order (result_fields.hpp); the histogram, the
+    /// long-excursion estimates and the solver's result are written by hand.
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = DensityResult;
+        visit(&S::mean, FieldInfo{"mean", "m/s", "the stationary mean velocity E[V] = M0"});
+        visit(&S::variance, FieldInfo{"variance", "m^2/s^2", "the stationary variance of the velocity Var(V)"});
+    }
 };
 
 /// Every check of the request (InvalidParameter on the first problem): the

@@ -118,7 +118,8 @@ template <class F> void fields(F& f, BruteForceResult& x) {
     f(static_cast<MethodResult&>(x), x.request, x.estimates, x.start_noise, x.warnings);
 }
 template <class F> void fields(F& f, DensityResult& x) {
-    f(static_cast<MethodResult&>(x), x.request, x.histogram, x.mean, x.variance, x.estimates, x.warnings, x.solution);
+    f(static_cast<MethodResult&>(x), x.request, x.histogram, x.estimates, x.warnings, x.solution);
+    declared_fields(f, x);
 }
 // A result that declares its fields: what it does not declare, then the
 // declared fields (so that a new one is pickled without a line here).

@@ -265,6 +265,7 @@ void bind_results(py::module_& m) {
                         "Stationary velocity density with error bars (stickslip.density): a histogram of the "
                         "continuous part of the law of V plus the atom P(V = 0), and D, M0, E[t1] of the same "
                         "excursions. to_dict() is the CLI's JSON.");
+        bind_fields<R>(c, "DensityResult", "merged:stationary_density_report");
         add_declared_fields(c, [](const R& r) -> const LongExcursionEstimates& { return r.estimates; });
         add_totals<R>(c);
         add_request_params<R>(c);
@@ -298,8 +299,6 @@ void bind_results(py::module_& m) {
                 "below", [](const R& r) { return r.histogram.below; }, "P(V < edges[0], V != 0) (Estimate)")
             .def_property_readonly(
                 "above", [](const R& r) { return r.histogram.above; }, "P(V >= edges[-1], V != 0) (Estimate)")
-            .def_readonly("mean", &R::mean, "stationary E[V] = M0 [m/s] (Estimate)")
-            .def_readonly("variance", &R::variance, "stationary Var(V) [m^2/s^2] (Estimate)")
             .def("__repr__", [](const R& r) {
                 if (r.solution) {
                     const KolmogorovGridSolution& fine = r.solution->levels.back();

@@ -248,6 +248,10 @@ class BruteForceResult(_Totals):
 
 class DensityResult(_LongExcursions):
     @property
+    def mean(self) -> Estimate: ...  # [m/s]
+    @property
+    def variance(self) -> Estimate: ...  # [m^2/s^2]
+    @property
     def histogram(self) -> Histogram: ...
     @property
     def edges(self) -> FloatArray: ...
@@ -265,10 +269,6 @@ class DensityResult(_LongExcursions):
     def below(self) -> Estimate: ...
     @property
     def above(self) -> Estimate: ...
-    @property
-    def mean(self) -> Estimate: ...
-    @property
-    def variance(self) -> Estimate: ...
 
 class CorrelationResult(_LongExcursions):
     @property

@@ -68,8 +68,7 @@ std::string solved_json(const DensityResult& r, int indent) {
     h["below"] = solved_estimate_json(0.0, tail_mass);
     h["above"] = solved_estimate_json(0.0, tail_mass);
     j["histogram"] = h;
-    j["mean"] = estimate_json(s.mobility);
-    j["variance"] = estimate_json(s.velocity_variance);
+    append_members(j, fields_json(r)); // the solver's, where a sampled result has them
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
     add_report_tail(j, r.request, &work, r.warnings, s.interrupted);
@@ -125,8 +124,7 @@ std::string to_json(const DensityResult& r, int indent) {
     j["nondimensional"] = nondimensional_json(q);
     j["histogram"] = histogram_json(r.histogram);
     j["stuck_probability"] = estimate_json(r.histogram.stuck);
-    j["mean"] = estimate_json(r.mean);
-    j["variance"] = estimate_json(r.variance);
+    append_members(j, fields_json(r));
     append_members(j, long_excursion_json(r.estimates));
     j["capped"] = r.monte_carlo().totals.capped;
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
