@@ -81,10 +81,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     nd["mobility"] = r.estimates.mobility.value / sc.velocity;
     nd["mean_duration"] = r.estimates.mean_duration.value / sc.time;
     j["nondimensional"] = nd;
-    j["diffusivity"] = estimate_json(r.estimates.diffusivity);
-    j["mobility"] = estimate_json(r.estimates.mobility);
-    j["mean_duration"] = estimate_json(r.estimates.mean_duration, false);
-    j["completed"] = r.estimates.excursions;
+    append_members(j, long_excursion_json(r.estimates));
     j["capped"] = r.monte_carlo().totals.capped;
     if (q.rel_precision > 0) {
         ordered_json pr = fields_json(r.precision);
