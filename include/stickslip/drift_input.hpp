@@ -81,11 +81,6 @@ std::string drift_params_with(const std::string& params, const std::string& name
 /// knots over [lower, upper] m/s, off by at most E m s^-2".
 std::string drift_law_note(const DriftLawReport& law);
 
-/// The drift law's own time scale [s]: relaxation for the affine law, 1/L for
-/// another (L its largest slope; +inf for a law without slope). What the
-/// automatic steps and the step checks compare a step with.
-double drift_time_scale(const ModelParams& p);
-
 /// The rows of a table file: one "v,b" pair per line (SI: m/s, m s^-2), '#'
 /// comments, blank lines and one header line of non-numbers allowed. Throws
 /// InvalidParameter("drift-table", ...) when the file cannot be read, is larger

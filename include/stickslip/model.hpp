@@ -51,8 +51,9 @@ struct Model {
     double upper_threshold() const;
     /// Lower noise threshold x-* = (-friction - b(0)) / sqrt(noise/2) [s^-1/2].
     double lower_threshold() const;
-    /// The drift's time scale [s]: relaxation for the affine law, 1/L for a
-    /// drift law of largest slope L (inf when it is flat).
+    /// The drift law's own time scale [s]: relaxation for the affine law, 1/L
+    /// for another (L its largest slope; +inf for a law without slope). What
+    /// the automatic steps and the step checks compare a step with.
     double drift_time_scale() const;
 };
 

@@ -75,6 +75,12 @@ struct ModelParams {
     double lower_threshold() const;
 };
 
+/// The noise thresholds [s^-1/2] of p when its drift at rest is b0 [m s^-2]:
+/// (friction - b0)/a (upper, side +1) or (-friction - b0)/a (lower, side -1),
+/// a = sqrt(noise/2). The one formula behind ModelParams' and Model's
+/// thresholds, which differ only in where b0 comes from.
+double noise_threshold(const ModelParams& p, double b0, int side);
+
 /// The model parameters, as the command line, config files and Python name them.
 template <class Visitor>
 void visit_settings(ModelParams& p, Visitor&& v) {

@@ -209,12 +209,6 @@ double reach(const std::function<double(double)>& b, const ModelParams& p, int s
 
 } // namespace
 
-double drift_time_scale(const ModelParams& p) {
-    if (!p.has_drift_law()) return p.relaxation;
-    const double lip = lipschitz_constant(make_drift_law(p));
-    return lip > 0 ? 1.0 / lip : HUGE_VAL;
-}
-
 void read_drift_table(const std::string& path, std::vector<double>& v, std::vector<double>& b, std::string* digest) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))

@@ -7,14 +7,14 @@
 
 namespace stickslip {
 
-// Each formula is the one of ModelParams (params.cpp), on the law made once,
-// so that a run's numbers are bit for bit those of the parameters' own.
+// The formulas of ModelParams (params.cpp), on the law made once, so that a
+// run's numbers are bit for bit those of the parameters' own.
 
 double Model::drift_at_zero() const { return params.has_drift_law() ? (*law)(0.0) : params.bias; }
 
-double Model::upper_threshold() const { return (params.friction - drift_at_zero()) / params.force_amplitude(); }
+double Model::upper_threshold() const { return noise_threshold(params, drift_at_zero(), +1); }
 
-double Model::lower_threshold() const { return (-params.friction - drift_at_zero()) / params.force_amplitude(); }
+double Model::lower_threshold() const { return noise_threshold(params, drift_at_zero(), -1); }
 
 double Model::drift_time_scale() const {
     if (!params.has_drift_law()) return params.relaxation;

@@ -21,9 +21,13 @@ double ModelParams::drift_at(double v) const {
 
 double ModelParams::drift_at_zero() const { return has_drift_law() ? make_drift_law(*this)(0.0) : bias; }
 
-double ModelParams::upper_threshold() const { return (friction - drift_at_zero()) / force_amplitude(); }
+double noise_threshold(const ModelParams& p, double b0, int side) {
+    return (side * p.friction - b0) / p.force_amplitude();
+}
 
-double ModelParams::lower_threshold() const { return (-friction - drift_at_zero()) / force_amplitude(); }
+double ModelParams::upper_threshold() const { return noise_threshold(*this, drift_at_zero(), +1); }
+
+double ModelParams::lower_threshold() const { return noise_threshold(*this, drift_at_zero(), -1); }
 
 Scales scales_of(const ModelParams& p) {
     Scales s{};
