@@ -38,8 +38,9 @@ struct Model {
     /// The law b(v) [m s^-2] that runs: the affine law -v/relaxation + bias
     /// when params gives no drift law, else its knots (drift_input.hpp).
     /// Shared, so that copies of a Model (a prepared engine's) are cheap and
-    /// one law of 16 KiB serves them all; never null in a Model that
-    /// make_model made.
+    /// one law of 16 KiB serves them all, and models of one affine law (a
+    /// sweep's points over noise and tau) share it too; never null in a Model
+    /// that make_model made.
     std::shared_ptr<const DriftLaw> law;
     /// How `law` was made (source, range, knots, interpolation error, notes).
     DriftLawReport law_report;

@@ -328,6 +328,7 @@ TEST(DriftLawQuadrature, KnotRefinementConvergesAtSecondOrder) {
 
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/sweep.hpp"
+#include "stickslip/model.hpp"
 #include "stickslip/prepared_engine.hpp"
 
 namespace {
@@ -390,6 +391,22 @@ TEST(DriftLaw, ARunTakesItsLawAsData) {
     const ss::DiffusivityResult r = ss::compute_diffusivity(req, engine);
     EXPECT_EQ(ss::drift_laws_made() - before, 0u) << "laws made by a run on a prepared engine, with its corrector";
     EXPECT_TRUE(r.control_variate.has_value()) << "the corrector (which needs the law too) ran";
+}
+
+// A prepared point keeps its Model: the affine law, which the noise and tau
+// do not enter, is one allocation for every point of a sweep over them.
+TEST(DriftLaw, ModelsOfOneAffineLawShareIt) {
+    ss::ModelParams p;
+    ss::ModelParams q = p;
+    q.noise = 2 * p.noise;
+    q.tau = 3 * p.tau;
+    const ss::Model a = ss::make_model(p), b = ss::make_model(q);
+    EXPECT_EQ(a.law.get(), b.law.get());
+    q.bias = 0.5; // another law
+    const ss::Model c = ss::make_model(q);
+    EXPECT_NE(c.law.get(), a.law.get());
+    EXPECT_EQ(c.law->intercept, 0.5);
+    EXPECT_EQ(a.law->intercept, p.bias);
 }
 
 // A table rewritten after a run was prepared changes nothing in that run: the
