@@ -147,6 +147,7 @@
 #include <vector>
 
 #include "stickslip/method.hpp"
+#include "stickslip/result_fields.hpp"
 #include "stickslip/model.hpp"
 #include "stickslip/params.hpp"
 
@@ -317,6 +318,19 @@ struct KolmogorovResult : MethodResult {
     bool interrupted = false;
     std::string note;                    ///< why not, or other remarks; empty when none
     double seconds = 0;                  ///< wall time [s]
+
+    /// The quantities every solved report gives, in report order
+    /// (result_fields.hpp): each with its discretisation error, no interval.
+    /// The grid, the other estimates and the precision are written by hand.
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = KolmogorovResult;
+        visit(&S::diffusivity, FieldInfo{"diffusivity", "m^2/s", "D, the effective diffusivity", FieldForm::NoInterval});
+        visit(&S::mobility, FieldInfo{"mobility", "m/s", "M0, the mean velocity", FieldForm::NoInterval});
+        visit(&S::stuck_probability,
+              FieldInfo{"stuck_probability", "", "P(V = 0), the stationary probability of sticking", FieldForm::NoInterval});
+        visit(&S::mean_duration,
+              FieldInfo{"mean_duration", "s", "E[t1], the mean duration of a long excursion", FieldForm::NoInterval});
+    }
 };
 
 /// Bytes of memory per nonzero of the LU factors, for the memory budget

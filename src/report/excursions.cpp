@@ -53,14 +53,10 @@ std::string solved_csv(const DiffusivityResult& r) {
     const auto& p = r.request.params;
     const KolmogorovResult& s = *r.solution;
     std::ostringstream os = report_stream();
-    os << "engine,friction,noise,tau,relaxation,bias,diffusivity,diffusivity_error,mobility,mobility_error,"
-          "stuck_probability,stuck_probability_error,mean_duration,mean_duration_error\n";
+    os << "engine,friction,noise,tau,relaxation,bias," << fields_csv_header<KolmogorovResult>() << "\n";
     os << to_string(r.request.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
        << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
-       << csv_number(s.diffusivity.value) << "," << csv_number(s.diffusivity.error) << ","
-       << csv_number(s.mobility.value) << "," << csv_number(s.mobility.error) << ","
-       << csv_number(s.stuck_probability.value) << "," << csv_number(s.stuck_probability.error) << ","
-       << csv_number(s.mean_duration.value) << "," << csv_number(s.mean_duration.error) << "\n";
+       << fields_csv_row(s) << "\n";
     return os.str();
 }
 

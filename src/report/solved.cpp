@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "core/format.hpp"
+#include "report/fields_json.hpp"
 #include "stickslip/number_text.hpp"
 
 namespace stickslip::detail {
@@ -34,10 +35,7 @@ ordered_json solved_head(const char* quantity, const RunSettings& r) {
 }
 
 void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const KolmogorovSettings& settings) {
-    j["diffusivity"] = estimate_json(s.diffusivity);
-    j["mobility"] = estimate_json(s.mobility);
-    j["stuck_probability"] = estimate_json(s.stuck_probability);
-    j["mean_duration"] = estimate_json(s.mean_duration);
+    append_members(j, fields_json(s));
     ordered_json pr;
     pr["target"] = settings.rel_precision;
     pr["relative_error"] = json_number(relative_error(s));

@@ -143,10 +143,7 @@ std::string solved_json(const SweepResult& r, int indent) {
         if (r.varies()) o["varied"] = p.varied;
         o["noise"] = p.noise;
         o["tau"] = p.tau;
-        o["diffusivity"] = estimate_json(s.diffusivity);
-        o["mobility"] = estimate_json(s.mobility);
-        o["stuck_probability"] = estimate_json(s.stuck_probability);
-        o["mean_duration"] = estimate_json(s.mean_duration);
+        append_members(o, fields_json(s));
         o["precision_reached"] = s.converged;
         o["slope"] = estimate_json(p.slope);
         o["white_ratio"] = estimate_json(p.white_ratio);
@@ -210,17 +207,14 @@ std::string solved_table(const SweepResult& r) {
 
 std::string solved_csv(const SweepResult& r) {
     std::ostringstream os = report_stream();
-    os << (r.varies() ? "varied," : "") << "tau,noise,diffusivity,diffusivity_error,mobility,mobility_error,stuck_probability,stuck_probability_error,"
-          "mean_duration,mean_duration_error,slope,slope_error,tau_nondim,diffusivity_nondim,states,white_ratio,"
-          "white_ratio_error\n";
+    os << (r.varies() ? "varied," : "") << "tau,noise," << fields_csv_header<KolmogorovResult>()
+       << ",slope,slope_error,tau_nondim,diffusivity_nondim,states,white_ratio,white_ratio_error\n";
     for (const auto& p : r.points) {
         const KolmogorovResult& s = *p.solution;
         const Scales sc = scales_of(point_params(r, p));
         if (r.varies()) os << csv_number(p.varied) << ",";
         os << csv_number(p.tau) << "," << csv_number(p.noise);
-        for (const Estimate* e : {&s.diffusivity, &s.mobility, &s.stuck_probability, &s.mean_duration})
-            os << "," << csv_number(e->value) << "," << csv_number(e->error);
-        os << "," << csv_number(p.slope.value) << "," << csv_number(p.slope.error) << ","
+        os << "," << fields_csv_row(s) << "," << csv_number(p.slope.value) << "," << csv_number(p.slope.error) << ","
            << csv_number(p.tau / sc.time) << "," << csv_number(s.diffusivity.value / sc.diffusivity) << "," << p.work
            << "," << csv_number(p.white_ratio.value) << "," << csv_number(p.white_ratio.error) << "\n";
     }

@@ -16,6 +16,8 @@
 #include "report/fields_csv.hpp"
 #include "report/fields_json.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/kolmogorov.hpp"
+#include "stickslip/observables.hpp"
 #include "stickslip/result_fields.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -138,6 +140,10 @@ TEST(ResultFields, NamesAreUniqueAndDocumented) {
     check(std::type_identity<SweepExponent>{});
     check(std::type_identity<SweepWhiteLimit>{});
     check(std::type_identity<ControlVariateReport>{});
+    check(std::type_identity<KolmogorovResult>{});
+    check(std::type_identity<CorrelationResult>{});
+    check(std::type_identity<MomentsResult>{});
+    check(std::type_identity<DensityResult>{});
 }
 
 } // namespace
