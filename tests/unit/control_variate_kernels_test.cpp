@@ -196,6 +196,20 @@ TEST(ControlVariateCorrector, ColouredNeedsTheKolmogorovSolversRange) {
     EXPECT_LT(c->diffusivity, 0.6);
 }
 
+// The corrector kept for the next run of the same model is keyed by the
+// model's law too: two callables (or two versions of a table file) under the
+// same settings are two models; the second got the first one's table.
+TEST(ControlVariateCorrector, AnotherLawUnderTheSameSettingsGetsItsOwn) {
+    ss::ModelParams a;
+    a.drift_function = [](double v) { return -v / 0.067 + 0.342; };
+    ss::ModelParams b = a;
+    b.drift_function = [](double v) { return -v / 0.067 + 1.0; };
+    const auto ca = ss::make_corrector(a), cb = ss::make_corrector(b);
+    EXPECT_NE(ca.get(), cb.get());
+    EXPECT_NE(ca->slide, cb->slide);
+    EXPECT_EQ(ss::make_corrector(b).get(), cb.get()) << "the same model again: the kept one";
+}
+
 TEST(ControlVariateKernels, ResolventColouredBothRules) {
     const ss::ModelParams p = pure_dry(1.0);
     const auto g = ss::make_corrector(p);

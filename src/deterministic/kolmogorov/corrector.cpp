@@ -203,13 +203,18 @@ std::shared_ptr<const Corrector> make_corrector(const Model& m) {
     if (!has_corrector(p, &why)) throw InvalidParameter("control-variate", "no corrector: " + why);
     // The last corrector made is kept: a sweep's --check-dt twin, a loop of
     // runs from Python and a coverage study ask for the same model again and
-    // again, and the table depends on the model alone.
+    // again, and the table depends on the model alone: its settings and the
+    // bits of its law (the settings do not show a callable's behaviour, nor a
+    // table file's rows, which two runs of one process may see differ).
     static std::mutex mutex;
     static std::string last_key;
     static std::shared_ptr<const Corrector> last;
     std::string key;
     ModelParams copy = p;
     visit_settings(copy, [&](auto&& field, const SettingInfo&) { key += format_setting(field) + '\n'; });
+    const DriftLaw& law = *m.law;
+    for (double x : {law.slope, law.intercept, law.first, law.spacing}) key.append(reinterpret_cast<const char*>(&x), sizeof x);
+    key.append(reinterpret_cast<const char*>(law.values), sizeof(double) * static_cast<std::size_t>(law.knots));
     {
         std::lock_guard<std::mutex> lock(mutex);
         if (last && key == last_key) return last;
