@@ -387,6 +387,9 @@ void bind_results(py::module_& m) {
             .def_property_readonly(
                 "duration", [](const R& r) { return r.excursion.duration; }, "excursion mode: its duration [s]")
             .def_property_readonly(
+                "first_half_duration", [](const R& r) { return r.excursion.first_half; },
+                "excursion mode: the duration of its first half-excursion [s] (the JSON's first_half_duration)")
+            .def_property_readonly(
                 "complete", [](const R& r) { return !r.excursion.capped; },
                 "excursion mode: False if it hit the runaway guard (max_steps)")
             .def_property_readonly(

@@ -90,6 +90,11 @@ class TrajectoryTest(unittest.TestCase):
         self.assertTrue(set(np.unique(path.mode)) <= {-1, 0, 1})
         self.assertTrue(r.complete)
         self.assertAlmostEqual(path.t[-1], r.duration, delta=1e-9 * max(1.0, r.duration))
+        # Every number of the JSON's excursion under its JSON name.
+        d = r.to_dict()
+        for name in ("displacement", "duration", "first_half_duration", "complete"):
+            self.assertEqual(getattr(r, name), d[name], name)
+        self.assertTrue(0 < r.first_half_duration < r.duration)
         cli = cli_json("trajectory", "--engine", "pdmp", "--seed", "3", "--index", "2")
         self.assertEqual(without_work(r.to_dict()), without_work(cli))
 
