@@ -48,10 +48,10 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
 /// at tau' = 1 1e-7.
 constexpr double kCorrectorEdgeMass = 1e-3;
 
-std::shared_ptr<Corrector> coloured_corrector(const Model& m) {
+std::shared_ptr<Corrector> coloured_corrector(const Model& model) {
     namespace k = detail::kolmogorov;
-    const ModelParams& p = m.params;
-    const stickslip::DriftLaw& law = *m.law;
+    const ModelParams& p = model.params;
+    const stickslip::DriftLaw& law = *model.law;
     const k::DriftLaw drift(law);
     KolmogorovSettings settings;
     const KolmogorovGrid grid = k::make_kolmogorov_grid(p, settings, corrector_grid_level, drift);
