@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "report/common.hpp"
@@ -66,7 +67,10 @@ inline ordered_json& field_owner(ordered_json& j, std::string_view& name) {
 /// number NaN, an integer 0).
 template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJsonStyle& style = {}) {
     ordered_json j = ordered_json::object();
-    const auto [axis, axis_name] = declared_axis(x);
+    // Not a structured binding: a lambda cannot capture one before C++20's clang 16.
+    const std::pair<const std::vector<double>*, const char*> axis_of = declared_axis(x);
+    const std::vector<double>* axis = axis_of.first;
+    const char* axis_name = axis_of.second;
     T::fields([&](auto member, const FieldInfo& info) {
         const auto& value = x.*member;
         if (info.form == FieldForm::NotInBlock || info.form == FieldForm::Axis) return;
