@@ -67,7 +67,7 @@ inline ordered_json& field_owner(ordered_json& j, std::string_view& name) {
 /// number NaN, an integer 0).
 template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJsonStyle& style = {}) {
     ordered_json j = ordered_json::object();
-    // Not a structured binding: a lambda cannot capture one before C++20's clang 16.
+    // Not a structured binding: clang before 16 cannot capture one in a lambda.
     const std::pair<const std::vector<double>*, const char*> axis_of = declared_axis(x);
     const std::vector<double>* axis = axis_of.first;
     const char* axis_name = axis_of.second;
