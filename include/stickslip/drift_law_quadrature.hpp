@@ -25,6 +25,7 @@
 
 #include "stickslip/drift_law.hpp"
 #include "stickslip/params.hpp"
+#include "stickslip/result_fields.hpp"
 
 namespace stickslip {
 
@@ -35,6 +36,16 @@ struct WhiteNoiseReference {
     double mobility;    ///< M0 [m/s]
     double diffusivity; ///< D [m^2/s]
     double variance;    ///< stationary Var(V) [m^2/s^2]
+
+    /// The fields, in report order (result_fields.hpp): each a reference of
+    /// the report's model (exact for the affine law, solved for a quadrature).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using W = WhiteNoiseReference;
+        visit(&W::mobility, FieldInfo{"mobility", "m/s", "M0 with white noise", FieldForm::Reference});
+        visit(&W::diffusivity, FieldInfo{"diffusivity", "m^2/s", "D with white noise", FieldForm::Reference});
+        visit(&W::variance, FieldInfo{"variance", "m^2/s^2", "the stationary Var(V) with white noise",
+                                      FieldForm::Reference});
+    }
 };
 
 /// The white-noise stationary law of p's drift law (p.tau is ignored), built

@@ -182,10 +182,9 @@ void bind_analytic(py::module_& m) {
                     "Exact white-noise references for one parameter set (stickslip.analytic.white_noise): what "
                     "`stickslip analytic` prints. to_dict() is the CLI's JSON.");
     add_renderings<R>(c);
+    add_declared_fields(c, [](const R& r) -> const WhiteNoiseReference& { return r.reference; });
+    note_declared<WhiteNoiseReference>("WhiteNoiseResult", "merged:white_noise_reference_report");
     c.def_property_readonly("params", [](const R& r) { return r.request.params; })
-        .def_property_readonly("mobility", [](const R& r) { return r.reference.mobility; }, "M0 [m/s]")
-        .def_property_readonly("diffusivity", [](const R& r) { return r.reference.diffusivity; }, "D [m^2/s]")
-        .def_property_readonly("variance", [](const R& r) { return r.reference.variance; }, "Var(V) [m^2/s^2]")
         .def_property_readonly("times", [](const R& r) { return to_array(r.request.times); }, "t [s], shape (n,)")
         .def_property_readonly("v0", [](const R& r) { return r.request.v0; }, "initial velocity [m/s]")
         .def_property_readonly(

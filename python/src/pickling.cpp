@@ -84,7 +84,6 @@ template <class F> void fields(F& f, SweepPoint& x) {
     f(x.noise, x.tau, x.varied, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope,
       x.white_ratio, x.warnings);
 }
-template <class F> void fields(F& f, WhiteNoiseReference& x) { f(x.mobility, x.diffusivity, x.variance); }
 
 /// The model: its settings, and the law's knots given as arrays (a callable
 /// is sampled on them when given, so it is not needed afterwards).

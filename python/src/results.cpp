@@ -53,26 +53,6 @@ void add_totals(Cls& cls) {
             "samples restored from a checkpoint (resume=) rather than computed");
 }
 
-/// The declared fields (result_fields.hpp) of the part get(r) of a result, as
-/// properties of the result (an enum as its name), with the declaration's
-/// docstrings: D, M0, E[t1] and the excursions completed of the long
-/// excursions behind a result, D_t and U(t)/t of brute force.
-template <class Cls, class Get>
-void add_declared_fields(Cls& cls, Get get) {
-    using R = typename Cls::type;
-    using T = std::remove_cvref_t<decltype(get(std::declval<const R&>()))>;
-    T::fields([&](auto member, const FieldInfo& f) {
-        cls.def_property_readonly(
-            field_flat_name(f).c_str(),
-            [get, member](const R& r) {
-                const auto& value = get(r).*member;
-                if constexpr (std::is_enum_v<std::remove_cvref_t<decltype(value)>>) return to_string(value);
-                else return value;
-            },
-            field_doc(f).c_str());
-    });
-}
-
 EstimateSeries series(const std::vector<Estimate>& v, double level) { return EstimateSeries{v, level, {}}; }
 
 std::string g4(double x) { return number_text::general(x, 4); }

@@ -392,11 +392,11 @@ class SweepResult(_Rendered):
 
 class WhiteNoiseResult(_Rendered):
     @property
-    def mobility(self) -> float: ...
+    def mobility(self) -> float: ...  # [m/s]
     @property
-    def diffusivity(self) -> float: ...
+    def diffusivity(self) -> float: ...  # [m^2/s]
     @property
-    def variance(self) -> float: ...
+    def variance(self) -> float: ...  # [m^2/s^2]
     @property
     def times(self) -> FloatArray: ...
     @property

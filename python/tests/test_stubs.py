@@ -32,7 +32,7 @@ class StubsTest(unittest.TestCase):
         for d in declared:
             if not d["python_class"] or d["python_class"].startswith("_"):
                 continue  # a dict of its JSON block, or flattened into the results (a stub-only base)
-            cls = getattr(stickslip, d["python_class"])
+            cls = getattr(stickslip._core, d["python_class"])  # every class, exported or not
             for f in d["fields"]:
                 prop = getattr(cls, f["name"].replace(".", "_"))
                 self.assertIsInstance(prop, property, f["name"])

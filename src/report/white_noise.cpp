@@ -4,6 +4,8 @@
 
 #include "core/format.hpp"
 #include "report/common.hpp"
+#include "report/fields_csv.hpp"
+#include "report/fields_json.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
 
@@ -17,12 +19,9 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
     const auto& q = r.request;
     const Scales sc = scales_of(q.params);
     const bool law = q.params.has_drift_law();
-    const auto reference = [&](double x) { return white_reference_json(x, q.params); };
     ordered_json j;
     j["quantity"] = "white_noise_reference";
-    j["mobility"] = reference(r.reference.mobility);
-    j["diffusivity"] = reference(r.reference.diffusivity);
-    j["variance"] = reference(r.reference.variance);
+    append_members(j, fields_json(r.reference, FieldJsonStyle{&q.params}));
     const GridDetails& g = r.grid();
     if (!q.times.empty()) {
         // Series with the paths of the sampled ones (moments' first_moment,
@@ -122,11 +121,10 @@ std::string to_table(const WhiteNoiseResult& r) {
 std::string to_csv(const WhiteNoiseResult& r) {
     std::ostringstream os = report_stream();
     const auto& q = r.request;
-    os << "mobility,diffusivity,variance";
+    os << fields_csv_header<WhiteNoiseReference>();
     if (!q.times.empty()) os << ",time,first_moment,autocorrelation";
     os << "\n";
-    const std::string head = csv_number(r.reference.mobility) + "," + csv_number(r.reference.diffusivity) + "," +
-                             csv_number(r.reference.variance);
+    const std::string head = fields_csv_row(r.reference);
     if (q.times.empty()) os << head << "\n";
     for (std::size_t k = 0; k < q.times.size(); ++k)
         os << head << "," << csv_number(q.times[k]) << "," << csv_number(r.first_moment[k]) << ","
