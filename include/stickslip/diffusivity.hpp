@@ -204,21 +204,32 @@ struct PrecisionOutcome {
     /// The fields, each one's unit and meaning declared in fields() below.
     /// @{
     double target = 0.0;
-    double relative_half_width = 0.0;
+    double relative_error = std::numeric_limits<double>::quiet_NaN();
+    double relative_half_width = std::numeric_limits<double>::quiet_NaN();
     bool reached = true;
     int batches = 1;
+    std::uint64_t max_excursions = 0;
     /// @}
 
-    /// The fields, in report order (result_fields.hpp).
+    /// The fields, in report order (result_fields.hpp). A sampled run sets
+    /// relative_half_width, batches and max_excursions, a solver
+    /// relative_error: the same block, with what each method knows.
     template <class Visit> static constexpr void fields(Visit&& visit) {
         using S = PrecisionOutcome;
         visit(&S::target, FieldInfo{"target", "", "the requested relative half-width of D's interval (0: mode off)"});
-        visit(&S::relative_half_width,
-              FieldInfo{"relative_half_width", "", "the relative half-width (hi - D)/D achieved"});
+        visit(&S::relative_error, FieldInfo{"relative_error", "",
+                                            "solved: D's estimated relative discretisation error",
+                                            FieldForm::WhenSet});
+        visit(&S::relative_half_width, FieldInfo{"relative_half_width", "",
+                                                 "sampled: the relative half-width (hi - D)/D achieved",
+                                                 FieldForm::WhenSet});
         visit(&S::reached, FieldInfo{"reached", "",
                                      "whether the target was met (true when the mode is off); if not, a warning "
                                      "says why (max_excursions, interrupted)"});
-        visit(&S::batches, FieldInfo{"batches", "", "batches of excursions run (1 when the mode is off)"});
+        visit(&S::batches, FieldInfo{"batches", "", "sampled: batches of excursions run (1 when the mode is off)",
+                                     FieldForm::WhenSet});
+        visit(&S::max_excursions, FieldInfo{"max_excursions", "", "sampled: the request's cap on excursions",
+                                            FieldForm::WhenSet});
     }
 };
 

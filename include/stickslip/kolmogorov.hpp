@@ -349,15 +349,41 @@ inline constexpr double kolmogorov_near_white_below = 0.1;
 /// D and M0 with the bound that its grids measure at this tau' (near_white.cpp).
 inline constexpr double kolmogorov_white_limit_below = 1e-6;
 
-/// What the grids of a solve spanned (no one grid is fine in both directions).
+/// What the grids of a solve spanned (no one grid is fine in both
+/// directions): the solved reports' engine_details.grid.
 struct KolmogorovGridSpan {
-    std::size_t largest_states = 0; ///< states of the largest grid solved
-    std::size_t x_nodes = 0;        ///< x nodes of the finest x spacing solved
-    std::size_t v_cells = 0;        ///< velocity cells (both half lines) of the finest v cells solved
-    double tail_mass = 0;           ///< the largest KolmogorovGridSolution::tail_mass of the grids
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    std::size_t largest_states = 0;
+    std::size_t x_nodes = 0;
+    double x_lower = 0, x_upper = 0;
+    std::size_t v_cells = 0;
+    double v_lower = 0, v_upper = 0;
+    std::size_t grids_solved = 0;
+    double tail_mass = 0;
+    Estimate diffusivity_x;
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = KolmogorovGridSpan;
+        visit(&S::largest_states, FieldInfo{"states", "", "states of the largest grid solved"});
+        visit(&S::x_nodes, FieldInfo{"x_nodes", "", "noise nodes of the finest noise spacing solved"});
+        visit(&S::x_lower, FieldInfo{"x_lower", "s^-1/2", "the lowest noise node of the last grid"});
+        visit(&S::x_upper, FieldInfo{"x_upper", "s^-1/2", "the highest noise node of the last grid"});
+        visit(&S::v_cells, FieldInfo{"v_cells", "", "velocity cells (both half lines) of the finest velocity cells solved"});
+        visit(&S::v_lower, FieldInfo{"v_lower", "m/s", "the lowest velocity face of the last grid"});
+        visit(&S::v_upper, FieldInfo{"v_upper", "m/s", "the highest velocity face of the last grid"});
+        visit(&S::grids_solved, FieldInfo{"grids_solved", "", "grids solved, each once"});
+        visit(&S::tail_mass, FieldInfo{"tail_mass", "", "the largest mass any grid holds in its outermost cells"});
+        visit(&S::diffusivity_x,
+              FieldInfo{"diffusivity_x", "m^2/s",
+                        "D from the noise moves' carre du champ, extrapolated like D: the same limit with another "
+                        "discretisation error, a check on the extrapolation"});
+    }
 };
 
-/// The span of r.levels (not empty).
+/// The span of r.levels (not empty); the last grid's ranges.
 KolmogorovGridSpan grid_span(const KolmogorovResult& r);
 
 /// Solves the chain on one given grid, without extrapolation: D, M0,

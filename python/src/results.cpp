@@ -79,6 +79,7 @@ void bind_results(py::module_& m) {
     // Seen from Python as a dict of its JSON block (DiffusivityResult.control_variate).
     note_declared<ControlVariateReport>("", "control_variate");
     note_declared<PrecisionOutcome>("", "merged:precision"); // a dict of its JSON block, as above
+    note_declared<KolmogorovGridSpan>("", "kolmogorov_grid"); // in a solved report's engine_details, a dict
     note_declared<DiscretisationCheck>("", "difference_check"); // the same
     note_declared<BruteForceEstimates>("", "merged:finite_time_diffusivity_report"); // flattened, as above
     // Merged into the top level of these reports, and flattened into their results (add_declared_fields).
@@ -174,7 +175,7 @@ void bind_results(py::module_& m) {
                     return json_loads(to_json(r, -1))["precision"]; // the JSON's layout, defined once
                 },
                 ("precision on demand (rel_precision > 0), a dict of the JSON's block: " +
-                 block_doc<PrecisionOutcome>() + "; ['max_excursions'] the request's cap; None otherwise")
+                 block_doc<PrecisionOutcome>() + "; None otherwise")
                     .c_str())
             .def_property_readonly(
                 "discretisation",

@@ -230,6 +230,7 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
     outcome.target = req.rel_precision;
     outcome.reached = false;
     outcome.batches = 0;
+    outcome.max_excursions = req.max_excursions;
     std::uint64_t batch = std::min(round_up_to_blocks(req.excursions), req.max_excursions);
     std::uint64_t projected = batch;
     for (;;) {

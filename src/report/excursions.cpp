@@ -79,11 +79,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     j["nondimensional"] = nd;
     append_members(j, long_excursion_json(r.estimates));
     j["capped"] = r.monte_carlo().totals.capped;
-    if (q.rel_precision > 0) {
-        ordered_json pr = fields_json(r.precision);
-        pr["max_excursions"] = q.max_excursions; // the request's cap, beside what it allowed
-        j["precision"] = pr;
-    }
+    if (q.rel_precision > 0) j["precision"] = fields_json(r.precision);
     if (r.control_variate) j["control_variate"] = fields_json(*r.control_variate);
     if (r.discretisation) j["discretisation"] = fields_json(*r.discretisation);
     if (r.knots_check) j["knots_check"] = fields_json(*r.knots_check);

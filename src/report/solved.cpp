@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "core/format.hpp"
+#include "stickslip/diffusivity.hpp"
 #include "report/fields_json.hpp"
 #include "stickslip/number_text.hpp"
 
@@ -36,27 +37,15 @@ ordered_json solved_head(const char* quantity, const RunSettings& r) {
 
 void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const KolmogorovSettings& settings) {
     append_members(j, fields_json(s));
-    ordered_json pr;
-    pr["target"] = settings.rel_precision;
-    pr["relative_error"] = json_number(relative_error(s));
-    pr["reached"] = s.converged;
-    j["precision"] = pr;
+    PrecisionOutcome precision;
+    precision.target = settings.rel_precision;
+    precision.relative_error = relative_error(s);
+    precision.reached = s.converged;
+    precision.batches = 0; // no sampling
+    j["precision"] = fields_json(precision);
     ordered_json details;
     details["method"] = s.grid().solver;
-    const KolmogorovGridSpan span = grid_span(s);
-    const KolmogorovGrid& fine = s.levels.back().grid;
-    ordered_json g;
-    g["states"] = span.largest_states;
-    g["x_nodes"] = span.x_nodes;
-    g["x_lower"] = fine.x_lower();
-    g["x_upper"] = fine.x_upper();
-    g["v_cells"] = span.v_cells;
-    g["v_lower"] = fine.v_lower;
-    g["v_upper"] = fine.v_upper;
-    g["grids_solved"] = s.levels.size();
-    g["tail_mass"] = json_number(span.tail_mass);
-    g["diffusivity_x"] = estimate_json(s.diffusivity_x);
-    details["grid"] = g;
+    details["grid"] = fields_json(grid_span(s));
     j["engine_details"] = details;
 }
 

@@ -60,6 +60,13 @@ KolmogorovGridSpan grid_span(const KolmogorovResult& r) {
         span.v_cells = std::max(span.v_cells, s.grid.v_cells_neg + s.grid.v_cells_pos);
         span.tail_mass = std::max(span.tail_mass, s.tail_mass);
     }
+    const KolmogorovGrid& last = r.levels.back().grid;
+    span.x_lower = last.x_lower();
+    span.x_upper = last.x_upper();
+    span.v_lower = last.v_lower;
+    span.v_upper = last.v_upper;
+    span.grids_solved = r.levels.size();
+    span.diffusivity_x = r.diffusivity_x;
     return span;
 }
 
