@@ -24,21 +24,13 @@ void add_request_params(Cls& cls) {
         "params", [](const R& r) { return r.request.params; }, "The model parameters of the run (Params).");
 }
 
+/// A sampled result's run totals: the declared ones (RunTotals::fields) and
+/// the thread count and interruption, which a solved result answers too.
 template <class R, class Cls>
 void add_totals(Cls& cls) {
+    add_declared_fields(cls, [](const R& r) -> const RunTotals& { return r.monte_carlo().totals; });
     cls.def_property_readonly(
-           "capped", [](const R& r) { return r.monte_carlo().totals.capped; },
-           "samples dropped by the runaway guard (max_steps)")
-        .def_property_readonly(
-            "work", [](const R& r) { return r.monte_carlo().totals.work; }, "steps (inclusion) or events (pdmp), all samples")
-        .def_property_readonly(
-            "seconds", [](const R& r) { return r.monte_carlo().totals.seconds; }, "wall time of the run [s]")
-        .def_property_readonly(
-            "threads", [](const R& r) { return r.monte_carlo().totals.threads; }, "worker threads used")
-        .def_property_readonly(
-            "threads_from", [](const R& r) { return r.monte_carlo().totals.threads_from; },
-            "how the thread count was chosen: 'option' (threads=N), else 'hardware', 'affinity', 'cpu-quota' or "
-            "'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the blocks were fewer")
+           "threads", [](const R& r) { return r.monte_carlo().totals.threads; }, "worker threads used")
         .def_property_readonly(
             "interrupted",
             [](const R& r) {
@@ -47,10 +39,7 @@ void add_totals(Cls& cls) {
                 return r.monte_carlo().totals.interrupted;
             },
             "True when the run was stopped early (Ctrl-C): the result is of the blocks completed, in index order "
-            "(engine='kolmogorov': of the rounds of grids finished)")
-        .def_property_readonly(
-            "resumed", [](const R& r) { return r.monte_carlo().totals.resumed; },
-            "samples restored from a checkpoint (resume=) rather than computed");
+            "(engine='kolmogorov': of the rounds of grids finished)");
 }
 
 EstimateSeries series(const std::vector<Estimate>& v, double level) { return EstimateSeries{v, level, {}}; }
@@ -79,6 +68,8 @@ void bind_results(py::module_& m) {
     // Seen from Python as a dict of its JSON block (DiffusivityResult.control_variate).
     note_declared<ControlVariateReport>("", "control_variate");
     note_declared<PrecisionOutcome>("", "merged:precision"); // a dict of its JSON block, as above
+    // Flattened into the sampled results (add_totals); capped merged into these reports.
+    note_declared<RunTotals>("_Totals", "merged:diffusivity_report,stationary_density_report");
     note_declared<KolmogorovGridSpan>("", "kolmogorov_grid"); // in a solved report's engine_details, a dict
     note_declared<DiscretisationCheck>("", "difference_check"); // the same
     note_declared<BruteForceEstimates>("", "merged:finite_time_diffusivity_report"); // flattened, as above

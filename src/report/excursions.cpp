@@ -78,7 +78,7 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     nd["mean_duration"] = r.estimates.mean_duration.value / sc.time;
     j["nondimensional"] = nd;
     append_members(j, long_excursion_json(r.estimates));
-    j["capped"] = r.monte_carlo().totals.capped;
+    append_members(j, fields_json(r.monte_carlo().totals)); // capped
     if (q.rel_precision > 0) j["precision"] = fields_json(r.precision);
     if (r.control_variate) j["control_variate"] = fields_json(*r.control_variate);
     if (r.discretisation) j["discretisation"] = fields_json(*r.discretisation);

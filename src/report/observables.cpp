@@ -126,7 +126,7 @@ std::string to_json(const DensityResult& r, int indent) {
     j["stuck_probability"] = estimate_json(r.histogram.stuck);
     append_members(j, fields_json(r));
     append_members(j, long_excursion_json(r.estimates));
-    j["capped"] = r.monte_carlo().totals.capped;
+    append_members(j, fields_json(r.monte_carlo().totals)); // capped
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
     add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
@@ -249,7 +249,7 @@ std::string to_json(const CorrelationResult& r, int indent) {
     j["nondimensional"] = nondimensional_json(q);
     append_members(j, fields_json(r));
     append_members(j, long_excursion_json(r.estimates));
-    j["capped"] = r.monte_carlo().totals.capped;
+    append_members(j, fields_json(r.monte_carlo().totals)); // capped
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);
     add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);

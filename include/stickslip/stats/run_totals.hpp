@@ -19,6 +19,7 @@
 #include "stickslip/stats/control_variate.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/stats/moment_sums.hpp"
+#include "stickslip/result_fields.hpp"
 
 namespace stickslip {
 
@@ -52,6 +53,26 @@ struct RunTotals {
     /// exact sums of (U, t, M, M^2 - Q) over the completed excursions (empty
     /// otherwise).
     ControlVariateSums control_variate;
+
+    /// The counts a report gives, in report order (result_fields.hpp): the
+    /// capped samples beside the estimates; the rest in the report's work.
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = RunTotals;
+        visit(&S::capped, FieldInfo{"capped", "", "samples dropped by the runaway guard (max_steps)"});
+        visit(&S::work, FieldInfo{"work", "", "steps (inclusion) or events (pdmp), all samples; the work block's",
+                                  FieldForm::NotInBlock});
+        visit(&S::seconds, FieldInfo{"seconds", "s", "wall time of the run; the work block's", FieldForm::NotInBlock});
+        visit(&S::threads_from,
+              FieldInfo{"threads_from", "",
+                        "how the thread count was chosen: 'option' (threads=N), else 'hardware', 'affinity', "
+                        "'cpu-quota' or 'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the "
+                        "blocks were fewer; the work block's",
+                        FieldForm::NotInBlock});
+        visit(&S::resumed, FieldInfo{"resumed", "",
+                                     "samples restored from a checkpoint (resume=) rather than computed; the work "
+                                     "block's resumed_samples",
+                                     FieldForm::NotInBlock});
+    }
 };
 
 } // namespace stickslip
