@@ -28,7 +28,10 @@
 // its series, each a std::vector<Estimate> of the axis' length. A series is
 // written as JSON points {axis: x, value, error, ci, kind}, as CSV rows (one
 // per point, the axis first) and in Python as an EstimateSeries; the axis is
-// the points' key, the CSV's first column and a NumPy array. Declaration
+// the points' key, the CSV's first column and a NumPy array. A member that is
+// itself a declared struct (or a std::optional of one) is inlined: its block
+// is written in its place (when present), as a sweep point holds either the
+// sampled estimates or the solver's. Declaration
 // order is the order the JSON prints; changing it changes the reports (a
 // CHANGELOG entry).
 #pragma once
@@ -38,6 +41,7 @@
 /// Python, pickling, stubs and schema. The comment at the top of this header
 /// explains the design.
 
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -69,6 +73,10 @@ enum class FieldForm {
     /// not a key of its own in JSON, but the key of every series point (its
     /// name, "lag" or "time"), and the CSV's first column.
     Axis,
+    /// Written unless the report leaves it out (FieldJsonStyle::omit: a sweep
+    /// point's own step only with --dt auto, its stop rule only when sampled);
+    /// not required by the schema.
+    Optional,
 };
 
 /// A result field's description: what the reports call it and say about it.
@@ -105,6 +113,21 @@ struct AnyFieldVisitor {
 /// visit(&T::member, FieldInfo{...}) once per field, in report order.
 template <class T>
 concept DeclaredFields = requires(AnyFieldVisitor v) { T::fields(v); };
+
+/// Whether a member type is a declared struct written in its owner's place
+/// (T, or std::optional<T>, with T declaring its fields).
+template <class Value> struct inlined_block : std::bool_constant<DeclaredFields<Value>> {
+    using type = Value; ///< the declared struct
+};
+template <class Value> struct inlined_block<std::optional<Value>> : std::bool_constant<DeclaredFields<Value>> {
+    using type = Value; ///< the declared struct
+};
+
+/// The declared struct behind an inlined member, or nullptr when absent.
+template <class Value> const typename inlined_block<Value>::type* inlined_value(const Value& x) {
+    if constexpr (DeclaredFields<Value>) return &x;
+    else return x ? &*x : nullptr;
+}
 
 /// x's axis (its FieldForm::Axis member) and the axis' name; {nullptr,
 /// nullptr} when T declares none.

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/kolmogorov.hpp"
 #include "stickslip/result_fields.hpp"
 
 namespace stickslip {
@@ -143,6 +144,43 @@ struct SweepPoint {
     Estimate white_ratio;
     /// The point's own warnings (DiffusivityResult::warnings).
     std::vector<std::string> warnings;
+    /// Solved: whether D's estimated error met the target at the point
+    /// (KolmogorovResult::converged).
+    bool precision_reached = false;
+
+    /// The fields, in report order (result_fields.hpp): the sampled
+    /// estimates or the solver's in their place, the per-request ones
+    /// FieldForm::Optional (the report says which it writes). The point's
+    /// nondimensional values and work are written by the report.
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = SweepPoint;
+        visit(&S::varied, FieldInfo{"varied", "", "the swept drift constant's value (absent without vary)",
+                                    FieldForm::WhenSet});
+        visit(&S::noise, FieldInfo{"noise", "m^2 s^-3", "the point's noise intensity"});
+        visit(&S::tau, FieldInfo{"tau", "s", "the point's correlation time"});
+        visit(&S::stop_rule, FieldInfo{"stop_rule", "",
+                                       "sampled: the stop rule used there (with the automatic rule it can change "
+                                       "along the grid)",
+                                       FieldForm::Optional});
+        visit(&S::dt, FieldInfo{"dt", "s", "--dt auto on the inclusion engine: the point's own step",
+                                FieldForm::Optional});
+        visit(&S::scheme, FieldInfo{"scheme", "", "--scheme auto on the inclusion engine: the point's own scheme",
+                                    FieldForm::Optional});
+        visit(&S::estimates, FieldInfo{"estimates", "", "sampled: D, M0 and E[t1] at the point", FieldForm::Optional});
+        visit(&S::solution, FieldInfo{"solution", "", "solved: D, M0, P(V = 0) and E[t1] at the point"});
+        visit(&S::precision_reached, FieldInfo{"precision_reached", "",
+                                               "solved: whether D's estimated error met the target at the point",
+                                               FieldForm::Optional});
+        visit(&S::slope, FieldInfo{"slope", "", "d log D / d log noise at the point (central difference inside the "
+                                                "grid, one-sided at its ends; null with a single noise)",
+                                   FieldForm::NoInterval});
+        visit(&S::white_ratio, FieldInfo{"white_ratio", "",
+                                         "D over white noise's D at the same point (exact quadrature): how white "
+                                         "the noise is, in D"});
+        visit(&S::work, FieldInfo{"work", "", "steps, events or grid states used at the point; the point's work",
+                                  FieldForm::NotInBlock});
+        visit(&S::seconds, FieldInfo{"seconds", "s", "wall time of the point; the point's work", FieldForm::NotInBlock});
+    }
 };
 
 /// How D approaches its white-noise value as tau' -> 0 at one noise

@@ -154,15 +154,29 @@ struct DeclaredStruct {
 /// Every struct bind_fields or note_declared was given, in that order.
 std::vector<DeclaredStruct>& declared_structs();
 
+/// T's fields as _result_fields() lists them, an inlined struct's in its
+/// place (each "optional" where the struct may be absent).
+template <DeclaredFields T> void list_declared_fields(std::vector<std::array<std::string, 6>>& out, bool optional) {
+    T::fields([&](auto member, const FieldInfo& f) {
+        using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
+        static constexpr const char* forms[] = {"value", "no_interval", "reference", "when_set",
+                                                "not_in_block", "axis", "optional"};
+        if constexpr (inlined_block<Value>::value) {
+            list_declared_fields<typename inlined_block<Value>::type>(
+                out, optional || f.form == FieldForm::Optional || !DeclaredFields<Value>);
+        } else {
+            const auto types = field_types<Value>();
+            const bool keep_form = f.form == FieldForm::NotInBlock || f.form == FieldForm::Axis;
+            const char* form = optional && !keep_form ? "optional" : forms[static_cast<int>(f.form)];
+            out.push_back({f.name, f.unit, f.help, types[0], form, types[1]});
+        }
+    });
+}
+
 /// Records T's declaration for _result_fields() (declared_structs()).
 template <DeclaredFields T> void note_declared(const std::string& python_class, const std::string& schema_definition) {
     DeclaredStruct d{python_class, schema_definition, {}};
-    T::fields([&](auto member, const FieldInfo& f) {
-        using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
-        static constexpr const char* forms[] = {"value", "no_interval", "reference", "when_set", "not_in_block", "axis"};
-        const auto types = field_types<Value>();
-        d.fields.push_back({f.name, f.unit, f.help, types[0], forms[static_cast<int>(f.form)], types[1]});
-    });
+    list_declared_fields<T>(d.fields, false);
     declared_structs().push_back(std::move(d));
 }
 

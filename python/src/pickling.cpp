@@ -82,7 +82,7 @@ template <class F> void fields(F& f, ExcursionOutcome& x) {
 }
 template <class F> void fields(F& f, SweepPoint& x) {
     f(x.noise, x.tau, x.varied, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope,
-      x.white_ratio, x.warnings);
+      x.white_ratio, x.warnings, x.precision_reached);
 }
 
 /// The model: its settings, and the law's knots given as arrays (a callable

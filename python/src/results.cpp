@@ -3,6 +3,7 @@
 // request, requests.cpp): attributes as NumPy arrays and Estimates, and the
 // CLI's renderings (to_dict() is the CLI's JSON).
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -70,6 +71,7 @@ void bind_results(py::module_& m) {
     note_declared<PrecisionOutcome>("", "merged:precision"); // a dict of its JSON block, as above
     // Flattened into the sampled results (add_totals); capped merged into these reports.
     note_declared<RunTotals>("_Totals", "merged:diffusivity_report,stationary_density_report");
+    note_declared<SweepPoint>("", "merged:sweep_point"); // SweepResult's grid columns, by hand
     note_declared<KolmogorovGridSpan>("", "kolmogorov_grid"); // in a solved report's engine_details, a dict
     note_declared<DiscretisationCheck>("", "difference_check"); // the same
     note_declared<BruteForceEstimates>("", "merged:finite_time_diffusivity_report"); // flattened, as above
@@ -435,15 +437,6 @@ void bind_results(py::module_& m) {
             out.shape = grid_shape(r);
             return out;
         };
-        // The column of a quantity: a sampled series, or a solved one for a
-        // solved sweep (`solved` picks the point's value, or nullptr
-        // where the solver has none).
-        auto column_of = [solved_column](auto column, auto sampled, auto solved) {
-            return [column, solved_column, sampled, solved](const R& r) -> py::object {
-                if (r.solved()) return py::cast(solved_column(r, solved));
-                return py::cast(column(r, sampled));
-            };
-        };
         auto column = [grid_shape, grid_size](const R& r, auto get) {
             const double nan = std::numeric_limits<double>::quiet_NaN();
             std::vector<Estimate> v(grid_size(r), Estimate{nan, nan, nan, nan, r.request.level});
@@ -463,6 +456,56 @@ void bind_results(py::module_& m) {
                                      : r.request.vary_values[k / (nn * nt)];
             return py::array_t<double>(to_array(v).attr("reshape")(grid_shape(r)));
         };
+        // Every estimate a point declares (SweepPoint::fields, its sampled or
+        // solved block inlined) as a column over the grid: sampled from the
+        // point's estimates, solved from its solution; None where the sweep's
+        // method has no such quantity.
+        {
+            using Get = std::function<Estimate(const SweepPoint&)>;
+            struct Column {
+                std::string name, doc;
+                Get sampled, solved;
+            };
+            std::vector<Column> columns;
+            const auto column_named = [&columns](const FieldInfo& f) -> Column& {
+                const std::string name = field_flat_name(f);
+                for (Column& each : columns)
+                    if (each.name == name) return each;
+                columns.push_back(Column{name, field_doc(f), nullptr, nullptr});
+                return columns.back();
+            };
+            SweepPoint::fields([&](auto member, const FieldInfo& f) {
+                using Value = std::remove_cvref_t<decltype(std::declval<SweepPoint>().*member)>;
+                if constexpr (std::is_same_v<Value, Estimate>) {
+                    Column& col = column_named(f);
+                    col.sampled = [member](const SweepPoint& p) { return p.*member; };
+                    col.solved = [member](const SweepPoint& p) { return solved_estimate((p.*member).value, (p.*member).error); };
+                } else if constexpr (std::is_same_v<Value, LongExcursionEstimates>) {
+                    LongExcursionEstimates::fields([&](auto inner, const FieldInfo& g) {
+                        if constexpr (std::is_same_v<std::remove_cvref_t<decltype(std::declval<Value>().*inner)>, Estimate>)
+                            column_named(g).sampled = [member, inner](const SweepPoint& p) { return (p.*member).*inner; };
+                    });
+                } else if constexpr (std::is_same_v<Value, std::optional<KolmogorovResult>>) {
+                    KolmogorovResult::fields([&](auto inner, const FieldInfo& g) {
+                        if constexpr (std::is_same_v<std::remove_cvref_t<decltype(std::declval<KolmogorovResult>().*inner)>, Estimate>)
+                            column_named(g).solved = [member, inner](const SweepPoint& p) { return *(p.*member).*inner; };
+                    });
+                }
+            });
+            for (const Column& col : columns) {
+                const std::string doc = col.doc + " per point (EstimateSeries, shape `shape`; NaN where an "
+                                        "interrupted sweep did not reach; kind 'solved' with engine='kolmogorov'" +
+                                        std::string(col.sampled ? "" : "; None for a sampled sweep") +
+                                        (col.solved ? "" : "; None for a solved sweep") + ")";
+                c.def_property_readonly(
+                    col.name.c_str(),
+                    [col, column, solved_column](const R& r) -> py::object {
+                        if (r.solved()) return col.solved ? py::cast(solved_column(r, col.solved)) : py::none();
+                        return col.sampled ? py::cast(column(r, col.sampled)) : py::none();
+                    },
+                    doc.c_str());
+            }
+        }
         c.def_property_readonly(
              "params", [](const R& r) { return r.request.params; },
              "friction, relaxation and bias of the sweep (Params; its noise and tau are placeholders)")
@@ -492,43 +535,6 @@ void bind_results(py::module_& m) {
             .def_property_readonly(
                 "tau", [grid_axis](const R& r) { return grid_axis(r, 't'); },
                 "tau of every point [s], shape `shape` (taus along the axis before it)")
-            .def_property_readonly(
-                "diffusivity",
-                column_of(column, [](const SweepPoint& p) { return p.estimates.diffusivity; },
-                          [](const SweepPoint& p) { return p.solution->diffusivity; }),
-                "D [m^2/s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
-                "did not reach; kind 'solved' with engine='kolmogorov')")
-            .def_property_readonly(
-                "mobility",
-                column_of(column, [](const SweepPoint& p) { return p.estimates.mobility; },
-                          [](const SweepPoint& p) { return p.solution->mobility; }),
-                "M0 [m/s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
-                "did not reach; kind 'solved' with engine='kolmogorov')")
-            .def_property_readonly(
-                "mean_duration",
-                column_of(column, [](const SweepPoint& p) { return p.estimates.mean_duration; },
-                          [](const SweepPoint& p) { return p.solution->mean_duration; }),
-                "E[t1] [s] per point (EstimateSeries, shape `shape`; NaN where an interrupted sweep "
-                "did not reach; kind 'solved' with engine='kolmogorov')")
-            .def_property_readonly(
-                "stuck_probability",
-                [solved_column](const R& r) -> py::object {
-                    if (!r.solved()) return py::none();
-                    return py::cast(solved_column(r, [](const SweepPoint& p) { return p.solution->stuck_probability; }));
-                },
-                "P(V = 0) per point (EstimateSeries, kind 'solved') with engine='kolmogorov'; None for a sampled sweep")
-            .def_property_readonly(
-                "slope",
-                column_of(column, [](const SweepPoint& p) { return p.slope; },
-                          [](const SweepPoint& p) { return solved_estimate(p.slope.value, p.slope.error); }),
-                "local d log D / d log noise per point (EstimateSeries, shape `shape`; NaN with one "
-                "noise value; kind 'solved' with engine='kolmogorov', its error propagated from D's)")
-            .def_property_readonly(
-                "white_ratio",
-                column_of(column, [](const SweepPoint& p) { return p.white_ratio; },
-                          [](const SweepPoint& p) { return solved_estimate(p.white_ratio.value, p.white_ratio.error); }),
-                "D over the white-noise D at every point (EstimateSeries, shape `shape`; a "
-                "kind 'solved' with engine='kolmogorov', its error D's)")
             .def_property_readonly(
                 "method", [](const R& r) -> std::string { return r.solved() ? "kolmogorov" : "monte carlo"; },
                 "'monte carlo', or 'kolmogorov' with engine='kolmogorov'")

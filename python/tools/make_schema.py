@@ -53,7 +53,7 @@ def block_schema(fields, keep, axis=None):
                 required.append(head)
             continue
         properties[head] = field_schema(f, axis)
-        if f["form"] != "when_set":
+        if f["form"] not in ("when_set", "optional"):
             required.append(head)
     for head, inner in nested.items():
         properties[head] = block_schema(inner, {})

@@ -344,6 +344,7 @@ SweepResult compute_sweep(const SweepRequest& req) {
                     p.work = grid_span(*r.solution).largest_states;
                     p.seconds = r.solution->seconds;
                     const bool stopped = r.solution->interrupted; // its rounds finished so far
+                    p.precision_reached = r.solution->converged;
                     p.solution = std::move(r.solution);
                     out.points.push_back(std::move(p));
                     ++k;

@@ -24,6 +24,16 @@ namespace stickslip::detail {
 struct FieldJsonStyle {
     /// The report's model, for FieldForm::Reference fields (white_reference_json).
     const ModelParams* model = nullptr;
+    /// The fields (by declared name) this report leaves out: a method's or a
+    /// request's (FieldForm::Optional).
+    std::vector<std::string_view> omit = {};
+
+    /// Whether the report leaves the field out.
+    bool omits(const FieldInfo& info) const {
+        for (std::string_view name : omit)
+            if (name == info.name) return true;
+        return false;
+    }
 };
 
 /// One field's value as JSON (the member types result_fields.hpp allows).
@@ -73,9 +83,12 @@ template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJson
     const char* axis_name = axis_of.second;
     T::fields([&](auto member, const FieldInfo& info) {
         const auto& value = x.*member;
-        if (info.form == FieldForm::NotInBlock || info.form == FieldForm::Axis) return;
+        if (info.form == FieldForm::NotInBlock || info.form == FieldForm::Axis || style.omits(info)) return;
         using Value = std::decay_t<decltype(value)>;
-        if constexpr (std::is_same_v<Value, std::vector<double>>) {
+        if constexpr (inlined_block<Value>::value) {
+            // A declared struct's block, in this one's place (when present).
+            if (const auto* inner = inlined_value(value)) append_members(j, fields_json(*inner, style));
+        } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
             return; // an axis is the key of the series' points, not a key of its own
         } else if constexpr (std::is_same_v<Value, std::vector<Estimate>>) {
             // A series: its points along the axis, each keyed by the axis' name.

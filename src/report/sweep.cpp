@@ -139,14 +139,7 @@ std::string solved_json(const SweepResult& r, int indent) {
     for (const auto& p : r.points) {
         const KolmogorovResult& s = *p.solution;
         const Scales sc = scales_of(point_params(r, p));
-        ordered_json o;
-        if (r.varies()) o["varied"] = p.varied;
-        o["noise"] = p.noise;
-        o["tau"] = p.tau;
-        append_members(o, fields_json(s));
-        o["precision_reached"] = s.converged;
-        o["slope"] = estimate_json(p.slope);
-        o["white_ratio"] = estimate_json(p.white_ratio);
+        ordered_json o = fields_json(p, FieldJsonStyle{nullptr, {"stop_rule", "dt", "scheme", "estimates"}});
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", s.diffusivity.value / sc.diffusivity},
                                {"mobility", s.mobility.value / sc.velocity},
@@ -234,19 +227,14 @@ std::string to_json(const SweepResult& r, int indent) {
     params["excursions"] = q.excursions;
     params["level"] = q.level;
     j["params"] = params;
+    // A point's own step and scheme only when --dt auto / --scheme auto gave it one.
+    FieldJsonStyle style{nullptr, {"precision_reached"}};
+    if (!own_dt) style.omit.push_back("dt");
+    if (!own_scheme) style.omit.push_back("scheme");
     ordered_json pts = ordered_json::array();
     for (const auto& p : r.points) {
         const Scales sc = scales_of(point_params(r, p));
-        ordered_json o;
-        if (r.varies()) o["varied"] = p.varied;
-        o["noise"] = p.noise;
-        o["tau"] = p.tau;
-        o["stop_rule"] = p.stop_rule;
-        if (own_dt) o["dt"] = p.dt; // --dt auto: the point's own step
-        if (own_scheme) o["scheme"] = to_string(p.scheme); // --scheme auto: the point's own
-        append_members(o, long_excursion_json(p.estimates));
-        o["slope"] = estimate_json(p.slope, false);
-        o["white_ratio"] = estimate_json(p.white_ratio);
+        ordered_json o = fields_json(p, style);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
                                {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},
                                {"mobility", p.estimates.mobility.value / sc.velocity},

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "report/fields_csv.hpp"
 #include "report/fields_json.hpp"
 #include "stickslip/diffusivity.hpp"
+#include "stickslip/drift_law_quadrature.hpp"
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/result_fields.hpp"
@@ -126,6 +128,47 @@ TEST(ResultFields, AReferenceIsExactForTheAffineLawAndSolvedForADriftLaw) {
     EXPECT_THROW((void)detail::fields_json(w), std::logic_error);
 }
 
+/// A struct that holds one of two declared blocks, and a field a report may leave out.
+struct DemoPoint {
+    double noise = 1.0;
+    std::string rule = "stuck";
+    Demo sampled;
+    std::optional<Demo> solved;
+    bool reached = true;
+
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        visit(&DemoPoint::noise, FieldInfo{"noise", "", "a number"});
+        visit(&DemoPoint::rule, FieldInfo{"rule", "", "sampled only", FieldForm::Optional});
+        visit(&DemoPoint::sampled, FieldInfo{"sampled", "", "a block, inlined", FieldForm::Optional});
+        visit(&DemoPoint::solved, FieldInfo{"solved", "", "a block when present, inlined"});
+        visit(&DemoPoint::reached, FieldInfo{"reached", "", "solved only", FieldForm::Optional});
+    }
+};
+
+TEST(ResultFields, ABlockIsInlinedInItsPlaceAndAReportLeavesOutWhatItSays) {
+    DemoPoint p;
+    p.sampled.time = 1.0;
+    // Sampled: the sampled block in its place, the solved absent, "reached" left out.
+    const detail::ordered_json sampled = detail::fields_json(p, detail::FieldJsonStyle{nullptr, {"reached"}});
+    std::vector<std::string> keys;
+    for (const auto& item : sampled.items()) keys.push_back(item.key());
+    ASSERT_GE(keys.size(), 4u);
+    EXPECT_EQ(keys[0], "noise");
+    EXPECT_EQ(keys[1], "rule");
+    EXPECT_EQ(keys[2], "time"); // Demo's first written field
+    EXPECT_EQ(keys.back(), "nested");
+    EXPECT_EQ(sampled["time"], 1.0);
+    EXPECT_FALSE(sampled.contains("reached"));
+    // Solved: the solution's block, the sampled one and the rule left out.
+    p.solved = Demo{};
+    p.solved->time = 3.0;
+    const detail::ordered_json solved = detail::fields_json(p, detail::FieldJsonStyle{nullptr, {"rule", "sampled"}});
+    EXPECT_FALSE(solved.contains("rule"));
+    EXPECT_EQ(solved["time"], 3.0);
+    EXPECT_EQ(solved["reached"], true);
+    EXPECT_EQ(solved.items().begin().key(), "noise");
+}
+
 TEST(ResultFields, NamesAreUniqueAndDocumented) {
     auto check = [](auto tag) {
         using T = typename decltype(tag)::type;
@@ -144,6 +187,11 @@ TEST(ResultFields, NamesAreUniqueAndDocumented) {
     check(std::type_identity<CorrelationResult>{});
     check(std::type_identity<MomentsResult>{});
     check(std::type_identity<DensityResult>{});
+    check(std::type_identity<SweepPoint>{});
+    check(std::type_identity<RunTotals>{});
+    check(std::type_identity<KolmogorovGridSpan>{});
+    check(std::type_identity<PrecisionOutcome>{});
+    check(std::type_identity<WhiteNoiseReference>{});
 }
 
 } // namespace
