@@ -79,14 +79,30 @@ void visit_settings(VelocityBins& b, Visitor&& v, const char* range_help) {
 /// atom at V = 0 is excluded and reported in `stuck` (probability), so that
 /// sum(density * width) + stuck + below + above = 1.
 struct VelocityHistogram {
-    std::vector<double> edges;    ///< count + 1 bin edges [m/s]
-    std::vector<Estimate> density; ///< [s/m]
-    Estimate stuck;               ///< P(V = 0): the object sticks (colored noise only)
+    /// The fields, each one's unit and meaning declared in fields() below.
     /// @{
-    /// Probability of the velocities outside the bins: below = P(V < lo),
-    /// above = P(V >= hi), the atom at 0 excluded.
-    Estimate below, above;        ///< probability of V < lo and V >= hi (V != 0)
+    std::vector<double> edges;
+    std::vector<Estimate> density;
+    Estimate stuck;
+    Estimate below, above;
     /// @}
+
+    /// The fields, in report order (result_fields.hpp): the bins (JSON
+    /// "bins", each {lo, hi, value, error, kind}), then the mass outside them;
+    /// P(V = 0) is reported beside the histogram, not in it.
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = VelocityHistogram;
+        visit(&S::edges, FieldInfo{"edges", "m/s", "the bin edges (one more than the bins)", FieldForm::Edges});
+        visit(&S::density, FieldInfo{"bins", "s/m",
+                                     "the density of the continuous part of the law of V on each bin [lo, hi) (the "
+                                     "atom at V = 0 excluded)",
+                                     FieldForm::NoInterval});
+        visit(&S::stuck, FieldInfo{"stuck_probability", "",
+                                   "P(V = 0), the object sticks (coloured noise only); reported beside the histogram",
+                                   FieldForm::NotInBlock});
+        visit(&S::below, FieldInfo{"below", "", "P(V < edges[0], V != 0)", FieldForm::NoInterval});
+        visit(&S::above, FieldInfo{"above", "", "P(V >= edges[-1], V != 0)", FieldForm::NoInterval});
+    }
 };
 
 // ---- stationary density --------------------------------------------------

@@ -41,6 +41,7 @@
 /// Python, pickling, stubs and schema. The comment at the top of this header
 /// explains the design.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -73,6 +74,10 @@ enum class FieldForm {
     /// not a key of its own in JSON, but the key of every series point (its
     /// name, "lag" or "time"), and the CSV's first column.
     Axis,
+    /// The bin edges (a std::vector<double>, one more than the bins) that the
+    /// struct's series are densities on: each point is a bin, keyed "lo" and
+    /// "hi" in JSON; not a key of its own.
+    Edges,
     /// Written unless the report leaves it out (FieldJsonStyle::omit: a sweep
     /// point's own step only with --dt auto, its stop rule only when sampled);
     /// not required by the schema.
@@ -129,15 +134,30 @@ template <class Value> const typename inlined_block<Value>::type* inlined_value(
     else return x ? &*x : nullptr;
 }
 
-/// x's axis (its FieldForm::Axis member) and the axis' name; {nullptr,
-/// nullptr} when T declares none.
-template <DeclaredFields T>
-std::pair<const std::vector<double>*, const char*> declared_axis(const T& x) {
-    std::pair<const std::vector<double>*, const char*> out{nullptr, nullptr};
+/// Where a struct's series lie: along its axis (FieldForm::Axis, points
+/// keyed by the axis' name) or on its bins (FieldForm::Edges, points keyed
+/// "lo" and "hi").
+struct DeclaredAxis {
+    const std::vector<double>* values = nullptr; ///< the axis, or the edges; nullptr when none
+    const char* name = nullptr;                  ///< its declared name
+    bool edges = false;                          ///< FieldForm::Edges: one more value than points
+
+    /// The points a series along it has.
+    std::size_t points() const {
+        if (!values) return 0;
+        return edges ? (values->empty() ? 0 : values->size() - 1) : values->size();
+    }
+};
+
+/// x's axis (its FieldForm::Axis or FieldForm::Edges member); values nullptr
+/// when T declares none.
+template <DeclaredFields T> DeclaredAxis declared_axis(const T& x) {
+    DeclaredAxis out;
     T::fields([&](auto member, const FieldInfo& info) {
         using Value = std::remove_cvref_t<decltype(x.*member)>;
         if constexpr (std::is_same_v<Value, std::vector<double>>)
-            if (info.form == FieldForm::Axis) out = {&(x.*member), info.name};
+            if (info.form == FieldForm::Axis || info.form == FieldForm::Edges)
+                out = DeclaredAxis{&(x.*member), info.name, info.form == FieldForm::Edges};
     });
     return out;
 }

@@ -160,13 +160,14 @@ template <DeclaredFields T> void list_declared_fields(std::vector<std::array<std
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
         static constexpr const char* forms[] = {"value", "no_interval", "reference", "when_set",
-                                                "not_in_block", "axis", "optional"};
+                                                "not_in_block", "axis", "edges", "optional"};
         if constexpr (inlined_block<Value>::value) {
             list_declared_fields<typename inlined_block<Value>::type>(
                 out, optional || f.form == FieldForm::Optional || !DeclaredFields<Value>);
         } else {
             const auto types = field_types<Value>();
-            const bool keep_form = f.form == FieldForm::NotInBlock || f.form == FieldForm::Axis;
+            const bool keep_form =
+                f.form == FieldForm::NotInBlock || f.form == FieldForm::Axis || f.form == FieldForm::Edges;
             const char* form = optional && !keep_form ? "optional" : forms[static_cast<int>(f.form)];
             out.push_back({f.name, f.unit, f.help, types[0], form, types[1]});
         }

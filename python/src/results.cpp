@@ -79,27 +79,27 @@ void bind_results(py::module_& m) {
     note_declared<LongExcursionEstimates>(
         "_LongExcursions", "merged:diffusivity_report,stationary_density_report,autocorrelation_report,sweep_point");
     // ---- histograms and paths ----------------------------------------------------------------
-    py::class_<VelocityHistogram>(m, "Histogram",
-                                  "A velocity density histogram with error bars. `density` is the density of the "
-                                  "continuous part of the law of V [s/m] on the bins [edges[k], edges[k+1]) [m/s]; "
-                                  "the atom at V = 0 is `stuck` (a probability), so that "
-                                  "sum(density.value * widths) + stuck + below + above = 1.")
-        .def_property_readonly(
-            "edges", [](const VelocityHistogram& h) { return to_array(h.edges); }, "bin edges [m/s], shape (bins + 1,)")
-        .def_property_readonly(
-            "centers", [](const VelocityHistogram& h) { return centers(h.edges); }, "bin centres [m/s], shape (bins,)")
-        .def_property_readonly(
-            "widths", [](const VelocityHistogram& h) { return widths(h.edges); }, "bin widths [m/s], shape (bins,)")
-        .def_property_readonly(
-            "density", [](const VelocityHistogram& h) { return series(h.density, h.stuck.level); },
-            "density [s/m] per bin (EstimateSeries, shape (bins,))")
-        .def_readonly("stuck_probability", &VelocityHistogram::stuck, "P(V = 0), the object sticks (Estimate)")
-        .def_readonly("below", &VelocityHistogram::below, "P(V < edges[0], V != 0) (Estimate)")
-        .def_readonly("above", &VelocityHistogram::above, "P(V >= edges[-1], V != 0) (Estimate)")
-        .def("__repr__", [](const VelocityHistogram& h) {
-            return "Histogram(bins=" + std::to_string(h.density.size()) + ", range=(" + g4(h.edges.front()) + ", " +
-                   g4(h.edges.back()) + "), stuck_probability=" + g4(h.stuck.value) + ")";
-        });
+    {
+        py::class_<VelocityHistogram> histogram(
+            m, "Histogram",
+            "A velocity density histogram with error bars. `bins` is the density of the continuous part of the law "
+            "of V [s/m] on the bins [edges[k], edges[k+1]) [m/s]; the atom at V = 0 is `stuck_probability`, so that "
+            "sum(bins.value * widths) + stuck_probability + below + above = 1.");
+        bind_fields<VelocityHistogram>(histogram, "Histogram", "histogram");
+        histogram
+            .def_property_readonly(
+                "centers", [](const VelocityHistogram& h) { return centers(h.edges); },
+                "bin centres [m/s], shape (bins,)")
+            .def_property_readonly(
+                "widths", [](const VelocityHistogram& h) { return widths(h.edges); }, "bin widths [m/s], shape (bins,)")
+            .def_property_readonly(
+                "density", [](const VelocityHistogram& h) { return estimate_series(h.density); },
+                "the same as `bins` (its older name): the density [s/m] per bin (EstimateSeries, shape (bins,))")
+            .def("__repr__", [](const VelocityHistogram& h) {
+                return "Histogram(bins=" + std::to_string(h.density.size()) + ", range=(" + g4(h.edges.front()) +
+                       ", " + g4(h.edges.back()) + "), stuck_probability=" + g4(h.stuck.value) + ")";
+            });
+    }
 
     py::class_<SamplePath>(m, "Path",
                            "One recorded path, columns of equal length: t [s], x (the paper's noise X [s^-1/2], 0 "

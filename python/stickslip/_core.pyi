@@ -129,19 +129,21 @@ GridEstimateSeries = EstimateSeries  # a solved series (kind 'solved'); the name
 
 class Histogram:
     @property
-    def edges(self) -> FloatArray: ...    # (bins + 1,) [m/s]
+    def edges(self) -> FloatArray: ...  # [m/s]
+    @property
+    def bins(self) -> EstimateSeries: ...  # [s/m]
+    @property
+    def stuck_probability(self) -> Estimate: ...
+    @property
+    def below(self) -> Estimate: ...
+    @property
+    def above(self) -> Estimate: ...
     @property
     def centers(self) -> FloatArray: ...  # (bins,) [m/s]
     @property
     def widths(self) -> FloatArray: ...   # (bins,) [m/s]
     @property
     def density(self) -> EstimateSeries: ...  # (bins,) [s/m], V = 0 excluded
-    @property
-    def stuck_probability(self) -> Estimate: ...  # P(V = 0)
-    @property
-    def below(self) -> Estimate: ...
-    @property
-    def above(self) -> Estimate: ...
 
 class Path:
     @property

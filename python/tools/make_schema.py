@@ -65,8 +65,10 @@ def block_schema(fields, keep, axis=None):
 def schema_text(current):
     schema = json.loads(current)
     for declared in stickslip._core._result_fields():
-        fields = [f for f in declared["fields"] if f["form"] not in ("not_in_block", "axis")]
-        axes = [f["name"] for f in declared["fields"] if f["form"] == "axis"]
+        fields = [f for f in declared["fields"] if f["form"] not in ("not_in_block", "axis", "edges")]
+        # A series lies along its struct's axis (points keyed by the axis' name)
+        # or on its bins (FieldForm::Edges: points keyed lo and hi, "bin").
+        axes = ["bin" if f["form"] == "edges" else f["name"] for f in declared["fields"] if f["form"] in ("axis", "edges")]
         axis = axes[0] if axes else None
         where = declared["schema_definition"]
         if not where:

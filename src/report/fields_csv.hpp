@@ -89,7 +89,11 @@ template <DeclaredFields T> std::string series_csv_header() {
 
 /// The rows of that CSV, one per point of the axis, each with its line end.
 template <DeclaredFields T> std::string series_csv_rows(const T& x) {
-    const std::vector<double>* axis = declared_axis(x).first;
+    const DeclaredAxis declared = declared_axis(x);
+    // A histogram's CSV (bins on edges) keeps its report's layout: one row per
+    // bin and per mass outside them (the density report's).
+    if (declared.edges) throw std::logic_error("series_csv_rows: series on bin edges have no generated CSV");
+    const std::vector<double>* axis = declared.values;
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(x.*member)>;
         if constexpr (std::is_same_v<Value, std::vector<Estimate>>)

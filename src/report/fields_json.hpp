@@ -77,13 +77,12 @@ inline ordered_json& field_owner(ordered_json& j, std::string_view& name) {
 /// number NaN, an integer 0).
 template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJsonStyle& style = {}) {
     ordered_json j = ordered_json::object();
-    // Not a structured binding: clang before 16 cannot capture one in a lambda.
-    const std::pair<const std::vector<double>*, const char*> axis_of = declared_axis(x);
-    const std::vector<double>* axis = axis_of.first;
-    const char* axis_name = axis_of.second;
+    const DeclaredAxis axis = declared_axis(x);
     T::fields([&](auto member, const FieldInfo& info) {
         const auto& value = x.*member;
-        if (info.form == FieldForm::NotInBlock || info.form == FieldForm::Axis || style.omits(info)) return;
+        if (info.form == FieldForm::NotInBlock || info.form == FieldForm::Axis || info.form == FieldForm::Edges ||
+            style.omits(info))
+            return;
         using Value = std::decay_t<decltype(value)>;
         if constexpr (inlined_block<Value>::value) {
             // A declared struct's block, in this one's place (when present).
@@ -91,12 +90,24 @@ template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJson
         } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
             return; // an axis is the key of the series' points, not a key of its own
         } else if constexpr (std::is_same_v<Value, std::vector<Estimate>>) {
-            // A series: its points along the axis, each keyed by the axis' name.
-            if (!axis || axis->size() != value.size())
+            // A series: its points along the axis, each keyed by the axis' name,
+            // or on the bins, each keyed by its edges.
+            if (!axis.values || axis.points() != value.size())
                 throw std::logic_error(std::string("fields_json: the series '") + info.name +
-                                       "' has no axis of its length (FieldForm::Axis)");
+                                       "' has no axis of its length (FieldForm::Axis or Edges)");
             ordered_json points = ordered_json::array();
-            for (std::size_t k = 0; k < value.size(); ++k) points.push_back(series_point(axis_name, (*axis)[k], value[k]));
+            for (std::size_t k = 0; k < value.size(); ++k) {
+                const std::vector<double>& at = *axis.values;
+                if (!axis.edges) {
+                    points.push_back(series_point(axis.name, at[k], value[k]));
+                    continue;
+                }
+                ordered_json bin;
+                bin["lo"] = at[k];
+                bin["hi"] = at[k + 1];
+                append_members(bin, estimate_json(value[k], info.form != FieldForm::NoInterval));
+                points.push_back(std::move(bin));
+            }
             std::string_view name = info.name;
             field_owner(j, name)[std::string(name)] = std::move(points);
         } else {

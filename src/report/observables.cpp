@@ -19,21 +19,7 @@ using namespace detail;
 
 namespace {
 
-ordered_json histogram_json(const VelocityHistogram& h) {
-    ordered_json bins = ordered_json::array();
-    for (std::size_t k = 0; k < h.density.size(); ++k) {
-        ordered_json b;
-        b["lo"] = h.edges[k];
-        b["hi"] = h.edges[k + 1];
-        append_members(b, estimate_json(h.density[k], false));
-        bins.push_back(b);
-    }
-    ordered_json j;
-    j["bins"] = bins;
-    j["below"] = estimate_json(h.below, false);
-    j["above"] = estimate_json(h.above, false);
-    return j;
-}
+ordered_json histogram_json(const VelocityHistogram& h) { return fields_json(h); }
 
 } // namespace
 
@@ -51,23 +37,16 @@ std::string solved_json(const DensityResult& r, int indent) {
     const KolmogorovGridSolution& fine = s.levels.back();
     ordered_json j = solved_head("stationary_density", q);
     j["nondimensional"] = nondimensional_json(q);
-    // The same paths as a sampled histogram's: a grid value has no error
+    // The same histogram as a sampled one: a grid value has no error
     // estimate (null), and the grid spans the velocities that hold mass, so
     // the mass below and above it is 0 to within the grid's tail mass.
-    ordered_json bins = ordered_json::array();
-    for (std::size_t k = 0; k < fine.velocity_density.size(); ++k) {
-        ordered_json b;
-        b["lo"] = fine.velocity_faces[k];
-        b["hi"] = fine.velocity_faces[k + 1];
-        append_members(b, solved_estimate_json(fine.velocity_density[k], std::nan("")));
-        bins.push_back(b);
-    }
+    VelocityHistogram h;
+    h.edges = fine.velocity_faces;
+    for (double value : fine.velocity_density) h.density.push_back(solved_estimate(value, std::nan("")));
     const double tail_mass = grid_span(s).tail_mass;
-    ordered_json h;
-    h["bins"] = bins;
-    h["below"] = solved_estimate_json(0.0, tail_mass);
-    h["above"] = solved_estimate_json(0.0, tail_mass);
-    j["histogram"] = h;
+    h.stuck = s.stuck_probability;
+    h.below = h.above = solved_estimate(0.0, tail_mass);
+    j["histogram"] = histogram_json(h);
     append_members(j, fields_json(r)); // the solver's, where a sampled result has them
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
