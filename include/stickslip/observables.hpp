@@ -383,6 +383,37 @@ void visit_settings(TrajectoryRequest& r, Visitor&& v) {
 }
 
 /// What compute_trajectory returns; report.hpp writes it.
+/// One long excursion as `trajectory` reports it (excursion mode): what the
+/// kernel's ExcursionOutcome says of it, less the estimators' internals.
+struct ExcursionRecord {
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    double displacement = 0.0;
+    double duration = 0.0;
+    double first_half_duration = 0.0;
+    bool complete = true;
+    std::uint64_t work = 0;
+    /// @}
+
+    /// The record of a kernel's outcome.
+    static ExcursionRecord of(const ExcursionOutcome& e) {
+        return ExcursionRecord{e.displacement, e.duration, e.first_half, !e.capped, e.work};
+    }
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = ExcursionRecord;
+        visit(&S::displacement, FieldInfo{"displacement", "m", "excursion mode: U of the excursion"});
+        visit(&S::duration, FieldInfo{"duration", "s", "excursion mode: its duration t1"});
+        visit(&S::first_half_duration,
+              FieldInfo{"first_half_duration", "s", "excursion mode: the duration of its first half-excursion"});
+        visit(&S::complete, FieldInfo{"complete", "",
+                                      "excursion mode: False if it hit the runaway guard (max_steps), when U and t1 "
+                                      "mean nothing"});
+        visit(&S::work, FieldInfo{"work", "", "excursion mode: steps or events used", FieldForm::NotInBlock});
+    }
+};
+
 struct TrajectoryResult {
     /// The request; in path mode with `every` resolved (0 replaced by the
     /// interval used).
@@ -391,7 +422,7 @@ struct TrajectoryResult {
     ResolvedEngine resolved;
     /// The recorded paths: one in excursion mode, `paths` in path mode.
     std::vector<SamplePath> paths;
-    ExcursionOutcome excursion; ///< excursion mode: its U, t and work
+    ExcursionRecord excursion; ///< excursion mode: its U, t and work
     /// Notes for the user, one sentence each.
     std::vector<std::string> warnings;
 };

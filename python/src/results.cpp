@@ -347,6 +347,8 @@ void bind_results(py::module_& m) {
                         "duration and whether it is complete. to_dict() is the CLI's JSON.");
         add_request_params<R>(c);
         add_renderings<R>(c);
+        add_declared_fields(c, [](const R& r) -> const ExcursionRecord& { return r.excursion; });
+        note_declared<ExcursionRecord>("TrajectoryResult", "merged:excursion_report");
         c.def_readonly("paths", &R::paths, "list of Path")
             .def_property_readonly(
                 "path",
@@ -355,19 +357,6 @@ void bind_results(py::module_& m) {
                     return r.paths.front();
                 },
                 "the first (in excursion mode: the only) Path")
-            .def_property_readonly(
-                "displacement", [](const R& r) { return r.excursion.displacement; },
-                "excursion mode: U of the excursion [m]")
-            .def_property_readonly(
-                "duration", [](const R& r) { return r.excursion.duration; }, "excursion mode: its duration [s]")
-            .def_property_readonly(
-                "first_half_duration", [](const R& r) { return r.excursion.first_half; },
-                "excursion mode: the duration of its first half-excursion [s] (the JSON's first_half_duration)")
-            .def_property_readonly(
-                "complete", [](const R& r) { return !r.excursion.capped; },
-                "excursion mode: False if it hit the runaway guard (max_steps)")
-            .def_property_readonly(
-                "work", [](const R& r) { return r.excursion.work; }, "excursion mode: steps or events used")
             .def("__repr__", [](const R& r) {
                 std::size_t points = 0;
                 for (const auto& p : r.paths) points += p.t.size();

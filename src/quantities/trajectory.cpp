@@ -84,9 +84,10 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
                 append(path, q.t, q.x, q.mode, q.v, q.u);
             };
             detail::visit_engine(prepared, [&](const auto& engine) {
-                out.excursion = engine.excursion_path(seed, req.index, req.every, add);
-                if (!out.excursion.capped) { // the regeneration state that ends it
-                    const detail::PathPoint q = engine.regeneration_point(out.excursion);
+                const ExcursionOutcome outcome = engine.excursion_path(seed, req.index, req.every, add);
+                out.excursion = ExcursionRecord::of(outcome);
+                if (!outcome.capped) { // the regeneration state that ends it
+                    const detail::PathPoint q = engine.regeneration_point(outcome);
                     append(path, q.t, q.x, q.mode, q.v, q.u);
                 }
             });
@@ -94,7 +95,7 @@ TrajectoryResult compute_trajectory(const TrajectoryRequest& req_in) {
             throw InvalidParameter("every", "the excursion has more than " + std::to_string(req.max_points) +
                                                 " recorded points; record less often (--every)");
         }
-        if (out.excursion.capped)
+        if (!out.excursion.complete)
             out.warnings.push_back("the excursion hit the runaway guard (--max-steps) and is incomplete");
         out.paths.push_back(std::move(path));
         return out;

@@ -273,12 +273,7 @@ std::string to_json(const TrajectoryResult& r, int indent) {
     }
     j["params"] = params;
     j["nondimensional"] = nondimensional_json(q);
-    if (q.paths == 0) {
-        j["displacement"] = r.excursion.displacement;
-        j["duration"] = r.excursion.duration;
-        j["first_half_duration"] = r.excursion.first_half;
-        j["complete"] = !r.excursion.capped;
-    }
+    if (q.paths == 0) append_members(j, fields_json(r.excursion));
     ordered_json ps = ordered_json::array();
     for (const auto& p : r.paths) {
         ordered_json o;

@@ -192,6 +192,8 @@ TEST(ResultFields, NamesAreUniqueAndDocumented) {
     check(std::type_identity<KolmogorovGridSpan>{});
     check(std::type_identity<PrecisionOutcome>{});
     check(std::type_identity<WhiteNoiseReference>{});
+    check(std::type_identity<VelocityHistogram>{});
+    check(std::type_identity<ExcursionRecord>{});
 }
 
 } // namespace
