@@ -156,8 +156,9 @@ struct SweepPoint {
         using S = SweepPoint;
         visit(&S::varied, FieldInfo{"varied", "", "the swept drift constant's value (absent without vary)",
                                     FieldForm::WhenSet});
-        visit(&S::noise, FieldInfo{"noise", "m^2 s^-3", "the point's noise intensity"});
+        // tau first, as the grid runs (tau-major) and the CSV's columns have always been.
         visit(&S::tau, FieldInfo{"tau", "s", "the point's correlation time"});
+        visit(&S::noise, FieldInfo{"noise", "m^2 s^-3", "the point's noise intensity"});
         visit(&S::stop_rule, FieldInfo{"stop_rule", "",
                                        "sampled: the stop rule used there (with the automatic rule it can change "
                                        "along the grid)",

@@ -9,7 +9,9 @@
 // do not vary by row), empty when unset (a number NaN, an integer 0).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <string_view>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -29,44 +31,76 @@ inline std::string csv_text(const std::string& s) {
     return out + "\"";
 }
 
-/// The header cells of T's columns, comma-separated (no line end).
-template <DeclaredFields T> std::string fields_csv_header() {
+/// What a report tells the CSV writers about itself.
+struct FieldCsvStyle {
+    /// The fields (by declared name) this report leaves out (FieldForm::Optional,
+    /// a WhenSet field it never sets, the block of the method it did not use).
+    std::vector<std::string_view> omit = {};
+    /// A solver's report: an estimate takes NAME, NAME_error (no interval).
+    bool solved = false;
+
+    /// Whether the report leaves the field out.
+    bool omits(const FieldInfo& info) const {
+        for (std::string_view name : omit)
+            if (name == info.name) return true;
+        return false;
+    }
+};
+
+/// The header cells of T's columns, comma-separated (no line end); an
+/// inlined block's columns in its place.
+template <DeclaredFields T> std::string fields_csv_header(const FieldCsvStyle& style = {}) {
     std::string out;
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
-        if (f.form == FieldForm::NotInBlock) return;
-        if (!out.empty()) out += ",";
+        if (f.form == FieldForm::NotInBlock || style.omits(f)) return;
+        std::string cells;
         const std::string name = field_flat_name(f);
-        if constexpr (std::is_same_v<Value, Estimate>)
-            out += f.form == FieldForm::NoInterval ? name + "," + name + "_error" : csv_estimate_header(name);
+        if constexpr (inlined_block<Value>::value)
+            cells = fields_csv_header<typename inlined_block<Value>::type>(style);
+        else if constexpr (std::is_same_v<Value, Estimate>)
+            cells = f.form == FieldForm::NoInterval || style.solved ? name + "," + name + "_error"
+                                                                    : csv_estimate_header(name);
         else
-            out += name;
+            cells = name;
+        if (cells.empty()) return;
+        if (!out.empty()) out += ",";
+        out += cells;
     });
     return out;
 }
 
-/// The cells of x under fields_csv_header<T>(), comma-separated.
-template <DeclaredFields T> std::string fields_csv_row(const T& x) {
+/// The cells of x under fields_csv_header<T>(style), comma-separated; an
+/// absent inlined block's cells empty.
+template <DeclaredFields T> std::string fields_csv_row(const T& x, const FieldCsvStyle& style = {}) {
     std::string out;
     bool first = true;
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(x.*member)>;
-        if (f.form == FieldForm::NotInBlock) return;
-        if (!first) out += ",";
-        first = false;
+        if (f.form == FieldForm::NotInBlock || style.omits(f)) return;
         const Value& v = x.*member;
-        if constexpr (std::is_same_v<Value, Estimate>)
-            out += f.form == FieldForm::NoInterval ? csv_number(v.value) + "," + csv_number(v.error)
-                                                   : csv_estimate(v);
-        else if constexpr (std::is_same_v<Value, double>) out += csv_number(v);
-        else if constexpr (std::is_same_v<Value, bool>) out += v ? "true" : "false";
-        else if constexpr (std::is_same_v<Value, std::string>) out += csv_text(v);
-        else if constexpr (std::is_enum_v<Value>) out += to_string(v);
+        std::string cells;
+        if constexpr (inlined_block<Value>::value) {
+            using Block = typename inlined_block<Value>::type;
+            const std::string head = fields_csv_header<Block>(style);
+            if (head.empty()) return;
+            if (const Block* inner = inlined_value(v)) cells = fields_csv_row(*inner, style);
+            else cells = std::string(static_cast<std::size_t>(std::count(head.begin(), head.end(), ',')), ',');
+        } else if constexpr (std::is_same_v<Value, Estimate>) {
+            cells = f.form == FieldForm::NoInterval || style.solved ? csv_number(v.value) + "," + csv_number(v.error)
+                                                                    : csv_estimate(v);
+        } else if constexpr (std::is_same_v<Value, double>) cells = csv_number(v);
+        else if constexpr (std::is_same_v<Value, bool>) cells = v ? "true" : "false";
+        else if constexpr (std::is_same_v<Value, std::string>) cells = csv_text(v);
+        else if constexpr (std::is_enum_v<Value>) cells = to_string(v);
         else {
             static_assert(std::is_integral_v<Value>, "result_fields.hpp: a declared field of a type the CSV writer "
                                                      "does not know");
-            if (f.form != FieldForm::WhenSet || v != 0) out += std::to_string(v);
+            if (f.form != FieldForm::WhenSet || v != 0) cells = std::to_string(v);
         }
+        if (!first) out += ",";
+        first = false;
+        out += cells;
     });
     return out;
 }

@@ -198,20 +198,26 @@ std::string solved_table(const SweepResult& r) {
     return os.str();
 }
 
-std::string solved_csv(const SweepResult& r) {
+/// A sweep's CSV: one row per point, the point's declared columns
+/// (SweepPoint::fields, less what this sweep leaves out), then its
+/// nondimensional tau and D (and a solved point's grid states).
+std::string points_csv(const SweepResult& r, FieldCsvStyle style) {
+    if (!r.varies()) style.omit.push_back("varied");
     std::ostringstream os = report_stream();
-    os << (r.varies() ? "varied," : "") << "tau,noise," << fields_csv_header<KolmogorovResult>()
-       << ",slope,slope_error,tau_nondim,diffusivity_nondim,states,white_ratio,white_ratio_error\n";
+    os << fields_csv_header<SweepPoint>(style) << ",tau_nondim,diffusivity_nondim" << (r.solved() ? ",states" : "")
+       << "\n";
     for (const auto& p : r.points) {
-        const KolmogorovResult& s = *p.solution;
         const Scales sc = scales_of(point_params(r, p));
-        if (r.varies()) os << csv_number(p.varied) << ",";
-        os << csv_number(p.tau) << "," << csv_number(p.noise);
-        os << "," << fields_csv_row(s) << "," << csv_number(p.slope.value) << "," << csv_number(p.slope.error) << ","
-           << csv_number(p.tau / sc.time) << "," << csv_number(s.diffusivity.value / sc.diffusivity) << "," << p.work
-           << "," << csv_number(p.white_ratio.value) << "," << csv_number(p.white_ratio.error) << "\n";
+        const double d = p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
+        os << fields_csv_row(p, style) << "," << csv_number(p.tau / sc.time) << "," << csv_number(d / sc.diffusivity);
+        if (r.solved()) os << "," << p.work;
+        os << "\n";
     }
     return csv_provenance(r.request) + os.str();
+}
+
+std::string solved_csv(const SweepResult& r) {
+    return points_csv(r, FieldCsvStyle{{"stop_rule", "dt", "scheme", "estimates"}, true});
 }
 
 } // namespace
@@ -294,22 +300,10 @@ std::string to_table(const SweepResult& r) {
 
 std::string to_csv(const SweepResult& r) {
     if (r.solved()) return solved_csv(r);
-    std::ostringstream os = report_stream();
-    os << (r.varies() ? "varied," : "") << "tau,noise," << fields_csv_header<LongExcursionEstimates>()
-       << ",slope,slope_error,tau_nondim,diffusivity_nondim," << csv_estimate_header("white_ratio")
-       << (dt_per_point(r.request.engine) ? ",dt" : "") << (scheme_per_point(r.request.engine) ? ",scheme" : "")
-       << "\n";
-    for (const auto& p : r.points) {
-        const Scales sc = scales_of(point_params(r, p));
-        if (r.varies()) os << csv_number(p.varied) << ",";
-        os << csv_number(p.tau) << "," << csv_number(p.noise) << "," << fields_csv_row(p.estimates) << ","
-           << csv_number(p.slope.value) << "," << csv_number(p.slope.error) << "," << csv_number(p.tau / sc.time)
-           << "," << csv_number(p.estimates.diffusivity.value / sc.diffusivity) << "," << csv_estimate(p.white_ratio);
-        if (dt_per_point(r.request.engine)) os << "," << csv_number(p.dt);
-        if (scheme_per_point(r.request.engine)) os << "," << to_string(p.scheme);
-        os << "\n";
-    }
-    return csv_provenance(r.request) + os.str();
+    FieldCsvStyle style{{"solution", "precision_reached"}};
+    if (!dt_per_point(r.request.engine)) style.omit.push_back("dt"); // each point's own only with --dt auto
+    if (!scheme_per_point(r.request.engine)) style.omit.push_back("scheme");
+    return points_csv(r, style);
 }
 
 } // namespace stickslip
