@@ -382,7 +382,6 @@ void visit_settings(TrajectoryRequest& r, Visitor&& v) {
     v(r.max_points, SettingInfo{"max-points", "", "refuse to record more points than this per path"});
 }
 
-/// What compute_trajectory returns; report.hpp writes it.
 /// One long excursion as `trajectory` reports it (excursion mode): what the
 /// kernel's ExcursionOutcome says of it, less the estimators' internals.
 struct ExcursionRecord {
@@ -414,6 +413,7 @@ struct ExcursionRecord {
     }
 };
 
+/// What compute_trajectory returns; report.hpp writes it.
 struct TrajectoryResult {
     /// The request; in path mode with `every` resolved (0 replaced by the
     /// interval used).

@@ -44,6 +44,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -108,6 +109,15 @@ inline std::string field_flat_name(const FieldInfo& f) {
     return name;
 }
 
+/// Whether a report that leaves out the fields named in `omit` (its
+/// FieldForm::Optional ones, a block of the method it did not use) leaves
+/// out f: what the JSON and CSV writers' styles ask.
+inline bool omitted(const std::vector<std::string_view>& omit, const FieldInfo& f) {
+    for (std::string_view name : omit)
+        if (name == f.name) return true;
+    return false;
+}
+
 /// A visitor that accepts any field: the test of DeclaredFields.
 struct AnyFieldVisitor {
     /// Takes any member pointer and its description, and does nothing.
@@ -124,6 +134,7 @@ concept DeclaredFields = requires(AnyFieldVisitor v) { T::fields(v); };
 template <class Value> struct inlined_block : std::bool_constant<DeclaredFields<Value>> {
     using type = Value; ///< the declared struct
 };
+/// The same for an optional block (written when present).
 template <class Value> struct inlined_block<std::optional<Value>> : std::bool_constant<DeclaredFields<Value>> {
     using type = Value; ///< the declared struct
 };

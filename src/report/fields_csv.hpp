@@ -40,11 +40,7 @@ struct FieldCsvStyle {
     bool solved = false;
 
     /// Whether the report leaves the field out.
-    bool omits(const FieldInfo& info) const {
-        for (std::string_view name : omit)
-            if (name == info.name) return true;
-        return false;
-    }
+    bool omits(const FieldInfo& info) const { return omitted(omit, info); }
 };
 
 /// The header cells of T's columns, comma-separated (no line end); an

@@ -29,11 +29,7 @@ struct FieldJsonStyle {
     std::vector<std::string_view> omit = {};
 
     /// Whether the report leaves the field out.
-    bool omits(const FieldInfo& info) const {
-        for (std::string_view name : omit)
-            if (name == info.name) return true;
-        return false;
-    }
+    bool omits(const FieldInfo& info) const { return omitted(omit, info); }
 };
 
 /// One field's value as JSON (the member types result_fields.hpp allows).

@@ -128,31 +128,37 @@ ModelParams point_params(const SweepResult& r, const SweepPoint& p) {
     return mp;
 }
 
-std::string solved_json(const SweepResult& r, int indent) {
-    const auto& q = r.request;
-    ordered_json j = report_head("sweep", q.engine, nullptr, nullptr);
-    auto params = sweep_params_json(q);
-    params["rel_precision"] = q.rel_precision;
-    j["params"] = params;
-    j["engine_details"] = {{"method", "kolmogorov"}};
-    ordered_json pts = ordered_json::array();
+/// What a sweep's points leave out: the block and fields of the method not
+/// used, and a step and scheme of their own, which points have only with
+/// --dt auto / --scheme auto on the inclusion engine.
+std::vector<std::string_view> point_omissions(const SweepResult& r) {
+    if (r.solved()) return {"stop_rule", "dt", "scheme", "estimates"};
+    std::vector<std::string_view> omit{"solution", "precision_reached"};
+    if (!dt_per_point(r.request.engine)) omit.push_back("dt");
+    if (!scheme_per_point(r.request.engine)) omit.push_back("scheme");
+    return omit;
+}
+
+/// The points' JSON: each point's declared fields (SweepPoint::fields), its
+/// nondimensional values and its work.
+ordered_json points_json(const SweepResult& r) {
+    const FieldJsonStyle style{nullptr, point_omissions(r)};
+    const std::string unit = r.solved() ? "states" : work_unit(r.request.engine);
+    ordered_json points = ordered_json::array();
     for (const auto& p : r.points) {
-        const KolmogorovResult& s = *p.solution;
         const Scales sc = scales_of(point_params(r, p));
-        ordered_json o = fields_json(p, FieldJsonStyle{nullptr, {"stop_rule", "dt", "scheme", "estimates"}});
+        const Estimate& d = p.solution ? p.solution->diffusivity : p.estimates.diffusivity;
+        const Estimate& m0 = p.solution ? p.solution->mobility : p.estimates.mobility;
+        const Estimate& t1 = p.solution ? p.solution->mean_duration : p.estimates.mean_duration;
+        ordered_json o = fields_json(p, style);
         o["nondimensional"] = {{"tau", p.tau / sc.time},
-                               {"diffusivity", s.diffusivity.value / sc.diffusivity},
-                               {"mobility", s.mobility.value / sc.velocity},
-                               {"mean_duration", s.mean_duration.value / sc.time}};
-        o["work"] = {{"states", p.work}, {"seconds", p.seconds}};
-        pts.push_back(o);
+                               {"diffusivity", d.value / sc.diffusivity},
+                               {"mobility", m0.value / sc.velocity},
+                               {"mean_duration", t1.value / sc.time}};
+        o["work"] = {{unit, p.work}, {"seconds", p.seconds}};
+        points.push_back(o);
     }
-    j["points"] = pts;
-    j["exponents"] = declared_list_json(r, r.exponents);
-    j["white_limits"] = declared_list_json(r, r.white_limits);
-    ordered_json work = {{"seconds", r.seconds}};
-    add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
-    return dump(j, indent);
+    return points;
 }
 
 /// "value +- error" in a column of the solved sweep table.
@@ -201,7 +207,8 @@ std::string solved_table(const SweepResult& r) {
 /// A sweep's CSV: one row per point, the point's declared columns
 /// (SweepPoint::fields, less what this sweep leaves out), then its
 /// nondimensional tau and D (and a solved point's grid states).
-std::string points_csv(const SweepResult& r, FieldCsvStyle style) {
+std::string points_csv(const SweepResult& r) {
+    FieldCsvStyle style{point_omissions(r), r.solved()};
     if (!r.varies()) style.omit.push_back("varied");
     std::ostringstream os = report_stream();
     os << fields_csv_header<SweepPoint>(style) << ",tau_nondim,diffusivity_nondim" << (r.solved() ? ",states" : "")
@@ -216,39 +223,23 @@ std::string points_csv(const SweepResult& r, FieldCsvStyle style) {
     return csv_provenance(r.request) + os.str();
 }
 
-std::string solved_csv(const SweepResult& r) {
-    return points_csv(r, FieldCsvStyle{{"stop_rule", "dt", "scheme", "estimates"}, true});
-}
-
 } // namespace
 
 std::string to_json(const SweepResult& r, int indent) {
-    if (r.solved()) return solved_json(r, indent); // the method, chosen once
     const auto& q = r.request;
     const std::string estimator = to_string(q.estimator);
-    ordered_json j = report_head("sweep", q.engine, estimator.c_str(), nullptr);
+    ordered_json j = report_head("sweep", q.engine, r.solved() ? nullptr : estimator.c_str(), nullptr);
     auto params = sweep_params_json(q);
-    const bool own_dt = dt_per_point(q.engine), own_scheme = scheme_per_point(q.engine);
-    if (own_dt) params.erase("dt"); // each point's own: points[k].dt
-    params["excursions"] = q.excursions;
-    params["level"] = q.level;
-    j["params"] = params;
-    // A point's own step and scheme only when --dt auto / --scheme auto gave it one.
-    FieldJsonStyle style{nullptr, {"precision_reached"}};
-    if (!own_dt) style.omit.push_back("dt");
-    if (!own_scheme) style.omit.push_back("scheme");
-    ordered_json pts = ordered_json::array();
-    for (const auto& p : r.points) {
-        const Scales sc = scales_of(point_params(r, p));
-        ordered_json o = fields_json(p, style);
-        o["nondimensional"] = {{"tau", p.tau / sc.time},
-                               {"diffusivity", p.estimates.diffusivity.value / sc.diffusivity},
-                               {"mobility", p.estimates.mobility.value / sc.velocity},
-                               {"mean_duration", p.estimates.mean_duration.value / sc.time}};
-        o["work"] = {{work_unit(q.engine), p.work}, {"seconds", p.seconds}};
-        pts.push_back(o);
+    if (r.solved()) {
+        params["rel_precision"] = q.rel_precision;
+    } else {
+        if (dt_per_point(q.engine)) params.erase("dt"); // each point's own: points[k].dt
+        params["excursions"] = q.excursions;
+        params["level"] = q.level;
     }
-    j["points"] = pts;
+    j["params"] = params;
+    if (r.solved()) j["engine_details"] = {{"method", "kolmogorov"}};
+    j["points"] = points_json(r);
     j["exponents"] = declared_list_json(r, r.exponents);
     j["white_limits"] = declared_list_json(r, r.white_limits);
     ordered_json work = {{"seconds", r.seconds}};
@@ -298,12 +289,6 @@ std::string to_table(const SweepResult& r) {
     return os.str();
 }
 
-std::string to_csv(const SweepResult& r) {
-    if (r.solved()) return solved_csv(r);
-    FieldCsvStyle style{{"solution", "precision_reached"}};
-    if (!dt_per_point(r.request.engine)) style.omit.push_back("dt"); // each point's own only with --dt auto
-    if (!scheme_per_point(r.request.engine)) style.omit.push_back("scheme");
-    return points_csv(r, style);
-}
+std::string to_csv(const SweepResult& r) { return points_csv(r); }
 
 } // namespace stickslip
