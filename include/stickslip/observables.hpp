@@ -88,8 +88,9 @@ struct VelocityHistogram {
     /// @}
 
     /// The fields, in report order (result_fields.hpp): the bins (JSON
-    /// "bins", each {lo, hi, value, error, kind}), then the mass outside them;
-    /// P(V = 0) is reported beside the histogram, not in it.
+    /// "bins", each {lo, hi, value, error, kind}), then the mass outside them
+    /// and P(V = 0) (a stationary density's beside the histogram: the
+    /// solver's is a quantity of its own).
     template <class Visit> static constexpr void fields(Visit&& visit) {
         using S = VelocityHistogram;
         visit(&S::edges, FieldInfo{"edges", "m/s", "the bin edges (one more than the bins)", FieldForm::Edges});
@@ -97,11 +98,12 @@ struct VelocityHistogram {
                                      "the density of the continuous part of the law of V on each bin [lo, hi) (the "
                                      "atom at V = 0 excluded)",
                                      FieldForm::NoInterval});
-        visit(&S::stuck, FieldInfo{"stuck_probability", "",
-                                   "P(V = 0), the object sticks (coloured noise only); reported beside the histogram",
-                                   FieldForm::NotInBlock});
         visit(&S::below, FieldInfo{"below", "", "P(V < edges[0], V != 0)", FieldForm::NoInterval});
         visit(&S::above, FieldInfo{"above", "", "P(V >= edges[-1], V != 0)", FieldForm::NoInterval});
+        visit(&S::stuck, FieldInfo{"stuck_probability", "",
+                                   "P(V = 0), the object sticks (coloured noise only); a stationary density's is "
+                                   "reported beside its histogram",
+                                   FieldForm::Optional});
     }
 };
 

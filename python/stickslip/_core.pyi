@@ -133,11 +133,11 @@ class Histogram:
     @property
     def bins(self) -> EstimateSeries: ...  # [s/m]
     @property
-    def stuck_probability(self) -> Estimate: ...
-    @property
     def below(self) -> Estimate: ...
     @property
     def above(self) -> Estimate: ...
+    @property
+    def stuck_probability(self) -> Estimate: ...
     @property
     def centers(self) -> FloatArray: ...  # (bins,) [m/s]
     @property

@@ -19,7 +19,9 @@ using namespace detail;
 
 namespace {
 
-ordered_json histogram_json(const VelocityHistogram& h) { return fields_json(h); }
+/// A stationary density's histogram: P(V = 0) is reported beside it, as the
+/// solver reports it.
+ordered_json histogram_json(const VelocityHistogram& h) { return fields_json(h, FieldJsonStyle{nullptr, {"stuck_probability"}}); }
 
 } // namespace
 
@@ -162,8 +164,7 @@ std::string to_json(const MomentsResult& r, int indent) {
     if (!r.density.empty()) {
         ordered_json d = ordered_json::array();
         for (std::size_t k = 0; k < r.time.size(); ++k) {
-            ordered_json h = histogram_json(r.density[k]);
-            h["stuck_probability"] = estimate_json(r.density[k].stuck);
+            ordered_json h = fields_json(r.density[k]); // with its P(V(t) = 0)
             h["time"] = r.time[k];
             d.push_back(h);
         }
