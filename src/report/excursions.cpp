@@ -145,21 +145,20 @@ std::string to_csv(const DiffusivityResult& r) {
     if (r.solution) return csv_provenance(r.request) + solved_csv(r);
     const auto& q = r.request;
     const auto& p = q.params;
+    // The checks' blocks after the estimates, each column named by its JSON
+    // path (discretisation.diffusivity -> discretisation_diffusivity).
+    const FieldCsvStyle dt_check{{"knots", "check_knots"}, false, "discretisation_"};
+    const FieldCsvStyle knots_check{{"dt", "check_dt", "steps"}, false, "knots_check_"};
     std::ostringstream os = report_stream();
-    os << "engine,friction,noise,tau,relaxation,bias,seed," << fields_csv_header<LongExcursionEstimates>()
-       << (r.discretisation ? ",check_dt,diffusivity_difference,diffusivity_difference_error,mobility_difference,"
-                              "mobility_difference_error"
-                            : "")
-       << "\n";
+    os << "engine,friction,noise,tau,relaxation,bias,seed," << fields_csv_header<LongExcursionEstimates>();
+    if (r.discretisation) os << "," << fields_csv_header<DiscretisationCheck>(dt_check);
+    if (r.knots_check) os << "," << fields_csv_header<DiscretisationCheck>(knots_check);
+    os << "\n";
     os << to_string(q.engine.engine) << "," << csv_number(p.friction) << "," << csv_number(p.noise) << ","
        << csv_number(p.tau) << "," << csv_number(p.relaxation) << "," << csv_number(p.bias) << ","
        << q.control.seed << "," << fields_csv_row(r.estimates);
-    if (r.discretisation) {
-        const DiscretisationCheck& c = *r.discretisation;
-        os << "," << csv_number(c.check_dt) << "," << csv_number(c.diffusivity_difference.value) << ","
-           << csv_number(c.diffusivity_difference.error) << "," << csv_number(c.mobility_difference.value) << ","
-           << csv_number(c.mobility_difference.error);
-    }
+    if (r.discretisation) os << "," << fields_csv_row(*r.discretisation, dt_check);
+    if (r.knots_check) os << "," << fields_csv_row(*r.knots_check, knots_check);
     os << "\n";
     return csv_provenance(r.request) + os.str();
 }

@@ -38,6 +38,10 @@ struct FieldCsvStyle {
     std::vector<std::string_view> omit = {};
     /// A solver's report: an estimate takes NAME, NAME_error (no interval).
     bool solved = false;
+    /// Put before every column's name: a block's path where the CSV is flat
+    /// ("discretisation_" for the --check-dt block, as its JSON path
+    /// discretisation.NAME reads with '.' as '_').
+    std::string prefix = {};
 
     /// Whether the report leaves the field out.
     bool omits(const FieldInfo& info) const { return omitted(omit, info); }
@@ -51,7 +55,7 @@ template <DeclaredFields T> std::string fields_csv_header(const FieldCsvStyle& s
         using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
         if (f.form == FieldForm::NotInBlock || style.omits(f)) return;
         std::string cells;
-        const std::string name = field_flat_name(f);
+        const std::string name = style.prefix + field_flat_name(f);
         if constexpr (inlined_block<Value>::value)
             cells = fields_csv_header<typename inlined_block<Value>::type>(style);
         else if constexpr (std::is_same_v<Value, Estimate>)

@@ -544,7 +544,11 @@ TEST(CliCheckDt, EventSchemeShowsNoBiasAndTheTableSaysSo) {
     EXPECT_EQ(r.out.find("bias is visible"), std::string::npos) << r.out; // seed 1: z = 1.1 (D), -1.0 (M0)
     const Result csv = run(with(args, {"--format", "csv"}));
     ASSERT_EQ(csv.code, 0) << csv.err;
-    EXPECT_NE(csv.out.find(",check_dt,diffusivity_difference,"), std::string::npos) << csv.out;
+    // The check's block, each column named by its JSON path (discretisation.check_dt, ...).
+    EXPECT_NE(csv.out.find(",discretisation_dt,discretisation_check_dt,discretisation_excursions,"
+                           "discretisation_steps,discretisation_diffusivity,discretisation_diffusivity_error,"),
+              std::string::npos)
+        << csv.out;
 }
 
 TEST(CliStepNotes, AStepNearTheRelaxationTimeGetsItsOwnNote) {
