@@ -13,16 +13,56 @@
 /// JSON, table and CSV reports of every result. The comment at the top of this
 /// header explains the design.
 
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "stickslip/bruteforce.hpp"
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/observables.hpp"
+#include "stickslip/params.hpp"
+#include "stickslip/result_fields.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
 namespace stickslip {
+
+/// A report's results in the model's own units (the "nondimensional" block:
+/// each value over its scale, Scales), after the parameters' nondimensional
+/// values; each written when the report has it (a sweep point's tau, brute
+/// force's horizon, the long excursions' E[t1]).
+struct NondimensionalValues {
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    double tau = std::numeric_limits<double>::quiet_NaN();
+    double time = std::numeric_limits<double>::quiet_NaN();
+    double diffusivity = std::numeric_limits<double>::quiet_NaN();
+    double mobility = std::numeric_limits<double>::quiet_NaN();
+    double mean_duration = std::numeric_limits<double>::quiet_NaN();
+    /// @}
+
+    /// D [m^2/s], M0 [m/s] and E[t1] [s] (NaN: none) over the scales.
+    static NondimensionalValues of(const Scales& sc, double diffusivity, double mobility, double mean_duration) {
+        NondimensionalValues v;
+        v.diffusivity = diffusivity / sc.diffusivity;
+        v.mobility = mobility / sc.velocity;
+        v.mean_duration = mean_duration / sc.time;
+        return v;
+    }
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = NondimensionalValues;
+        visit(&S::tau, FieldInfo{"tau", "",
+                                 "tau over the time scale (a sweep point's here; a run's is among its parameters')",
+                                 FieldForm::WhenSet});
+        visit(&S::time, FieldInfo{"time", "", "brute force's horizon over the time scale", FieldForm::WhenSet});
+        visit(&S::diffusivity, FieldInfo{"diffusivity", "", "D over the diffusivity scale", FieldForm::WhenSet});
+        visit(&S::mobility, FieldInfo{"mobility", "", "M0 over the velocity scale", FieldForm::WhenSet});
+        visit(&S::mean_duration,
+              FieldInfo{"mean_duration", "", "E[t1] over the time scale", FieldForm::WhenSet});
+    }
+};
 
 /// Throws UntrustworthyResult when the JSON report `json` (what to_json
 /// writes) holds a number that is not finite (written as null) outside its

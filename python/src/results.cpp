@@ -71,6 +71,7 @@ void bind_results(py::module_& m) {
     note_declared<PrecisionOutcome>("", "merged:precision"); // a dict of its JSON block, as above
     // Flattened into the sampled results (add_totals); capped merged into these reports.
     note_declared<RunTotals>("_Totals", "merged:diffusivity_report,stationary_density_report");
+    note_declared<NondimensionalValues>("", "merged:nondimensional"); // in every report's nondimensional block
     note_declared<SweepPoint>("", "merged:sweep_point"); // SweepResult's grid columns, by hand
     note_declared<KolmogorovGridSpan>("", "kolmogorov_grid"); // in a solved report's engine_details, a dict
     note_declared<DiscretisationCheck>("", "difference_check"); // the same

@@ -26,10 +26,8 @@ std::string solved_json(const DiffusivityResult& r, int indent) {
     const KolmogorovSettings settings = kolmogorov_settings(q, q.rel_precision);
     ordered_json j = solved_head("diffusivity", q);
     auto nd = nondimensional_json(q);
-    const Scales sc = scales_of(q.params);
-    nd["diffusivity"] = s.diffusivity.value / sc.diffusivity;
-    nd["mobility"] = s.mobility.value / sc.velocity;
-    nd["mean_duration"] = s.mean_duration.value / sc.time;
+    append_members(nd, fields_json(NondimensionalValues::of(scales_of(q.params), s.diffusivity.value,
+                                                            s.mobility.value, s.mean_duration.value)));
     j["nondimensional"] = nd;
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
@@ -72,10 +70,9 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     params["level"] = q.level;
     j["params"] = params;
     auto nd = nondimensional_json(q);
-    const Scales sc = scales_of(q.params);
-    nd["diffusivity"] = r.estimates.diffusivity.value / sc.diffusivity;
-    nd["mobility"] = r.estimates.mobility.value / sc.velocity;
-    nd["mean_duration"] = r.estimates.mean_duration.value / sc.time;
+    append_members(nd, fields_json(NondimensionalValues::of(scales_of(q.params), r.estimates.diffusivity.value,
+                                                            r.estimates.mobility.value,
+                                                            r.estimates.mean_duration.value)));
     j["nondimensional"] = nd;
     append_members(j, long_excursion_json(r.estimates));
     append_members(j, fields_json(r.monte_carlo().totals)); // capped
@@ -177,9 +174,10 @@ std::string to_json(const BruteForceResult& r, int indent) {
     j["params"] = params;
     auto nd = nondimensional_json(q);
     const Scales sc = scales_of(q.params);
-    nd["time"] = q.horizon / sc.time;
-    nd["diffusivity"] = r.estimates.diffusivity.value / sc.diffusivity;
-    nd["mobility"] = r.estimates.mobility.value / sc.velocity;
+    NondimensionalValues values = NondimensionalValues::of(sc, r.estimates.diffusivity.value,
+                                                           r.estimates.mobility.value, std::nan(""));
+    values.time = q.horizon / sc.time;
+    append_members(nd, fields_json(values));
     j["nondimensional"] = nd;
     append_members(j, fields_json(r.estimates));
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);

@@ -151,10 +151,9 @@ ordered_json points_json(const SweepResult& r) {
         const Estimate& m0 = p.solution ? p.solution->mobility : p.estimates.mobility;
         const Estimate& t1 = p.solution ? p.solution->mean_duration : p.estimates.mean_duration;
         ordered_json o = fields_json(p, style);
-        o["nondimensional"] = {{"tau", p.tau / sc.time},
-                               {"diffusivity", d.value / sc.diffusivity},
-                               {"mobility", m0.value / sc.velocity},
-                               {"mean_duration", t1.value / sc.time}};
+        NondimensionalValues values = NondimensionalValues::of(sc, d.value, m0.value, t1.value);
+        values.tau = p.tau / sc.time;
+        o["nondimensional"] = fields_json(values);
         o["work"] = {{unit, p.work}, {"seconds", p.seconds}};
         points.push_back(o);
     }

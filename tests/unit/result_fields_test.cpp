@@ -20,6 +20,7 @@
 #include "stickslip/drift_law_quadrature.hpp"
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/observables.hpp"
+#include "stickslip/report.hpp"
 #include "stickslip/result_fields.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -194,6 +195,7 @@ TEST(ResultFields, NamesAreUniqueAndDocumented) {
     check(std::type_identity<WhiteNoiseReference>{});
     check(std::type_identity<VelocityHistogram>{});
     check(std::type_identity<ExcursionRecord>{});
+    check(std::type_identity<NondimensionalValues>{});
 }
 
 } // namespace
