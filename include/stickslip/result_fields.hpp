@@ -98,6 +98,10 @@ struct FieldInfo {
     const char* help;
     /// How its struct's JSON block shows it.
     FieldForm form = FieldForm::Value;
+    /// A series' point key where it is not its axis' name: analytic's
+    /// autocorrelation runs along its times but is keyed "lag", as the
+    /// sampled autocorrelation is (one path per quantity). nullptr: the axis'.
+    const char* point_key = nullptr;
 };
 
 /// A field's name where names cannot nest (Python attributes, CSV columns):

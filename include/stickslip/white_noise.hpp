@@ -22,6 +22,8 @@
 #include "stickslip/analytic.hpp"
 #include "stickslip/method.hpp"
 #include "stickslip/params.hpp"
+#include "stickslip/result_fields.hpp"
+#include "stickslip/stats/estimators.hpp"
 
 namespace stickslip {
 
@@ -61,8 +63,12 @@ struct WhiteNoiseResult : MethodResult {
     /// The request, with params.tau set to 0.
     WhiteNoiseRequest request;
     WhiteNoiseReference reference;       ///< M0 [m/s], D [m^2/s], Var(V) [m^2/s^2]
-    std::vector<double> first_moment;    ///< E[V(t) | v0] [m/s], aligned with request.times
-    std::vector<double> autocorrelation; ///< <V(t) V(0)> [m^2/s^2], aligned with request.times
+    /// The series' times and their values, declared in fields() below.
+    /// @{
+    std::vector<double> times;
+    std::vector<Estimate> first_moment;
+    std::vector<Estimate> autocorrelation;
+    /// @}
     std::vector<double> stationary_density; ///< Hayakawa p(v) [s/m] at request.velocities
     /// p(v, t | v0) [s/m]: one row per time (t = 0 rows are empty: a delta
     /// function), one column per velocity.
@@ -70,6 +76,20 @@ struct WhiteNoiseResult : MethodResult {
     /// Notes for the user, one sentence each, reported like every result's;
     /// compute_white_noise currently adds none (exact references).
     std::vector<std::string> warnings;
+
+    /// The series (with times), in report order (result_fields.hpp): each
+    /// value exact for a closed form, solved (the grid's relative
+    /// discretisation error times the value) for the Fokker-Planck grid, at
+    /// the paths of the sampled series (moments' first_moment, correlation's
+    /// autocorrelation, keyed "lag").
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = WhiteNoiseResult;
+        visit(&S::times, FieldInfo{"time", "s", "the times of the series (the request's)", FieldForm::Axis});
+        visit(&S::first_moment, FieldInfo{"first_moment", "m/s", "E[V(t) | V(0) = v0] with white noise"});
+        visit(&S::autocorrelation, FieldInfo{"autocorrelation", "m^2/s^2",
+                                             "<V(t) V(0)> in the stationary state with white noise (at lag t)",
+                                             FieldForm::Value, "lag"});
+    }
 };
 
 /// True for pure dry friction (relaxation inf, bias 0): closed forms exist.

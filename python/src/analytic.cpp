@@ -184,14 +184,11 @@ void bind_analytic(py::module_& m) {
     add_renderings<R>(c);
     add_declared_fields(c, [](const R& r) -> const WhiteNoiseReference& { return r.reference; });
     note_declared<WhiteNoiseReference>("WhiteNoiseResult", "merged:white_noise_reference_report");
+    bind_fields<R>(c, "WhiteNoiseResult", "merged:white_noise_reference_report"); // the series
     c.def_property_readonly("params", [](const R& r) { return r.request.params; })
-        .def_property_readonly("times", [](const R& r) { return to_array(r.request.times); }, "t [s], shape (n,)")
+        .def_property_readonly("times", [](const R& r) { return to_array(r.request.times); },
+                               "t [s], shape (n,): the request's times (the same as `time`)")
         .def_property_readonly("v0", [](const R& r) { return r.request.v0; }, "initial velocity [m/s]")
-        .def_property_readonly(
-            "first_moment", [](const R& r) { return to_array(r.first_moment); }, "E[V(t)|v0] [m/s], shape (n,)")
-        .def_property_readonly(
-            "autocorrelation", [](const R& r) { return to_array(r.autocorrelation); },
-            "<V(t)V(0)> [m^2/s^2], shape (n,)")
         .def_property_readonly(
             "velocities", [](const R& r) { return to_array(r.request.velocities); }, "v [m/s], shape (m,)")
         .def_property_readonly(

@@ -147,16 +147,17 @@ inline EstimateSeries estimate_series(const std::vector<Estimate>& items) {
 /// names those reports' definitions, comma-separated, after "merged:".
 struct DeclaredStruct {
     std::string python_class, schema_definition;
-    /// Per field: name, unit, help, Python type, form, JSON kind. Plain
+    /// Per field: name, unit, help, Python type, form, JSON kind, a series'
+    /// point key ("" for its axis' name). Plain
     /// strings, not Python objects: the list outlives the interpreter.
-    std::vector<std::array<std::string, 6>> fields;
+    std::vector<std::array<std::string, 7>> fields;
 };
 /// Every struct bind_fields or note_declared was given, in that order.
 std::vector<DeclaredStruct>& declared_structs();
 
 /// T's fields as _result_fields() lists them, an inlined struct's in its
 /// place (each "optional" where the struct may be absent).
-template <DeclaredFields T> void list_declared_fields(std::vector<std::array<std::string, 6>>& out, bool optional) {
+template <DeclaredFields T> void list_declared_fields(std::vector<std::array<std::string, 7>>& out, bool optional) {
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
         static constexpr const char* forms[] = {"value", "no_interval", "reference", "when_set",
@@ -169,7 +170,7 @@ template <DeclaredFields T> void list_declared_fields(std::vector<std::array<std
             const bool keep_form =
                 f.form == FieldForm::NotInBlock || f.form == FieldForm::Axis || f.form == FieldForm::Edges;
             const char* form = optional && !keep_form ? "optional" : forms[static_cast<int>(f.form)];
-            out.push_back({f.name, f.unit, f.help, types[0], form, types[1]});
+            out.push_back({f.name, f.unit, f.help, types[0], form, types[1], f.point_key ? f.point_key : ""});
         }
     });
 }

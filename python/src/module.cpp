@@ -588,7 +588,7 @@ PYBIND11_MODULE(_core, m) {
                 pybind11::list fields;
                 for (const auto& f : d.fields) {
                     pybind11::dict each;
-                    const char* keys[] = {"name", "unit", "help", "type", "form", "json"};
+                    const char* keys[] = {"name", "unit", "help", "type", "form", "json", "key"};
                     for (std::size_t k = 0; k < f.size(); ++k) each[keys[k]] = f[k];
                     fields.append(each);
                 }

@@ -137,8 +137,8 @@ template <class F> void fields(F& f, SweepResult& x) {
     f(x.request, x.points, x.exponents, x.white_limits, x.seconds, x.interrupted, x.resumed, x.warnings);
 }
 template <class F> void fields(F& f, WhiteNoiseResult& x) {
-    f(static_cast<MethodResult&>(x), x.request, x.reference, x.first_moment, x.autocorrelation, x.stationary_density,
-      x.transient_density, x.warnings);
+    f(static_cast<MethodResult&>(x), x.request, x.reference, x.stationary_density, x.transient_density, x.warnings);
+    declared_fields(f, x);
 }
 
 // ---- writing and reading a state ------------------------------------------------------------

@@ -394,6 +394,12 @@ class SweepResult(_Rendered):
 
 class WhiteNoiseResult(_Rendered):
     @property
+    def time(self) -> FloatArray: ...  # [s]
+    @property
+    def first_moment(self) -> EstimateSeries: ...  # [m/s]
+    @property
+    def autocorrelation(self) -> EstimateSeries: ...  # [m^2/s^2]
+    @property
     def mobility(self) -> float: ...  # [m/s]
     @property
     def diffusivity(self) -> float: ...  # [m^2/s]
@@ -403,10 +409,6 @@ class WhiteNoiseResult(_Rendered):
     def times(self) -> FloatArray: ...
     @property
     def v0(self) -> float: ...
-    @property
-    def first_moment(self) -> FloatArray: ...
-    @property
-    def autocorrelation(self) -> FloatArray: ...
     @property
     def velocities(self) -> FloatArray: ...
     @property

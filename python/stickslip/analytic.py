@@ -213,8 +213,11 @@ Every exact white-noise reference for one parameter set: what ``stickslip analyt
     Fokker-Planck solution otherwise); with velocities, the stationary density
     p(v) and the transition density p(v, t | v0).""", """\
     WhiteNoiseResult
-        .mobility, .diffusivity, .variance (floats); .times, .first_moment,
-        .autocorrelation (n,); .velocities, .stationary_density (m,);
+        .mobility, .diffusivity, .variance (floats); .times (n,);
+        .first_moment, .autocorrelation (EstimateSeries (n,): kind 'exact'
+        for the closed forms, 'solved' with the grid's error otherwise, as
+        the sampled moments' and correlation's); .velocities,
+        .stationary_density (m,);
         .transient_density (n, m) (NaN rows at t = 0); .method; .meta;
         .to_dict() is the CLI's JSON; .to_columns() and .to_dataframe()
         give one row per (time, velocity) pair.""", params_doc="""\

@@ -114,7 +114,9 @@ class WhiteNoiseTest(unittest.TestCase):
         self.assertIn("closed form", r.method)
         fig2 = analytic.white_noise(FIG2, times=[0.5])
         self.assertIn("fokker-planck", fig2.method)
-        self.assertTrue(math.isfinite(fig2.first_moment[0]))
+        self.assertTrue(math.isfinite(fig2.first_moment.value[0]))
+        self.assertEqual(fig2.first_moment.kind, "solved")  # the grid's discretisation error
+        self.assertEqual(r.first_moment.kind, "exact")
 
 
 if __name__ == "__main__":

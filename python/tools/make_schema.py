@@ -27,7 +27,7 @@ def field_schema(f, axis=None):
     if f["json"] == "series":
         if not axis:
             sys.exit(f"make_schema: the series {f['name']!r} has no axis in its struct")
-        s = {"$ref": f"#/$defs/{axis}_series"}
+        s = {"$ref": f"#/$defs/{f.get('key') or axis}_series"}  # its own point key, or its axis
     elif f["json"] == "estimate" or f["form"] == "reference":
         s = {"$ref": "#/$defs/estimate"}
     elif f["json"] == "number":

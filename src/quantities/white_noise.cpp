@@ -68,6 +68,7 @@ WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req) {
         for (double v : req.velocities) out.stationary_density.push_back(density(v));
     }
     if (req.times.empty()) return out;
+    out.times = req.times;
     std::vector<double> positive; // times with a transition density (t > 0)
     for (double t : req.times)
         if (t > 0) positive.push_back(t);
@@ -75,8 +76,8 @@ WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req) {
     if (is_pure_dry_friction(p)) {
         out.grid().solver = "closed form (Touchette, Van der Straeten and Just 2010, eqs. 2.10, 2.11 and 2.13)";
         for (double t : req.times) {
-            out.first_moment.push_back(dry_friction_first_moment(p, t, req.v0));
-            out.autocorrelation.push_back(dry_friction_autocorrelation(p, t));
+            out.first_moment.push_back(exact_estimate(dry_friction_first_moment(p, t, req.v0)));
+            out.autocorrelation.push_back(exact_estimate(dry_friction_autocorrelation(p, t)));
         }
         if (!req.velocities.empty())
             for (double t : positive) {
@@ -95,8 +96,11 @@ WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req) {
         // default resolution (fokker_planck.hpp): first moment within 5e-7,
         // autocorrelation 2e-8, density 1e-6 of its peak for t' >= 0.5.
         g.discretisation_error = fokker_planck_accuracy;
-        out.first_moment = fp.first_moment(req.v0, req.times);
-        out.autocorrelation = fp.autocorrelation(req.times);
+        // Each value with the grid's relative discretisation error (a solved value).
+        for (double m : fp.first_moment(req.v0, req.times))
+            out.first_moment.push_back(solved_estimate(m, g.discretisation_error * std::abs(m)));
+        for (double c : fp.autocorrelation(req.times))
+            out.autocorrelation.push_back(solved_estimate(c, g.discretisation_error * std::abs(c)));
         if (!req.velocities.empty() && !positive.empty()) rows = fp.density(req.v0, positive, req.velocities);
     }
     if (!req.velocities.empty()) {

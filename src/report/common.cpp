@@ -57,6 +57,10 @@ ordered_json white_reference_json(double value, const ModelParams& p) {
 ordered_json series_point(const char* key, double where, const Estimate& e) {
     ordered_json j;
     j[key] = where;
+    if (e.kind != EstimateKind::Sampled) { // a solver's or a closed form's: no interval
+        append_members(j, estimate_json(e));
+        return j;
+    }
     j["value"] = json_number(e.value);
     j["error"] = json_number(e.error);
     j["ci"] = {json_number(e.lo), json_number(e.hi)};

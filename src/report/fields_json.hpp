@@ -95,7 +95,7 @@ template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJson
             for (std::size_t k = 0; k < value.size(); ++k) {
                 const std::vector<double>& at = *axis.values;
                 if (!axis.edges) {
-                    points.push_back(series_point(axis.name, at[k], value[k]));
+                    points.push_back(series_point(info.point_key ? info.point_key : axis.name, at[k], value[k]));
                     continue;
                 }
                 ordered_json bin;

@@ -24,24 +24,9 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
     append_members(j, fields_json(r.reference, FieldJsonStyle{&q.params}));
     const GridDetails& g = r.grid();
     if (!q.times.empty()) {
-        // Series with the paths of the sampled ones (moments' first_moment,
-        // correlation's autocorrelation): exact for a closed form, else the
-        // grid's relative discretisation error times the value.
-        const auto series = [&](const char* key, const std::vector<double>& values) {
-            ordered_json a = ordered_json::array();
-            for (std::size_t k = 0; k < values.size(); ++k) {
-                ordered_json o;
-                o[key] = q.times[k];
-                append_members(o, g.cells > 0 ? solved_estimate_json(values[k], g.discretisation_error * std::abs(values[k]))
-                                              : exact_estimate_json(values[k]));
-                a.push_back(o);
-            }
-            return a;
-        };
         j["times"] = q.times;
         j["v0"] = q.v0;
-        j["first_moment"] = series("time", r.first_moment);
-        j["autocorrelation"] = series("lag", r.autocorrelation);
+        append_members(j, fields_json(r)); // the series, with the sampled ones' paths
     }
     if (!q.velocities.empty()) {
         j["velocities"] = q.velocities;
@@ -111,8 +96,8 @@ std::string to_table(const WhiteNoiseResult& r) {
                << "] m/s, relative discretisation error about " << format_number(g.discretisation_error) << "\n";
         os << pad("t [s]", 14) << " " << pad("E[V(t)|v0] [m/s]", 18) << " " << pad("<V(t)V(0)> [m^2/s^2]", 22) << "\n";
         for (std::size_t k = 0; k < q.times.size(); ++k)
-            os << pad(format_number(q.times[k]), 14) << " " << pad(format_number(r.first_moment[k], 10), 18) << " "
-               << pad(format_number(r.autocorrelation[k], 10), 22) << "\n";
+            os << pad(format_number(q.times[k]), 14) << " " << pad(format_number(r.first_moment[k].value, 10), 18) << " "
+               << pad(format_number(r.autocorrelation[k].value, 10), 22) << "\n";
     }
     os << notes(r.warnings);
     return os.str();
@@ -127,8 +112,8 @@ std::string to_csv(const WhiteNoiseResult& r) {
     const std::string head = fields_csv_row(r.reference);
     if (q.times.empty()) os << head << "\n";
     for (std::size_t k = 0; k < q.times.size(); ++k)
-        os << head << "," << csv_number(q.times[k]) << "," << csv_number(r.first_moment[k]) << ","
-           << csv_number(r.autocorrelation[k]) << "\n";
+        os << head << "," << csv_number(q.times[k]) << "," << csv_number(r.first_moment[k].value) << ","
+           << csv_number(r.autocorrelation[k].value) << "\n";
     return csv_provenance(r.request) + os.str();
 }
 
