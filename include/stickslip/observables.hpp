@@ -85,6 +85,7 @@ struct VelocityHistogram {
     std::vector<Estimate> density;
     Estimate stuck;
     Estimate below, above;
+    double time = std::numeric_limits<double>::quiet_NaN();
     /// @}
 
     /// The fields, in report order (result_fields.hpp): the bins (JSON
@@ -104,6 +105,9 @@ struct VelocityHistogram {
                                    "P(V = 0), the object sticks (coloured noise only); a stationary density's is "
                                    "reported beside its histogram",
                                    FieldForm::Optional});
+        visit(&S::time, FieldInfo{"time", "s", "moments --density: the time t of this histogram of V(t) (NaN for "
+                                               "a stationary density)",
+                                  FieldForm::WhenSet});
     }
 };
 

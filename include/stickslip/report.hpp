@@ -30,7 +30,7 @@ namespace stickslip {
 /// A report's results in the model's own units (the "nondimensional" block:
 /// each value over its scale, Scales), after the parameters' nondimensional
 /// values; each written when the report has it (a sweep point's tau, brute
-/// force's horizon, the long excursions' E[t1]).
+/// force's horizon, the long excursions' E[t1], analytic's Var(V)).
 struct NondimensionalValues {
     /// The fields, each one's unit and meaning declared in fields() below.
     /// @{
@@ -39,6 +39,7 @@ struct NondimensionalValues {
     double diffusivity = std::numeric_limits<double>::quiet_NaN();
     double mobility = std::numeric_limits<double>::quiet_NaN();
     double mean_duration = std::numeric_limits<double>::quiet_NaN();
+    double variance = std::numeric_limits<double>::quiet_NaN();
     /// @}
 
     /// D [m^2/s], M0 [m/s] and E[t1] [s] (NaN: none) over the scales.
@@ -61,6 +62,8 @@ struct NondimensionalValues {
         visit(&S::mobility, FieldInfo{"mobility", "", "M0 over the velocity scale", FieldForm::WhenSet});
         visit(&S::mean_duration,
               FieldInfo{"mean_duration", "", "E[t1] over the time scale", FieldForm::WhenSet});
+        visit(&S::variance,
+              FieldInfo{"variance", "", "Var(V) over the velocity scale squared", FieldForm::WhenSet});
     }
 };
 

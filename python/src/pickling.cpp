@@ -75,7 +75,6 @@ template <class F> void fields(F& f, KolmogorovResult& x) {
     f(static_cast<MethodResult&>(x), x.params, x.diffusivity, x.mobility, x.velocity_variance, x.stuck_probability,
       x.mean_duration, x.diffusivity_x, x.levels, x.converged, x.interrupted, x.note, x.seconds);
 }
-template <class F> void fields(F& f, VelocityHistogram& x) { f(x.edges, x.density, x.stuck, x.below, x.above); }
 template <class F> void fields(F& f, SamplePath& x) { f(x.t, x.x, x.mode, x.v, x.u); }
 template <class F> void fields(F& f, ExcursionOutcome& x) {
     f(x.displacement, x.duration, x.work, x.capped, x.first_half, x.martingale, x.martingale_qv);

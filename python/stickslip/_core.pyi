@@ -139,6 +139,8 @@ class Histogram:
     @property
     def stuck_probability(self) -> Estimate: ...
     @property
+    def time(self) -> float: ...  # [s]
+    @property
     def centers(self) -> FloatArray: ...  # (bins,) [m/s]
     @property
     def widths(self) -> FloatArray: ...   # (bins,) [m/s]

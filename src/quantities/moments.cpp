@@ -127,7 +127,10 @@ MomentsResult compute_moments(const MomentsRequest& req_in) {
         out.first_moment.push_back(total.estimate(j, req.level));
         out.second_moment.push_back(total.estimate(nt + j, req.level));
         out.stuck.push_back(total.estimate(2 * nt + j, req.level));
-        if (nh) out.density.push_back(make_histogram(bins, total, 3 * nt + j * nh, req.level));
+        if (nh) {
+            out.density.push_back(make_histogram(bins, total, 3 * nt + j * nh, req.level));
+            out.density.back().time = req.times[j];
+        }
     }
     const std::string lattice = detail::visit_engine(
         prepared, [&](const auto& engine) { return engine.lattice_note(out.monte_carlo().engine, prepared.settings, prepared.model.params, false); });

@@ -163,11 +163,7 @@ std::string to_json(const MomentsResult& r, int indent) {
     append_members(j, fields_json(r));
     if (!r.density.empty()) {
         ordered_json d = ordered_json::array();
-        for (std::size_t k = 0; k < r.time.size(); ++k) {
-            ordered_json h = fields_json(r.density[k]); // with its P(V(t) = 0)
-            h["time"] = r.time[k];
-            d.push_back(h);
-        }
+        for (const VelocityHistogram& h : r.density) d.push_back(fields_json(h)); // with its P(V(t) = 0) and time
         j["density"] = d;
     }
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);

@@ -49,13 +49,13 @@ std::string to_json(const WhiteNoiseResult& r, int indent) {
         ndj["relaxation"] = json_number(nd.relaxation);
         ndj["bias"] = nd.bias;
     }
-    const ordered_json values{{"mobility", r.reference.mobility / sc.velocity},
-                           {"diffusivity", r.reference.diffusivity / sc.diffusivity},
-                           {"variance", r.reference.variance / (sc.velocity * sc.velocity)},
-                           {"time_unit", sc.time},
-                           {"velocity_unit", sc.velocity},
-                           {"diffusivity_unit", sc.diffusivity}};
-    for (const auto& [key, value] : values.items()) ndj[key] = value;
+    ndj["time_unit"] = sc.time;
+    ndj["velocity_unit"] = sc.velocity;
+    ndj["diffusivity_unit"] = sc.diffusivity;
+    NondimensionalValues values =
+        NondimensionalValues::of(sc, r.reference.diffusivity, r.reference.mobility, std::nan(""));
+    values.variance = r.reference.variance / (sc.velocity * sc.velocity);
+    append_members(ndj, fields_json(values));
     j["nondimensional"] = ndj;
     if (law || !q.times.empty()) {
         ordered_json details;
