@@ -136,6 +136,12 @@ ordered_json nondimensional_json(const RunSettings& r) {
     return j;
 }
 
+ordered_json nondimensional_json(const RunSettings& r, const NondimensionalValues& results) {
+    ordered_json j = nondimensional_json(r);
+    append_members(j, fields_json(results));
+    return j;
+}
+
 ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) {
     ordered_json j;
     if (!r.params.white()) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/report.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/run.hpp"
 #include "stickslip/stats/run_totals.hpp"
@@ -61,6 +62,8 @@ ordered_json report_head(const char* quantity, const EngineSettings& s, const ch
 ordered_json params_json(const RunSettings& r);
 /// The nondimensional block: tau, relaxation, bias, dt or grid, and the units.
 ordered_json nondimensional_json(const RunSettings& r);
+/// The same, then the results' nondimensional values (those set).
+ordered_json nondimensional_json(const RunSettings& r, const NondimensionalValues& results);
 /// engine_details: the thresholds, the PDMP lattice or the white level, the guard.
 ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r);
 /// A setting's value as the JSON's "settings" give it: a number (an integer

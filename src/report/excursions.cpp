@@ -25,10 +25,8 @@ std::string solved_json(const DiffusivityResult& r, int indent) {
     const KolmogorovResult& s = *r.solution;
     const KolmogorovSettings settings = kolmogorov_settings(q, q.rel_precision);
     ordered_json j = solved_head("diffusivity", q);
-    auto nd = nondimensional_json(q);
-    append_members(nd, fields_json(NondimensionalValues::of(scales_of(q.params), s.diffusivity.value,
-                                                            s.mobility.value, s.mean_duration.value)));
-    j["nondimensional"] = nd;
+    j["nondimensional"] = nondimensional_json(
+        q, NondimensionalValues::of(scales_of(q.params), s.diffusivity.value, s.mobility.value, s.mean_duration.value));
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
     add_report_tail(j, r.request, &work, r.warnings, s.interrupted);
@@ -69,11 +67,9 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     params["excursions"] = q.excursions;
     params["level"] = q.level;
     j["params"] = params;
-    auto nd = nondimensional_json(q);
-    append_members(nd, fields_json(NondimensionalValues::of(scales_of(q.params), r.estimates.diffusivity.value,
-                                                            r.estimates.mobility.value,
-                                                            r.estimates.mean_duration.value)));
-    j["nondimensional"] = nd;
+    j["nondimensional"] =
+        nondimensional_json(q, NondimensionalValues::of(scales_of(q.params), r.estimates.diffusivity.value,
+                                                        r.estimates.mobility.value, r.estimates.mean_duration.value));
     append_members(j, long_excursion_json(r.estimates));
     append_members(j, fields_json(r.monte_carlo().totals)); // capped
     if (q.rel_precision > 0) j["precision"] = fields_json(r.precision);
@@ -172,13 +168,11 @@ std::string to_json(const BruteForceResult& r, int indent) {
     params["v0"] = q.v0;
     params["level"] = q.level;
     j["params"] = params;
-    auto nd = nondimensional_json(q);
     const Scales sc = scales_of(q.params);
     NondimensionalValues values = NondimensionalValues::of(sc, r.estimates.diffusivity.value,
                                                            r.estimates.mobility.value, std::nan(""));
     values.time = q.horizon / sc.time;
-    append_members(nd, fields_json(values));
-    j["nondimensional"] = nd;
+    j["nondimensional"] = nondimensional_json(q, values);
     append_members(j, fields_json(r.estimates));
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
     const ordered_json work = work_json(q.engine, r.monte_carlo().totals);

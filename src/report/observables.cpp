@@ -21,7 +21,9 @@ namespace {
 
 /// A stationary density's histogram: P(V = 0) is reported beside it, as the
 /// solver reports it.
-ordered_json histogram_json(const VelocityHistogram& h) { return fields_json(h, FieldJsonStyle{nullptr, {"stuck_probability"}}); }
+ordered_json histogram_json(const VelocityHistogram& h) {
+    return fields_json(h, FieldJsonStyle{nullptr, {"stuck_probability"}});
+}
 
 } // namespace
 
