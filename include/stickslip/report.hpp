@@ -13,6 +13,7 @@
 /// JSON, table and CSV reports of every result. The comment at the top of this
 /// header explains the design.
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -64,6 +65,51 @@ struct NondimensionalValues {
               FieldInfo{"mean_duration", "", "E[t1] over the time scale", FieldForm::WhenSet});
         visit(&S::variance,
               FieldInfo{"variance", "", "Var(V) over the velocity scale squared", FieldForm::WhenSet});
+    }
+};
+
+/// The "work" block of a report: what the run cost. Filled by the report
+/// writer from a run's totals (RunTotals), a solve's (KolmogorovResult) or a
+/// sweep's; each report writes the fields it has (the count under its unit:
+/// steps, events or grid states; the others left out or unset).
+struct RunWork {
+    /// The fields, each one's unit and meaning declared in fields() below.
+    /// @{
+    std::uint64_t steps = 0;
+    std::uint64_t events = 0;
+    std::uint64_t states = 0;
+    double seconds = 0.0;
+    std::uint64_t threads = 0;
+    std::string threads_from;
+    std::uint64_t resumed_samples = 0;
+    double corrector_seconds = std::numeric_limits<double>::quiet_NaN();
+    /// @}
+
+    /// The fields, in report order (result_fields.hpp).
+    template <class Visit> static constexpr void fields(Visit&& visit) {
+        using S = RunWork;
+        visit(&S::steps, FieldInfo{"steps", "", "time steps taken, all samples (the inclusion engine)",
+                                   FieldForm::Optional});
+        visit(&S::events, FieldInfo{"events", "", "events simulated, all samples (the pdmp engine)",
+                                    FieldForm::Optional});
+        visit(&S::states, FieldInfo{"states", "", "a sweep point's largest grid, in states (engine kolmogorov)",
+                                    FieldForm::Optional});
+        visit(&S::seconds, FieldInfo{"seconds", "s", "wall time; a resumed run counts only its own invocation"});
+        visit(&S::threads, FieldInfo{"threads", "", "worker threads used", FieldForm::WhenSet});
+        visit(&S::threads_from,
+              FieldInfo{"threads_from", "",
+                        "how the thread count was chosen: 'option' (--threads N), else 'hardware', 'affinity', "
+                        "'cpu-quota' or 'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the "
+                        "blocks were fewer",
+                        FieldForm::WhenSet});
+        visit(&S::resumed_samples, FieldInfo{"resumed_samples", "",
+                                             "samples restored from a checkpoint (--resume) rather than computed",
+                                             FieldForm::WhenSet});
+        visit(&S::corrector_seconds,
+              FieldInfo{"corrector_seconds", "s",
+                        "wall time spent making the control variate's corrector (about 0 when the process had made "
+                        "it for the same model already)",
+                        FieldForm::WhenSet});
     }
 };
 

@@ -64,9 +64,10 @@ enum class FieldForm {
     /// null) for a drift law's quadrature.
     Reference,
     /// A number written only when it is not NaN, an integer only when it is
-    /// not 0 (a sweep's varied constant, which is NaN without --vary; the
-    /// parts of a check that only one kind of check sets); not required by the
-    /// schema.
+    /// not 0, a text only when it is not empty (a sweep's varied constant,
+    /// which is NaN without --vary; the parts of a check that only one kind of
+    /// check sets; a work block's thread count, which a sweep has not); not
+    /// required by the schema.
     WhenSet,
     /// Kept, pickled and given to Python, but reported elsewhere than in this
     /// struct's block (e.g. a time that belongs in the report's "work").

@@ -72,6 +72,7 @@ void bind_results(py::module_& m) {
     // Flattened into the sampled results (add_totals); capped merged into these reports.
     note_declared<RunTotals>("_Totals", "merged:diffusivity_report,stationary_density_report");
     note_declared<NondimensionalValues>("", "merged:nondimensional"); // in every report's nondimensional block
+    note_declared<RunWork>("", "work"); // every report's work block, a dict in Python's to_dict()
     note_declared<SweepPoint>("", "merged:sweep_point"); // SweepResult's grid columns, by hand
     note_declared<KolmogorovGridSpan>("", "kolmogorov_grid"); // in a solved report's engine_details, a dict
     note_declared<DiscretisationCheck>("", "difference_check"); // the same

@@ -161,15 +161,24 @@ ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) 
     return j;
 }
 
-ordered_json work_json(const EngineSettings& s, const RunTotals& t) {
-    ordered_json work;
-    work[work_unit(s)] = t.work;
-    work["seconds"] = t.seconds;
-    work["threads"] = t.threads;
-    if (!t.threads_from.empty()) work["threads_from"] = t.threads_from; // docs/guide.md, "Threads"
-    if (t.resumed) work["resumed_samples"] = t.resumed; // restored from a checkpoint
-    return work;
+ordered_json work_json(const RunWork& w, std::string_view unit) {
+    FieldJsonStyle style;
+    for (std::string_view count : {"steps", "events", "states"})
+        if (count != unit) style.omit.push_back(count); // the one count this report's work is in
+    return fields_json(w, style);
 }
+
+RunWork run_work(const EngineSettings& s, const RunTotals& t) {
+    RunWork w;
+    (std::string_view(work_unit(s)) == "events" ? w.events : w.steps) = t.work;
+    w.seconds = t.seconds;
+    w.threads = t.threads;
+    w.threads_from = t.threads_from; // docs/guide.md, "Threads"
+    w.resumed_samples = t.resumed;   // restored from a checkpoint
+    return w;
+}
+
+ordered_json work_json(const EngineSettings& s, const RunTotals& t) { return work_json(run_work(s, t), work_unit(s)); }
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stickslip/report.hpp"
@@ -84,8 +85,14 @@ void add_report_tail(ordered_json& j, const Request& request, const ordered_json
                      const std::vector<std::string>& warnings, bool interrupted = false) {
     add_report_tail(j, provenance_json(request.command_line, setting_entries(request)), work, warnings, interrupted);
 }
-/// {steps|events, seconds, threads} of a run, and resumed_samples when some
+/// The work block of w (RunWork::fields), its count under `unit` ("steps",
+/// "events", "states"; "" for none).
+ordered_json work_json(const RunWork& w, std::string_view unit);
+/// A sampled run's work: its count under the engine's unit (steps or
+/// events), seconds, threads, threads_from, and resumed_samples when some
 /// were restored from a checkpoint.
+RunWork run_work(const EngineSettings& s, const RunTotals& t);
+/// work_json of run_work(s, t), under the engine's unit.
 ordered_json work_json(const EngineSettings& s, const RunTotals& t);
 /// Every member of `from` appended to `into`, in order.
 void append_members(ordered_json& into, const ordered_json& from);

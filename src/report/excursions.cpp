@@ -77,8 +77,9 @@ std::string to_json(const DiffusivityResult& r, int indent) {
     if (r.discretisation) j["discretisation"] = fields_json(*r.discretisation);
     if (r.knots_check) j["knots_check"] = fields_json(*r.knots_check);
     j["engine_details"] = engine_details_json(r.monte_carlo().engine, q);
-    ordered_json work = work_json(q.engine, r.monte_carlo().totals);
-    if (r.control_variate) work["corrector_seconds"] = r.control_variate->corrector_seconds; // prepared once per run
+    RunWork run = run_work(q.engine, r.monte_carlo().totals);
+    if (r.control_variate) run.corrector_seconds = r.control_variate->corrector_seconds; // prepared once per run
+    const ordered_json work = work_json(run, work_unit(q.engine));
     add_report_tail(j, r.request, &work, r.warnings, r.monte_carlo().totals.interrupted);
     return dump(j, indent);
 }

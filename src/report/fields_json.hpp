@@ -70,7 +70,7 @@ inline ordered_json& field_owner(ordered_json& j, std::string_view& name) {
 
 /// The JSON block of x: its declared fields in order, less those reported
 /// elsewhere (FieldForm::NotInBlock) and unset ones (FieldForm::WhenSet: a
-/// number NaN, an integer 0).
+/// number NaN, an integer 0, a text empty).
 template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJsonStyle& style = {}) {
     ordered_json j = ordered_json::object();
     const DeclaredAxis axis = declared_axis(x);
@@ -111,6 +111,8 @@ template <DeclaredFields T> ordered_json fields_json(const T& x, const FieldJson
                 if (info.form == FieldForm::WhenSet && std::isnan(value)) return;
             } else if constexpr (std::is_integral_v<Value> && !std::is_same_v<Value, bool>) {
                 if (info.form == FieldForm::WhenSet && value == 0) return;
+            } else if constexpr (std::is_same_v<Value, std::string>) {
+                if (info.form == FieldForm::WhenSet && value.empty()) return;
             }
             std::string_view name = info.name;
             ordered_json& owner = field_owner(j, name);

@@ -50,10 +50,10 @@ void add_solved_estimates(ordered_json& j, const KolmogorovResult& s, const Kolm
 }
 
 ordered_json solved_work_json(const KolmogorovResult& s, const KolmogorovSettings& settings) {
-    ordered_json work;
-    work["seconds"] = s.seconds;
-    work["threads"] = settings.threads;
-    return work;
+    RunWork work;
+    work.seconds = s.seconds;
+    work.threads = static_cast<std::uint64_t>(settings.threads);
+    return work_json(work, "");
 }
 
 std::string solved_table_head() {

@@ -143,7 +143,7 @@ std::vector<std::string_view> point_omissions(const SweepResult& r) {
 /// nondimensional values and its work.
 ordered_json points_json(const SweepResult& r) {
     const FieldJsonStyle style{nullptr, point_omissions(r)};
-    const std::string unit = r.solved() ? "states" : work_unit(r.request.engine);
+    const std::string_view unit = r.solved() ? "states" : work_unit(r.request.engine);
     ordered_json points = ordered_json::array();
     for (const auto& p : r.points) {
         const Scales sc = scales_of(point_params(r, p));
@@ -154,7 +154,10 @@ ordered_json points_json(const SweepResult& r) {
         NondimensionalValues values = NondimensionalValues::of(sc, d.value, m0.value, t1.value);
         values.tau = p.tau / sc.time;
         o["nondimensional"] = fields_json(values);
-        o["work"] = {{unit, p.work}, {"seconds", p.seconds}};
+        RunWork work;
+        (r.solved() ? work.states : unit == "events" ? work.events : work.steps) = p.work;
+        work.seconds = p.seconds;
+        o["work"] = work_json(work, unit);
         points.push_back(o);
     }
     return points;
@@ -241,8 +244,10 @@ std::string to_json(const SweepResult& r, int indent) {
     j["points"] = points_json(r);
     j["exponents"] = declared_list_json(r, r.exponents);
     j["white_limits"] = declared_list_json(r, r.white_limits);
-    ordered_json work = {{"seconds", r.seconds}};
-    if (r.resumed) work["resumed_samples"] = r.resumed;
+    RunWork w;
+    w.seconds = r.seconds;
+    w.resumed_samples = r.resumed;
+    const ordered_json work = work_json(w, "");
     add_report_tail(j, r.request, &work, r.warnings, r.interrupted);
     return dump(j, indent);
 }

@@ -170,6 +170,29 @@ TEST(ResultFields, ABlockIsInlinedInItsPlaceAndAReportLeavesOutWhatItSays) {
     EXPECT_EQ(solved.items().begin().key(), "noise");
 }
 
+TEST(ResultFields, AWorkBlockHasTheCountOfItsUnitAndWhatWasSet) {
+    RunWork w;
+    w.events = 12;
+    w.seconds = 0.5;
+    w.threads = 2;
+    // The count under the report's unit alone; an empty threads_from, no
+    // resumed samples and no corrector are not written.
+    const detail::ordered_json events = detail::work_json(w, "events");
+    std::vector<std::string> keys;
+    for (const auto& item : events.items()) keys.push_back(item.key());
+    EXPECT_EQ(keys, (std::vector<std::string>{"events", "seconds", "threads"}));
+    EXPECT_EQ(events["events"], 12u);
+    // A sweep's work: no count, no threads; resumed samples when there were.
+    RunWork sweep;
+    sweep.seconds = 3.0;
+    sweep.resumed_samples = 64;
+    sweep.threads_from = "option";
+    const detail::ordered_json j = detail::work_json(sweep, "");
+    keys.clear();
+    for (const auto& item : j.items()) keys.push_back(item.key());
+    EXPECT_EQ(keys, (std::vector<std::string>{"seconds", "threads_from", "resumed_samples"}));
+}
+
 TEST(ResultFields, NamesAreUniqueAndDocumented) {
     auto check = [](auto tag) {
         using T = typename decltype(tag)::type;
@@ -196,6 +219,7 @@ TEST(ResultFields, NamesAreUniqueAndDocumented) {
     check(std::type_identity<VelocityHistogram>{});
     check(std::type_identity<ExcursionRecord>{});
     check(std::type_identity<NondimensionalValues>{});
+    check(std::type_identity<RunWork>{});
 }
 
 } // namespace
