@@ -34,6 +34,7 @@
 /// transient moments, sample paths. The comment at the top of this header
 /// explains the design.
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -87,6 +88,18 @@ struct VelocityHistogram {
     Estimate below, above;
     double time = std::numeric_limits<double>::quiet_NaN();
     /// @}
+
+    /// The velocities [m/s] whose probability `mass` (one of this
+    /// histogram's estimates) is, as {lo, hi}: {0, 0} for P(V = 0),
+    /// {-inf, edges[0]} below the bins, {edges[-1], inf} above; NaN for an
+    /// estimate that is none of them (the histogram's CSV rows).
+    std::array<double, 2> support(const Estimate& mass) const {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        if (&mass == &stuck) return {0.0, 0.0};
+        if (&mass == &below && !edges.empty()) return {-inf, edges.front()};
+        if (&mass == &above && !edges.empty()) return {edges.back(), inf};
+        return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+    }
 
     /// The fields, in report order (result_fields.hpp): the bins (JSON
     /// "bins", each {lo, hi, value, error, kind}), then the mass outside them

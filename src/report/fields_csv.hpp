@@ -47,6 +47,19 @@ struct FieldCsvStyle {
     bool omits(const FieldInfo& info) const { return omitted(omit, info); }
 };
 
+/// An estimate's header cells: NAME, NAME_error, NAME_lo, NAME_hi, or
+/// without its interval (FieldForm::NoInterval, a solver's report) NAME,
+/// NAME_error.
+inline std::string estimate_csv_header(const std::string& name, const FieldInfo& f, const FieldCsvStyle& style) {
+    return f.form == FieldForm::NoInterval || style.solved ? name + "," + name + "_error" : csv_estimate_header(name);
+}
+
+/// An estimate's cells under estimate_csv_header.
+inline std::string estimate_csv_cells(const Estimate& e, const FieldInfo& f, const FieldCsvStyle& style) {
+    return f.form == FieldForm::NoInterval || style.solved ? csv_number(e.value) + "," + csv_number(e.error)
+                                                           : csv_estimate(e);
+}
+
 /// The header cells of T's columns, comma-separated (no line end); an
 /// inlined block's columns in its place.
 template <DeclaredFields T> std::string fields_csv_header(const FieldCsvStyle& style = {}) {
@@ -59,8 +72,7 @@ template <DeclaredFields T> std::string fields_csv_header(const FieldCsvStyle& s
         if constexpr (inlined_block<Value>::value)
             cells = fields_csv_header<typename inlined_block<Value>::type>(style);
         else if constexpr (std::is_same_v<Value, Estimate>)
-            cells = f.form == FieldForm::NoInterval || style.solved ? name + "," + name + "_error"
-                                                                    : csv_estimate_header(name);
+            cells = estimate_csv_header(name, f, style);
         else
             cells = name;
         if (cells.empty()) return;
@@ -87,8 +99,7 @@ template <DeclaredFields T> std::string fields_csv_row(const T& x, const FieldCs
             if (const Block* inner = inlined_value(v)) cells = fields_csv_row(*inner, style);
             else cells = std::string(static_cast<std::size_t>(std::count(head.begin(), head.end(), ',')), ',');
         } else if constexpr (std::is_same_v<Value, Estimate>) {
-            cells = f.form == FieldForm::NoInterval || style.solved ? csv_number(v.value) + "," + csv_number(v.error)
-                                                                    : csv_estimate(v);
+            cells = estimate_csv_cells(v, f, style);
         } else if constexpr (std::is_same_v<Value, double>) cells = csv_number(v);
         else if constexpr (std::is_same_v<Value, bool>) cells = v ? "true" : "false";
         else if constexpr (std::is_same_v<Value, std::string>) cells = csv_text(v);
@@ -106,27 +117,30 @@ template <DeclaredFields T> std::string fields_csv_row(const T& x, const FieldCs
 }
 
 /// The header line's cells of the CSV of T's series (a struct with an axis,
-/// result_fields.hpp): the axis, then each series' estimate columns, in
-/// declaration order; T's other fields have no column (no line end).
-template <DeclaredFields T> std::string series_csv_header() {
+/// result_fields.hpp): the axis, then each series' estimate columns (as
+/// estimate_csv_header), in declaration order; T's other fields have no
+/// column (no line end).
+template <DeclaredFields T> std::string series_csv_header(const FieldCsvStyle& style = {}) {
     std::string out;
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(std::declval<T>().*member)>;
         if constexpr (std::is_same_v<Value, std::vector<double>>) {
             if (f.form == FieldForm::Axis) out = field_flat_name(f) + out; // first, wherever declared
         } else if constexpr (std::is_same_v<Value, std::vector<Estimate>>) {
-            out += "," + csv_estimate_header(field_flat_name(f));
+            out += ',';
+            out += estimate_csv_header(field_flat_name(f), f, style);
         }
     });
     return out;
 }
 
-/// The rows of that CSV, one per point of the axis, each with its line end.
-template <DeclaredFields T> std::string series_csv_rows(const T& x) {
+/// The rows of that CSV, one per point of the axis, each with its line end
+/// and, when given, `head` (cells of the report's own, comma-ended) first.
+template <DeclaredFields T>
+std::string series_csv_rows(const T& x, const FieldCsvStyle& style = {}, const std::string& head = "") {
     const DeclaredAxis declared = declared_axis(x);
-    // A histogram's CSV (bins on edges) keeps its report's layout: one row per
-    // bin and per mass outside them (the density report's).
-    if (declared.edges) throw std::logic_error("series_csv_rows: series on bin edges have no generated CSV");
+    // A histogram's CSV (bins on edges) is histogram_csv_rows'.
+    if (declared.edges) throw std::logic_error("series_csv_rows: series on bin edges: histogram_csv_rows");
     const std::vector<double>* axis = declared.values;
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(x.*member)>;
@@ -137,13 +151,59 @@ template <DeclaredFields T> std::string series_csv_rows(const T& x) {
     });
     std::string out;
     for (std::size_t k = 0; axis && k < axis->size(); ++k) {
-        out += csv_number((*axis)[k]);
-        T::fields([&](auto member, const FieldInfo&) {
+        out += head + csv_number((*axis)[k]);
+        T::fields([&](auto member, const FieldInfo& f) {
             using Value = std::remove_cvref_t<decltype(x.*member)>;
-            if constexpr (std::is_same_v<Value, std::vector<Estimate>>) out += "," + csv_estimate((x.*member)[k]);
+            if constexpr (std::is_same_v<Value, std::vector<Estimate>>) {
+                out += ',';
+                out += estimate_csv_cells((x.*member)[k], f, style);
+            }
         });
         out += "\n";
     }
+    return out;
+}
+
+/// The header line's cells of a histogram's CSV (a struct whose series lie on
+/// bin edges, FieldForm::Edges): kind, v_lo, v_hi and an estimate's columns,
+/// value, error, lo, hi (a solver's report: value, error); no line end.
+inline std::string histogram_csv_header(const FieldCsvStyle& style = {}) {
+    return std::string("kind,v_lo,v_hi,value,error") + (style.solved ? "" : ",lo,hi");
+}
+
+/// The rows of that CSV (a long table: one quantity per row, its velocities
+/// in v_lo, v_hi): one per bin of each series (kind: the series' name), then
+/// one per other estimate of x not left out (kind: its name; its velocities
+/// from x.support(estimate), the set of V it is the probability of), in
+/// declaration order; `head` (cells of the report's own, comma-ended) first.
+/// Its other fields (a moments histogram's time) have no row: the report puts
+/// them in `head`. Every row has the interval columns, a field's FieldForm::NoInterval
+/// notwithstanding: a long table's columns do not vary by row, and its
+/// interval names no key (the JSON's bin keys lo and hi are the edges).
+template <DeclaredFields T>
+std::string histogram_csv_rows(const T& x, const FieldCsvStyle& style = {}, const std::string& head = "") {
+    const DeclaredAxis edges = declared_axis(x);
+    if (!edges.values || !edges.edges) throw std::logic_error("histogram_csv_rows: a struct without bin edges");
+    const auto cells = [&](const Estimate& e) {
+        return style.solved ? csv_number(e.value) + "," + csv_number(e.error) : csv_estimate(e);
+    };
+    std::string out;
+    T::fields([&](auto member, const FieldInfo& f) {
+        using Value = std::remove_cvref_t<decltype(x.*member)>;
+        if (f.form == FieldForm::NotInBlock || style.omits(f)) return;
+        const std::string kind = field_flat_name(f);
+        if constexpr (std::is_same_v<Value, std::vector<Estimate>>) {
+            const std::vector<Estimate>& bins = x.*member;
+            if (bins.size() != edges.points())
+                throw std::logic_error("histogram_csv_rows: the series '" + kind + "' has not one bin per edge pair");
+            for (std::size_t k = 0; k < bins.size(); ++k)
+                out += head + kind + "," + csv_number((*edges.values)[k]) + "," + csv_number((*edges.values)[k + 1]) +
+                       "," + cells(bins[k]) + "\n";
+        } else if constexpr (std::is_same_v<Value, Estimate>) {
+            const auto [lo, hi] = x.support(x.*member);
+            out += head + kind + "," + csv_number(lo) + "," + csv_number(hi) + "," + cells(x.*member) + "\n";
+        }
+    });
     return out;
 }
 

@@ -34,23 +34,27 @@ namespace {
 // The reports of a density solved by the Kolmogorov engine: the cells and
 // values of the grid with the finest velocity cells, no standard errors.
 
+/// The same histogram as a sampled one, on the grid with the finest velocity
+/// cells: a grid value has no error estimate (NaN: null, an empty cell), and
+/// the grid spans the velocities that hold mass, so the mass below and above
+/// it is 0 to within the grid's tail mass.
+VelocityHistogram solved_histogram(const KolmogorovResult& s) {
+    const KolmogorovGridSolution& fine = s.levels.back();
+    VelocityHistogram h;
+    h.edges = fine.velocity_faces;
+    for (double value : fine.velocity_density) h.density.push_back(solved_estimate(value, std::nan("")));
+    h.stuck = s.stuck_probability;
+    h.below = h.above = solved_estimate(0.0, grid_span(s).tail_mass);
+    return h;
+}
+
 std::string solved_json(const DensityResult& r, int indent) {
     const auto& q = r.request;
     const KolmogorovResult& s = *r.solution;
     const KolmogorovSettings settings = kolmogorov_settings(q, 0.0);
-    const KolmogorovGridSolution& fine = s.levels.back();
     ordered_json j = solved_head("stationary_density", q);
     j["nondimensional"] = nondimensional_json(q);
-    // The same histogram as a sampled one: a grid value has no error
-    // estimate (null), and the grid spans the velocities that hold mass, so
-    // the mass below and above it is 0 to within the grid's tail mass.
-    VelocityHistogram h;
-    h.edges = fine.velocity_faces;
-    for (double value : fine.velocity_density) h.density.push_back(solved_estimate(value, std::nan("")));
-    const double tail_mass = grid_span(s).tail_mass;
-    h.stuck = s.stuck_probability;
-    h.below = h.above = solved_estimate(0.0, tail_mass);
-    j["histogram"] = histogram_json(h);
+    j["histogram"] = histogram_json(solved_histogram(s));
     append_members(j, fields_json(r)); // the solver's, where a sampled result has them
     add_solved_estimates(j, s, settings);
     const ordered_json work = solved_work_json(s, settings);
@@ -76,20 +80,6 @@ std::string solved_table(const DensityResult& r) {
     return os.str();
 }
 
-std::string solved_csv(const DensityResult& r) {
-    const KolmogorovResult& s = *r.solution;
-    const KolmogorovGridSolution& fine = s.levels.back();
-    std::ostringstream os = report_stream();
-    // The error column is the estimated discretisation error where there is
-    // one (P(V = 0)); a density value has none: an empty cell, not a fake 0.
-    os << "kind,v_lo,v_hi,value,error\n";
-    for (std::size_t k = 0; k < fine.velocity_density.size(); ++k)
-        os << "density," << csv_number(fine.velocity_faces[k]) << "," << csv_number(fine.velocity_faces[k + 1]) << ","
-           << csv_number(fine.velocity_density[k]) << ",\n";
-    os << "stuck,0,0," << csv_number(s.stuck_probability.value) << "," << csv_number(s.stuck_probability.error)
-       << "\n";
-    return os.str();
-}
 
 } // namespace
 
@@ -137,15 +127,11 @@ std::string to_table(const DensityResult& r) {
 }
 
 std::string to_csv(const DensityResult& r) {
-    if (r.solution) return csv_provenance(r.request) + solved_csv(r);
+    // The histogram's rows, and P(V = 0) among them (the JSON's beside it).
+    const FieldCsvStyle style{.solved = r.solution.has_value()};
     std::ostringstream os = report_stream();
-    os << "kind,v_lo,v_hi,value,error,lo,hi\n";
-    for (std::size_t k = 0; k < r.histogram.density.size(); ++k)
-        os << "density," << csv_number(r.histogram.edges[k]) << "," << csv_number(r.histogram.edges[k + 1]) << ","
-           << csv_estimate(r.histogram.density[k]) << "\n";
-    os << "stuck,0,0," << csv_estimate(r.histogram.stuck) << "\n";
-    os << "below,-inf," << csv_number(r.histogram.edges.front()) << "," << csv_estimate(r.histogram.below) << "\n";
-    os << "above," << csv_number(r.histogram.edges.back()) << ",inf," << csv_estimate(r.histogram.above) << "\n";
+    os << histogram_csv_header(style) << "\n"
+       << histogram_csv_rows(r.solution ? solved_histogram(*r.solution) : r.histogram, style);
     return csv_provenance(r.request) + os.str();
 }
 
@@ -202,13 +188,9 @@ std::string to_csv(const MomentsResult& r) {
         os << series_csv_header<MomentsResult>() << "\n" << series_csv_rows(r);
         return csv_provenance(r.request) + os.str();
     }
-    os << "time,v_lo,v_hi,density,error\n";
-    for (std::size_t k = 0; k < r.time.size(); ++k) {
-        const auto& h = r.density[k];
-        for (std::size_t b = 0; b < h.density.size(); ++b)
-            os << csv_number(r.time[k]) << "," << csv_number(h.edges[b]) << "," << csv_number(h.edges[b + 1]) << ","
-               << csv_number(h.density[b].value) << "," << csv_number(h.density[b].error) << "\n";
-    }
+    // Each time's histogram, its time first on every row.
+    os << "time," << histogram_csv_header() << "\n";
+    for (const VelocityHistogram& h : r.density) os << histogram_csv_rows(h, {}, csv_number(h.time) + ",");
     return csv_provenance(r.request) + os.str(); // what made it, as every CSV says (it was missing here)
 }
 

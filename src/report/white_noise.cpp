@@ -105,15 +105,13 @@ std::string to_table(const WhiteNoiseResult& r) {
 
 std::string to_csv(const WhiteNoiseResult& r) {
     std::ostringstream os = report_stream();
-    const auto& q = r.request;
+    const FieldCsvStyle style{.solved = true}; // the series are exact or solved: a value and its error
     os << fields_csv_header<WhiteNoiseReference>();
-    if (!q.times.empty()) os << ",time,first_moment,autocorrelation";
+    if (!r.times.empty()) os << "," << series_csv_header<WhiteNoiseResult>(style);
     os << "\n";
+    // The references on every row of the series (one row without times).
     const std::string head = fields_csv_row(r.reference);
-    if (q.times.empty()) os << head << "\n";
-    for (std::size_t k = 0; k < q.times.size(); ++k)
-        os << head << "," << csv_number(q.times[k]) << "," << csv_number(r.first_moment[k].value) << ","
-           << csv_number(r.autocorrelation[k].value) << "\n";
+    os << (r.times.empty() ? head + "\n" : series_csv_rows(r, style, head + ","));
     return csv_provenance(r.request) + os.str();
 }
 

@@ -193,6 +193,27 @@ TEST(ResultFields, AWorkBlockHasTheCountOfItsUnitAndWhatWasSet) {
     EXPECT_EQ(keys, (std::vector<std::string>{"seconds", "threads_from", "resumed_samples"}));
 }
 
+TEST(ResultFields, AHistogramsCsvHasARowPerBinAndPerMassOverItsVelocities) {
+    VelocityHistogram h;
+    h.edges = {-1.0, 0.0, 1.0};
+    h.density = {Estimate{0.25, 0.05, 0.15, 0.35, 0.95}, Estimate{0.5, 0.1, 0.3, 0.7, 0.95}};
+    h.below = Estimate{0.0, 0.0, 0.0, 0.0, 0.95};
+    h.above = Estimate{0.125, 0.0, 0.125, 0.125, 0.95};
+    h.stuck = Estimate{0.125, 0.01, 0.1, 0.15, 0.95};
+    h.time = 2.0; // not an estimate: no row (a report puts it in the rows' head)
+    EXPECT_EQ(detail::histogram_csv_header(), "kind,v_lo,v_hi,value,error,lo,hi");
+    EXPECT_EQ(detail::histogram_csv_rows(h, {}, "2,"), "2,bins,-1,0,0.25,0.05,0.15,0.35\n"
+                                                       "2,bins,0,1,0.5,0.1,0.3,0.7\n"
+                                                       "2,below,-inf,-1,0,0,0,0\n"
+                                                       "2,above,1,inf,0.125,0,0.125,0.125\n"
+                                                       "2,stuck_probability,0,0,0.125,0.01,0.1,0.15\n");
+    // A solver's: value and error alone; a left-out mass has no row.
+    const detail::FieldCsvStyle solved{.omit = {"below", "above"}, .solved = true};
+    EXPECT_EQ(detail::histogram_csv_header(solved), "kind,v_lo,v_hi,value,error");
+    EXPECT_EQ(detail::histogram_csv_rows(h, solved),
+              "bins,-1,0,0.25,0.05\nbins,0,1,0.5,0.1\nstuck_probability,0,0,0.125,0.01\n");
+}
+
 TEST(ResultFields, NamesAreUniqueAndDocumented) {
     auto check = [](auto tag) {
         using T = typename decltype(tag)::type;
