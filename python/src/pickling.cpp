@@ -76,9 +76,6 @@ template <class F> void fields(F& f, KolmogorovResult& x) {
       x.mean_duration, x.diffusivity_x, x.levels, x.converged, x.interrupted, x.note, x.seconds);
 }
 template <class F> void fields(F& f, SamplePath& x) { f(x.t, x.x, x.mode, x.v, x.u); }
-template <class F> void fields(F& f, ExcursionOutcome& x) {
-    f(x.displacement, x.duration, x.work, x.capped, x.first_half, x.martingale, x.martingale_qv);
-}
 template <class F> void fields(F& f, SweepPoint& x) {
     f(x.noise, x.tau, x.varied, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope,
       x.white_ratio, x.warnings, x.precision_reached);

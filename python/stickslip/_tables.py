@@ -113,8 +113,9 @@ def _white_noise(r):
     cols = {name: _np.full(n * m, getattr(r, name)) for name in ("mobility", "diffusivity", "variance")}
     if len(times):
         cols["time"] = _np.repeat(times, m)
-        cols["first_moment"] = _np.repeat(r.first_moment.value, m)  # the CSV's values (their errors: .error)
-        cols["autocorrelation"] = _np.repeat(r.autocorrelation.value, m)
+        for name in ("first_moment", "autocorrelation"):  # the CSV's value and error (exact or solved)
+            cols[name] = _np.repeat(getattr(r, name).value, m)
+            cols[name + "_error"] = _np.repeat(getattr(r, name).error, m)
     if len(vs):
         cols["v"] = _np.tile(vs, n)
         cols["stationary_density"] = _np.tile(r.stationary_density, n)

@@ -227,7 +227,8 @@ class WhiteNoiseTable(unittest.TestCase):
         r = stickslip.analytic.white_noise(self.p, times=[0, 0.1, 1], v0=0.5, velocities=[-1, 0.5])
         cols = r.to_columns()
         self.assertEqual(list(cols), ["mobility", "diffusivity", "variance", "time", "first_moment",
-                                      "autocorrelation", "v", "stationary_density", "transient_density"])
+                                      "first_moment_error", "autocorrelation", "autocorrelation_error", "v",
+                                      "stationary_density", "transient_density"])
         self.assertTrue(all(c.shape == (6,) for c in cols.values()))
         np.testing.assert_array_equal(cols["time"], [0, 0, 0.1, 0.1, 1, 1])
         np.testing.assert_array_equal(cols["v"], [-1, 0.5] * 3)
