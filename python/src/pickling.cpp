@@ -46,6 +46,9 @@ template <class F, DeclaredFields T> void declared_fields(F& f, T& x) {
 }
 template <class F, DeclaredFields T> void fields(F& f, T& x) { declared_fields(f, x); }
 
+// A struct that declares its fields and holds more: what it does not declare,
+// then the declared fields (so that a new one is pickled without a line here).
+
 template <class F> void fields(F& f, Estimate& x) { f(x.value, x.error, x.lo, x.hi, x.level, x.kind); }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
 template <class F> void fields(F& f, ResolvedEngine& x) {
@@ -53,8 +56,8 @@ template <class F> void fields(F& f, ResolvedEngine& x) {
       x.lower_threshold);
 }
 template <class F> void fields(F& f, RunTotals& x) {
-    f(x.sums, x.moments, x.requested, x.capped, x.work, x.seconds, x.threads, x.threads_from, x.interrupted, x.resumed,
-      x.control_variate);
+    f(x.sums, x.moments, x.requested, x.threads, x.interrupted, x.control_variate);
+    declared_fields(f, x);
 }
 template <class F> void fields(F& f, MonteCarloDetails& x) { f(x.engine, x.totals); }
 template <class F> void fields(F& f, GridDetails& x) {
@@ -72,13 +75,14 @@ template <class F> void fields(F& f, KolmogorovGridSolution& x) {
       x.seconds, x.velocity_faces, x.velocity_density);
 }
 template <class F> void fields(F& f, KolmogorovResult& x) {
-    f(static_cast<MethodResult&>(x), x.params, x.diffusivity, x.mobility, x.velocity_variance, x.stuck_probability,
-      x.mean_duration, x.diffusivity_x, x.levels, x.converged, x.interrupted, x.note, x.seconds);
+    f(static_cast<MethodResult&>(x), x.params, x.velocity_variance, x.diffusivity_x, x.levels, x.converged,
+      x.interrupted, x.note, x.seconds);
+    declared_fields(f, x);
 }
 template <class F> void fields(F& f, SamplePath& x) { f(x.t, x.x, x.mode, x.v, x.u); }
 template <class F> void fields(F& f, SweepPoint& x) {
-    f(x.noise, x.tau, x.varied, x.estimates, x.solution, x.stop_rule, x.dt, x.scheme, x.work, x.seconds, x.slope,
-      x.white_ratio, x.warnings, x.precision_reached);
+    f(x.warnings);
+    declared_fields(f, x);
 }
 
 /// The model: its settings, and the law's knots given as arrays (a callable
@@ -116,8 +120,6 @@ template <class F> void fields(F& f, DensityResult& x) {
     f(static_cast<MethodResult&>(x), x.request, x.histogram, x.estimates, x.warnings, x.solution);
     declared_fields(f, x);
 }
-// A result that declares its fields: what it does not declare, then the
-// declared fields (so that a new one is pickled without a line here).
 template <class F> void fields(F& f, CorrelationResult& x) {
     f(static_cast<MethodResult&>(x), x.request, x.estimates, x.warnings);
     declared_fields(f, x);
