@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stickslip/bruteforce.hpp"
@@ -84,6 +85,11 @@ struct RunWork {
     std::uint64_t resumed_samples = 0;
     double corrector_seconds = std::numeric_limits<double>::quiet_NaN();
     /// @}
+
+    /// The count a report's unit names: "events" or "states", else steps.
+    std::uint64_t& count_in(std::string_view unit) {
+        return unit == "events" ? events : unit == "states" ? states : steps;
+    }
 
     /// The fields, in report order (result_fields.hpp).
     template <class Visit> static constexpr void fields(Visit&& visit) {

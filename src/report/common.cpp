@@ -170,7 +170,7 @@ ordered_json work_json(const RunWork& w, std::string_view unit) {
 
 RunWork run_work(const EngineSettings& s, const RunTotals& t) {
     RunWork w;
-    (std::string_view(work_unit(s)) == "events" ? w.events : w.steps) = t.work;
+    w.count_in(work_unit(s)) = t.work;
     w.seconds = t.seconds;
     w.threads = t.threads;
     w.threads_from = t.threads_from; // docs/guide.md, "Threads"

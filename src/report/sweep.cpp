@@ -155,7 +155,7 @@ ordered_json points_json(const SweepResult& r) {
         values.tau = p.tau / sc.time;
         o["nondimensional"] = fields_json(values);
         RunWork work;
-        (r.solved() ? work.states : unit == "events" ? work.events : work.steps) = p.work;
+        work.count_in(unit) = p.work;
         work.seconds = p.seconds;
         o["work"] = work_json(work, unit);
         points.push_back(o);
