@@ -24,6 +24,7 @@
 #include "stickslip/observables.hpp"
 #include "stickslip/params.hpp"
 #include "stickslip/result_fields.hpp"
+#include "stickslip/stats/run_totals.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -102,12 +103,7 @@ struct RunWork {
                                     FieldForm::Optional});
         visit(&S::seconds, FieldInfo{"seconds", "s", "wall time; a resumed run counts only its own invocation"});
         visit(&S::threads, FieldInfo{"threads", "", "worker threads used", FieldForm::WhenSet});
-        visit(&S::threads_from,
-              FieldInfo{"threads_from", "",
-                        "how the thread count was chosen: 'option' (--threads N), else 'hardware', 'affinity', "
-                        "'cpu-quota' or 'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the "
-                        "blocks were fewer",
-                        FieldForm::WhenSet});
+        visit(&S::threads_from, FieldInfo{"threads_from", "", threads_from_help, FieldForm::WhenSet});
         visit(&S::resumed_samples, FieldInfo{"resumed_samples", "",
                                              "samples restored from a checkpoint (--resume) rather than computed",
                                              FieldForm::WhenSet});

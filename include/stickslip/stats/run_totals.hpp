@@ -26,6 +26,12 @@ namespace stickslip {
 /// Samples per block: the unit of work and of deterministic merging.
 inline constexpr std::uint64_t block_size = 64;
 
+/// What a result's threads_from says (RunTotals, and the work block's,
+/// RunWork in report.hpp): one text for both.
+inline constexpr const char* threads_from_help =
+    "how the thread count was chosen: 'option' (the threads setting), else 'hardware', 'affinity', 'cpu-quota' or "
+    "'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the blocks were fewer";
+
 /// Raw outcome of a run: the exact sums of (U, t) over completed samples and
 /// the centred moments computed from them.
 struct RunTotals {
@@ -62,12 +68,7 @@ struct RunTotals {
         visit(&S::work, FieldInfo{"work", "", "steps (inclusion) or events (pdmp), all samples; the work block's",
                                   FieldForm::NotInBlock});
         visit(&S::seconds, FieldInfo{"seconds", "s", "wall time of the run; the work block's", FieldForm::NotInBlock});
-        visit(&S::threads_from,
-              FieldInfo{"threads_from", "",
-                        "how the thread count was chosen: 'option' (threads=N), else 'hardware', 'affinity', "
-                        "'cpu-quota' or 'slurm', with '+local-ranks' when shared among MPI ranks, '+blocks' when the "
-                        "blocks were fewer; the work block's",
-                        FieldForm::NotInBlock});
+        visit(&S::threads_from, FieldInfo{"threads_from", "", threads_from_help, FieldForm::NotInBlock});
         visit(&S::resumed, FieldInfo{"resumed", "",
                                      "samples restored from a checkpoint (resume=) rather than computed; the work "
                                      "block's resumed_samples",
