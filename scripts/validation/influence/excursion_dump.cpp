@@ -3,8 +3,8 @@
 // diagnosis of D's interval (docs/validation.md, "Why D's interval
 // under-covers without drag"): five doubles (U [m], t [s], M [m], C [m^2],
 // capped 0/1), raw little-endian, in index order. The inclusion engine's
-// resolvent scheme with the martingale of the run's corrector, exactly as
-// `stickslip diffusivity --scheme resolvent` runs them (the same seed gives
+// resolvent scheme (or the event scheme) with the martingale of the run's
+// corrector, exactly as `stickslip diffusivity --scheme resolvent` runs them (the same seed gives
 // the same excursions: its D is this file's).
 //
 // Built against a build tree (it reaches the driver's engine visitor, which is
@@ -13,9 +13,11 @@
 //       -ffp-contract=off scripts/validation/influence/excursion_dump.cpp -o excursion_dump \
 //       build/libstickslip.a -lmuparser -ltomlplusplus -lpthread
 // Usage: excursion_dump TAU BIAS RELAXATION N SEED OUT [DT [FRICTION [NOISE]]]
-//   (SI units; DT 1e-2, FRICTION 1, NOISE 1 by default; N rounded up to 4096s)
+//   (SI units; DT 1e-2, FRICTION 1, NOISE 1 by default; N rounded up to 4096s;
+//   DT "event": the event scheme at its automatic step instead, coloured noise)
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "driver/visit_engine.hpp"
@@ -34,9 +36,10 @@ int main(int argc, char** argv) {
     r.params.relaxation = std::atof(argv[3]);
     const std::uint64_t n = std::strtoull(argv[4], nullptr, 10);
     const std::uint64_t seed = std::strtoull(argv[5], nullptr, 10);
-    r.engine.dt = argc > 7 ? std::atof(argv[7]) : 1e-2;
-    r.engine.dt_auto = false;
-    r.engine.scheme = Scheme::Resolvent;
+    const bool event = argc > 7 && std::string(argv[7]) == "event";
+    r.engine.dt = argc > 7 && !event ? std::atof(argv[7]) : 1e-2;
+    r.engine.dt_auto = event;
+    r.engine.scheme = event ? Scheme::Event : Scheme::Resolvent;
     r.params.friction = argc > 8 ? std::atof(argv[8]) : 1.0;
     r.params.noise = argc > 9 ? std::atof(argv[9]) : 1.0;
     const PreparedEngine e = prepare(r);
@@ -49,7 +52,7 @@ int main(int argc, char** argv) {
             if constexpr (requires { engine.long_excursions_with(seed, first, out.size(), out.data(), nullptr, g->table); })
                 engine.long_excursions_with(seed, first, out.size(), out.data(), nullptr, g->table);
             else
-                std::abort(); // the resolvent scheme has the martingale kernel
+                std::abort(); // both schemes have the martingale kernel (the event scheme: coloured noise)
         });
         for (const ExcursionOutcome& o : out) {
             const double row[5] = {o.displacement, o.duration, o.martingale,
