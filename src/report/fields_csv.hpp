@@ -47,17 +47,26 @@ struct FieldCsvStyle {
     bool omits(const FieldInfo& info) const { return omitted(omit, info); }
 };
 
-/// An estimate's header cells: NAME, NAME_error, NAME_lo, NAME_hi, or
-/// without its interval (FieldForm::NoInterval, a solver's report) NAME,
-/// NAME_error.
-inline std::string estimate_csv_header(const std::string& name, const FieldInfo& f, const FieldCsvStyle& style) {
-    return f.form == FieldForm::NoInterval || style.solved ? name + "," + name + "_error" : csv_estimate_header(name);
+/// Whether an estimate field's CSV cells include its interval: not for
+/// FieldForm::NoInterval, nor in a solver's report.
+inline bool csv_interval(const FieldInfo& f, const FieldCsvStyle& style) {
+    return f.form != FieldForm::NoInterval && !style.solved;
 }
 
-/// An estimate's cells under estimate_csv_header.
+/// An estimate's header cells: NAME, NAME_error, NAME_lo, NAME_hi, or
+/// without its interval (csv_interval) NAME, NAME_error.
+inline std::string estimate_csv_header(const std::string& name, const FieldInfo& f, const FieldCsvStyle& style) {
+    return csv_interval(f, style) ? csv_estimate_header(name) : name + "," + name + "_error";
+}
+
+/// An estimate's cells: value, error and, with its interval, lo, hi.
+inline std::string estimate_csv_cells(const Estimate& e, bool interval) {
+    return interval ? csv_estimate(e) : csv_number(e.value) + "," + csv_number(e.error);
+}
+
+/// An estimate field's cells under estimate_csv_header.
 inline std::string estimate_csv_cells(const Estimate& e, const FieldInfo& f, const FieldCsvStyle& style) {
-    return f.form == FieldForm::NoInterval || style.solved ? csv_number(e.value) + "," + csv_number(e.error)
-                                                           : csv_estimate(e);
+    return estimate_csv_cells(e, csv_interval(f, style));
 }
 
 /// The header cells of T's columns, comma-separated (no line end); an
@@ -184,9 +193,7 @@ template <DeclaredFields T>
 std::string histogram_csv_rows(const T& x, const FieldCsvStyle& style = {}, const std::string& head = "") {
     const DeclaredAxis edges = declared_axis(x);
     if (!edges.values || !edges.edges) throw std::logic_error("histogram_csv_rows: a struct without bin edges");
-    const auto cells = [&](const Estimate& e) {
-        return style.solved ? csv_number(e.value) + "," + csv_number(e.error) : csv_estimate(e);
-    };
+    const bool interval = !style.solved; // every row's, whatever the field's form (above)
     std::string out;
     T::fields([&](auto member, const FieldInfo& f) {
         using Value = std::remove_cvref_t<decltype(x.*member)>;
@@ -198,10 +205,11 @@ std::string histogram_csv_rows(const T& x, const FieldCsvStyle& style = {}, cons
                 throw std::logic_error("histogram_csv_rows: the series '" + kind + "' has not one bin per edge pair");
             for (std::size_t k = 0; k < bins.size(); ++k)
                 out += head + kind + "," + csv_number((*edges.values)[k]) + "," + csv_number((*edges.values)[k + 1]) +
-                       "," + cells(bins[k]) + "\n";
+                       "," + estimate_csv_cells(bins[k], interval) + "\n";
         } else if constexpr (std::is_same_v<Value, Estimate>) {
             const auto [lo, hi] = x.support(x.*member);
-            out += head + kind + "," + csv_number(lo) + "," + csv_number(hi) + "," + cells(x.*member) + "\n";
+            out += head + kind + "," + csv_number(lo) + "," + csv_number(hi) + "," +
+                   estimate_csv_cells(x.*member, interval) + "\n";
         }
     });
     return out;
