@@ -148,6 +148,13 @@ struct SweepPoint {
     /// (KolmogorovResult::converged).
     bool precision_reached = false;
 
+    /// The point's D [m^2/s], the solver's or the sampled one.
+    const Estimate& diffusivity() const { return solution ? solution->diffusivity : estimates.diffusivity; }
+    /// The point's M0 [m/s], the solver's or the sampled one.
+    const Estimate& mobility() const { return solution ? solution->mobility : estimates.mobility; }
+    /// The point's E[t1] [s], the solver's or the sampled one.
+    const Estimate& mean_duration() const { return solution ? solution->mean_duration : estimates.mean_duration; }
+
     /// The fields, in report order (result_fields.hpp): the sampled
     /// estimates or the solver's in their place, the per-request ones
     /// FieldForm::Optional (the report says which it writes). The point's

@@ -223,8 +223,7 @@ void add_white_limits(SweepResult& out) {
         std::vector<double> tau_prime, delta, sigma;
         for (std::size_t i : group) {
             SweepPoint& p = out.points[i];
-            const double d = p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
-            const double e = p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.error;
+            const double d = p.diffusivity().value, e = p.diffusivity().error;
             p.white_ratio = spread(d / d_white, e / d_white);
             if (p.tau > 0) {
                 tau_prime.push_back(p.tau / time_unit);
@@ -373,15 +372,9 @@ SweepResult compute_sweep(const SweepRequest& req) {
             // errors (propagated alike, though they are not random: a bound's
             // scale, not a sampling distribution, so no interval).
             const std::size_t n = out.points.size() - first; // all the noises, unless interrupted
-            auto d_value = [&](std::size_t i) {
-                const SweepPoint& p = out.points[first + i];
-                return p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
-            };
+            auto d_value = [&](std::size_t i) { return out.points[first + i].diffusivity().value; };
             auto logd = [&](std::size_t i) { return std::log(d_value(i)); };
-            auto sig = [&](std::size_t i) {
-                const SweepPoint& p = out.points[first + i];
-                return (p.solution ? p.solution->diffusivity.error : p.estimates.diffusivity.error) / d_value(i);
-            };
+            auto sig = [&](std::size_t i) { return out.points[first + i].diffusivity().error / d_value(i); };
             auto spread = [&](double value, double error) {
                 return out.solved() ? Estimate{value, error, nan, nan, req.level, EstimateKind::Solved}
                                    : make_interval(value, error, req.level);

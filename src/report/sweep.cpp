@@ -147,11 +147,9 @@ ordered_json points_json(const SweepResult& r) {
     ordered_json points = ordered_json::array();
     for (const auto& p : r.points) {
         const Scales sc = scales_of(point_params(r, p));
-        const Estimate& d = p.solution ? p.solution->diffusivity : p.estimates.diffusivity;
-        const Estimate& m0 = p.solution ? p.solution->mobility : p.estimates.mobility;
-        const Estimate& t1 = p.solution ? p.solution->mean_duration : p.estimates.mean_duration;
         ordered_json o = fields_json(p, style);
-        NondimensionalValues values = NondimensionalValues::of(sc, d.value, m0.value, t1.value);
+        NondimensionalValues values =
+            NondimensionalValues::of(sc, p.diffusivity().value, p.mobility().value, p.mean_duration().value);
         values.tau = p.tau / sc.time;
         o["nondimensional"] = fields_json(values);
         RunWork work;
@@ -217,8 +215,8 @@ std::string points_csv(const SweepResult& r) {
        << "\n";
     for (const auto& p : r.points) {
         const Scales sc = scales_of(point_params(r, p));
-        const double d = p.solution ? p.solution->diffusivity.value : p.estimates.diffusivity.value;
-        os << fields_csv_row(p, style) << "," << csv_number(p.tau / sc.time) << "," << csv_number(d / sc.diffusivity);
+        os << fields_csv_row(p, style) << "," << csv_number(p.tau / sc.time) << ","
+           << csv_number(p.diffusivity().value / sc.diffusivity);
         if (r.solved()) os << "," << p.work;
         os << "\n";
     }
