@@ -69,6 +69,7 @@ def diffusivity(
     check_dt: bool = ...,
     check_knots: bool = ...,
     control_variate: Literal['auto', 'off'] = ...,
+    control_variate_pilot: int = ...,
     progress: bool = False,
     checkpoint: Optional[str] = None,
     checkpoint_every: float = ...,

@@ -142,7 +142,7 @@ class DiffusivityTest(unittest.TestCase):
         err = io.StringIO()
         with contextlib.redirect_stderr(err):
             stickslip.diffusivity(P, engine="pdmp", excursions=128, threads=1, progress=True)
-        self.assertIn("128/128 excursions", err.getvalue())
+        self.assertIn("640/640 excursions", err.getvalue())  # 128 and the pilot of 4 x 128
         self.assertTrue(err.getvalue().endswith("\n"))
 
     def test_params_as_dict_and_default(self):

@@ -57,10 +57,10 @@ CORR_FLAGS = "--lags 2 --max-lag 0.5"
 CORR_LAG = 1  # r = 0.25
 
 
-def run_cli(binary, command, flags, n, seed):
+def run_cli(binary, command, flags, n, seed, model=MODEL):
     size = "--trajectories" if command == "bruteforce" else "--excursions"
     extra = {"density": DENSITY_FLAGS, "correlation": CORR_FLAGS}.get(command, "")
-    cmd = [binary, command] + MODEL.split() + flags.split() + extra.split()
+    cmd = [binary, command] + model.split() + flags.split() + extra.split()
     cmd += [size, str(n), "--seed", str(seed), "--threads", "1", "--quiet", "--format", "json"]
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     return json.loads(out)
@@ -77,13 +77,17 @@ def est(e):
     return [e["value"], e["error"], lo, hi]
 
 
-def one_run(binary, case, n, seed):
+def one_run(binary, case, n, seed, model=MODEL, only=None):
     flags, commands = CASES[case]
     rec = {"case": case, "n": n, "seed": seed}
     for c in commands:
-        j = run_cli(binary, c, flags, n, seed)
+        if only and c not in only:
+            continue
+        j = run_cli(binary, c, flags, n, seed, model)
         if c == "diffusivity":
             rec["D"] = est(j["diffusivity"])
+            if "control_variate" in j:
+                rec["pilot"] = j["control_variate"]["pilot_excursions"]
             rec["M0"] = est(j["mobility"])
             rec["Et"] = est(j["mean_duration"])
             rec["T"] = n * j["mean_duration"]["value"]
@@ -95,7 +99,7 @@ def one_run(binary, case, n, seed):
             rec["h0"] = est(j["variance"])
             rec["Vmean"] = est(j["mean"])
             # density and diffusivity share their excursions bit for bit
-            assert rec["D"][0] == j["diffusivity"]["value"]
+            assert "D" not in rec or rec["D"][0] == j["diffusivity"]["value"]
         elif c == "correlation":
             rec["R0"] = est(j["autocorrelation"][0])
             rec["Rlag"] = est(j["autocorrelation"][CORR_LAG])
@@ -157,6 +161,9 @@ def main():
     ap.add_argument("--excursions", default="2000,20000")
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--first-seed", type=int, default=1)
+    ap.add_argument("--model", default=MODEL,
+                    help=f"the model and engine flags of every run (default '{MODEL}'; e.g. add '--scheme resolvent')")
+    ap.add_argument("--commands", default=None, help="only these commands of each case (e.g. 'diffusivity')")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", default=None, help="raw records (JSON)")
     ap.add_argument("--load", default=None, help="tabulate these raw records instead of running")
@@ -172,7 +179,7 @@ def main():
                 for j, n in enumerate(a.excursions.split(",")) for i in range(a.runs)]
         records = []
         with cf.ThreadPoolExecutor(a.jobs) as ex:
-            for k, rec in enumerate(ex.map(lambda t: one_run(a.bin, *t), jobs)):
+            for k, rec in enumerate(ex.map(lambda t: one_run(a.bin, *t, model=a.model, only=a.commands and a.commands.split(",")), jobs)):
                 records.append(rec)
                 if (k + 1) % 500 == 0:
                     print(f"{k + 1}/{len(jobs)}", file=sys.stderr)
@@ -205,6 +212,19 @@ def condensed(records):
             neg = sum(1 for r in rn if interval("sym", *r[key])[0] < 0)
             print(f"| {c} | {n} | " + " | ".join(cell(rn, key, k, ref) for k in ("sym", "log", "rel")) +
                   f" | {neg} |")
+    # Not inflated: the mean half-width against 1.96 times the spread of D over the runs.
+    print("\n| case | N | sd of D / mean se | mean half-width / (1.96 sd of D) |")
+    print("|---|---|---|---|")
+    for c, rc in groups.items():
+        key = "D" if "D" in rc[0] else "Dt"
+        for n in sizes(rc):
+            rn = [r for r in rc if r["n"] == n]
+            v = [r[key][0] for r in rn]
+            mean = sum(v) / len(v)
+            sd = math.sqrt(sum((x - mean) ** 2 for x in v) / (len(v) - 1))
+            se = sum(r[key][1] for r in rn) / len(rn)
+            half = sum(min(r[key][3], 1e300) - r[key][2] for r in rn) / (2 * len(rn))
+            print(f"| {c} | {n} | {sd / se:.2f} | {half / (Q95 * sd):.2f} |")
     # The printed interval of D must be the relative-error one (make_relative_interval).
     same = differ = 0
     for r in records:
@@ -214,7 +234,7 @@ def condensed(records):
             hi == r[key][3] or math.isclose(hi, r[key][3], rel_tol=1e-12))
         same, differ = same + ok, differ + (not ok)
     print(f"\nPrinted interval of D (D_t) = relative-error formula in {same} runs, different in {differ}.")
-    keys = ["M0", "Et", "stuck", "bin", "h0", "hlag"]
+    keys = [k for k in ("M0", "Et", "stuck", "bin", "h0", "hlag") if any(k in r for r in records)]
     print("\nThe other quantities, with the symmetric interval they print (h(0): relative error in brackets).\n")
     print("| case | N | " + " | ".join(NAMES[k] for k in keys) + " |")
     print("|---|---|" + "---|" * len(keys))

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <tuple>
 
 #include "core/format.hpp"
@@ -64,6 +65,10 @@ PreparedEngine prepare(const DiffusivityRequest& req_in) {
     PreparedEngine engine = prepare(static_cast<const RunSettings&>(req));
     validate(static_cast<const ExcursionSettings&>(req));
     check_rel_precision(req);
+    if (req.control_variate_pilot == 1 || req.control_variate_pilot > max_control_variate_pilot)
+        throw InvalidParameter("control-variate-pilot",
+                               "control-variate-pilot must be 0 (coefficients fitted on the run itself) or "
+                               "between 2 and 2^40 excursions, got " + std::to_string(req.control_variate_pilot));
     // D's relative half-width is about 7/sqrt(N) (measured at the Fig. 2
     // case, 95%): a target below 1e-7 needs more than 2^56 excursions, which
     // no run has (--rel-precision 5e-324 ran to --max-excursions, hours).
@@ -137,6 +142,49 @@ DiffusivityRequest check_dt_request(const DiffusivityRequest& req, std::uint64_t
 
 namespace {
 
+/// The control variate's estimates at the pilot's coefficients, or with
+/// coefficients fitted on `sums` themselves when there is no pilot.
+ControlVariateEstimates control_variate_estimates(const ControlVariateSums& sums, double level,
+                                                  const std::optional<ControlVariateCoefficients>& coefficients) {
+    return coefficients ? estimate_control_variate(sums, level, *coefficients) : estimate_control_variate(sums, level);
+}
+
+/// The control variate's pilot (DiffusivityRequest::control_variate_pilot):
+/// pilot_excursions(req) excursions under the key pilot_seed(seed), at the
+/// run's own sample indices, with the run's corrector, at the coarser of the
+/// run's step and the automatic one (a run at a fine step would otherwise pay
+/// for its pilot at that step: any coefficients keep the estimates unbiased
+/// and the interval honest, and the automatic step's are close to the run's);
+/// its progress continues the line from `done` samples and `seconds` of
+/// `total`.
+RunTotals run_pilot(const DiffusivityRequest& req, const PreparedEngine& engine, const CorrectorTable& g,
+                    std::uint64_t done, double seconds, std::uint64_t total) {
+    RunControl ctl = req.control;
+    ctl.seed = pilot_seed(req.control.seed);
+    if (req.control.progress)
+        ctl.progress = [&req, done, seconds, total](const Progress& p) {
+            return req.control.progress(Progress{done + p.done, total, seconds + p.seconds, p.moments});
+        };
+    std::optional<PreparedEngine> coarser;
+    if (has_time_step(engine.settings) && !engine.settings.dt_auto) {
+        EngineSettings automatic = engine.settings;
+        automatic.dt_auto = true;
+        try {
+            automatic = resolve_engine_settings(engine.model, automatic);
+            if (automatic.dt > engine.settings.dt) {
+                RunSettings pilot_settings = req;
+                pilot_settings.engine = automatic;
+                pilot_settings.engine.dt_auto = false;
+                coarser = prepare(pilot_settings);
+                if (!engine_has_martingale(*coarser)) coarser.reset();
+            }
+        } catch (const InvalidParameter&) { // no automatic step here: the pilot takes the run's
+            coarser.reset();
+        }
+    }
+    return run_long_excursions(coarser ? *coarser : engine, pilot_excursions(req), ctl, g);
+}
+
 /// The --check-dt run (knots == false: as many excursions as `main` has, at
 /// 2 dt) or the --check-knots run (knots twice as far apart), on independent
 /// streams; its progress continues the main run's line. With the main run's
@@ -146,7 +194,7 @@ namespace {
 /// little less close).
 DiscretisationCheck run_check(const DiffusivityRequest& req, const DiffusivityResult& main,
                               std::vector<std::string>& warnings, bool& interrupted, bool knots,
-                              const CorrectorTable* g) {
+                              const CorrectorTable* g, const std::optional<ControlVariateCoefficients>& coefficients) {
     const std::uint64_t n = main.monte_carlo().totals.requested;
     DiffusivityRequest coarse = knots ? check_knots_request(req, n) : check_dt_request(req, n);
     const char* flag = knots ? "--check-knots" : "--check-dt";
@@ -167,7 +215,7 @@ DiscretisationCheck run_check(const DiffusivityRequest& req, const DiffusivityRe
     }
     LongExcursionEstimates est = estimate_long_excursion(t.moments, req.level, req.estimator);
     if (g) {
-        const ControlVariateEstimates cv = estimate_control_variate(t.control_variate, req.level);
+        const ControlVariateEstimates cv = control_variate_estimates(t.control_variate, req.level, coefficients);
         est.diffusivity = cv.diffusivity;
         est.mobility = cv.mobility;
     }
@@ -225,7 +273,7 @@ std::uint64_t round_up_to_blocks(std::uint64_t n) { return (n + block_size - 1) 
 /// Precision on demand (DiffusivityRequest::rel_precision): batches of long
 /// excursions at consecutive, block-aligned sample indices until the target.
 RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& engine, const CorrectorTable* g,
-                           PrecisionOutcome& outcome) {
+                           const std::optional<ControlVariateCoefficients>& coefficients, PrecisionOutcome& outcome) {
     RunTotals total;
     outcome.target = req.rel_precision;
     outcome.reached = false;
@@ -261,7 +309,7 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
         std::uint64_t needed = batch;
         if (total.moments.count() >= 2) {
             // The interval the result reports: the control variate's when it runs.
-            const Estimate est = g ? estimate_control_variate(total.control_variate, req.level).diffusivity
+            const Estimate est = g ? control_variate_estimates(total.control_variate, req.level, coefficients).diffusivity
                                    : estimate_long_excursion(total.moments, req.level, req.estimator).diffusivity;
             outcome.relative_half_width = relative_upper_half_width(est);
             if (outcome.relative_half_width <= req.rel_precision) {
@@ -302,41 +350,89 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
     DiffusivityRequest req = req_in;
     req.engine = engine.settings;
     using detail::format_number;
-    const std::vector<std::string> notes = detail::start_notes(engine, req.excursions, req.control);
+    // The control variate: its corrector, made once per run, where there is one.
+    std::string cv_off;
+    if (req.control_variate == ControlVariateMode::Auto) {
+        std::string why;
+        if (req.estimator == Estimator::Paper) cv_off = "control variate off: it corrects the renewal estimator, not the paper's";
+        else if (!engine_has_martingale(engine, &why) || !has_corrector(req.params, &why))
+            cv_off = "control variate off: " + why;
+    }
+    const bool with_cv = req.control_variate == ControlVariateMode::Auto && cv_off.empty();
+    const bool piloted = with_cv && req.control_variate_pilot > 0;
+    const std::vector<std::string> notes =
+        detail::start_notes(engine, req.excursions + (piloted ? pilot_excursions(req) : 0), req.control);
     DiffusivityResult out;
     out.request = req;
     out.monte_carlo().engine = engine.resolved;
-    // The control variate: its corrector, made once per run, where there is one.
     std::shared_ptr<const Corrector> corrector;
     double corrector_seconds = 0.0;
     std::vector<std::string> cv_notes;
-    if (req.control_variate == ControlVariateMode::Auto) {
-        std::string why;
-        if (req.estimator == Estimator::Paper)
-            cv_notes.push_back("control variate off: it corrects the renewal estimator, not the paper's");
-        else if (!engine_has_martingale(engine, &why) || !has_corrector(req.params, &why))
-            cv_notes.push_back("control variate off: " + why);
-        else {
-            const auto start = std::chrono::steady_clock::now();
-            corrector = make_corrector(engine.model); // the run's law, as the engine has it
-            corrector_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        }
+    if (!cv_off.empty()) cv_notes.push_back(cv_off);
+    if (with_cv) {
+        const auto start = std::chrono::steady_clock::now();
+        corrector = make_corrector(engine.model); // the run's law, as the engine has it
+        corrector_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     const CorrectorTable* g = corrector ? &corrector->table : nullptr;
-    if (req.rel_precision > 0) out.monte_carlo().totals = run_to_precision(req, engine, g, out.precision);
-    else if (g) out.monte_carlo().totals = run_long_excursions(engine, req.excursions, req.control, *g);
-    else out.monte_carlo().totals = run_long_excursions(engine, req.excursions, req.control);
-    detail::finish_long_excursion_run(engine, out.monte_carlo().totals, req.allow_capped, out.warnings);
-    out.estimates = estimate_long_excursion(out.monte_carlo().totals.moments, req.level, req.estimator);
+    // The coefficients' pilot: before the run when the stopping rule needs
+    // them (--rel-precision), after it otherwise (an interrupted run keeps
+    // its excursions and falls back to coefficients fitted on them).
+    RunTotals pilot;
+    bool pilot_ran = false;
+    std::optional<ControlVariateCoefficients> coefficients;
+    const auto fit_pilot = [&] {
+        pilot_ran = true;
+        if (pilot.control_variate.count() >= 2) coefficients = fit_control_variate(pilot.control_variate);
+    };
+    RunTotals& totals = out.monte_carlo().totals;
+    if (req.rel_precision > 0) {
+        if (piloted) {
+            pilot = run_pilot(req, engine, *g, 0, 0.0, pilot_excursions(req) + req.excursions);
+            fit_pilot();
+        }
+        if (!pilot.interrupted) totals = run_to_precision(req, engine, g, coefficients, out.precision);
+        else totals.interrupted = true;
+    } else if (g) {
+        RunControl ctl = req.control; // the progress line counts the pilot's excursions too
+        if (piloted && req.control.progress)
+            ctl.progress = [&req](const Progress& p) {
+                return req.control.progress(Progress{p.done, p.total + pilot_excursions(req), p.seconds, p.moments});
+            };
+        totals = run_long_excursions(engine, req.excursions, ctl, *g);
+        if (piloted && !totals.interrupted) {
+            pilot = run_pilot(req, engine, *g, totals.requested, totals.seconds,
+                              totals.requested + pilot_excursions(req));
+            fit_pilot();
+        }
+    } else totals = run_long_excursions(engine, req.excursions, req.control);
+    if (pilot_ran) { // the pilot's cost is the run's
+        totals.work += pilot.work;
+        totals.seconds += pilot.seconds;
+        totals.resumed += pilot.resumed;
+        totals.interrupted = totals.interrupted || pilot.interrupted;
+    }
+    detail::finish_long_excursion_run(engine, totals, req.allow_capped, out.warnings);
+    out.estimates = estimate_long_excursion(totals.moments, req.level, req.estimator);
     detail::check_finite(out.estimates);
+    if (piloted && !coefficients)
+        out.warnings.push_back("the control variate's coefficients are fitted on the run's own excursions (its "
+                               "pilot was " + std::string(pilot_ran ? "interrupted" : "not run: the run was interrupted") +
+                               "): without drag the interval may cover well below its level");
+    else if (piloted && pilot.interrupted)
+        out.warnings.push_back("the control variate's pilot was interrupted: its coefficients are from " +
+                               std::to_string(pilot.control_variate.count()) + " of " +
+                               std::to_string(pilot_excursions(req)) + " excursions (the interval is "
+                               "honest, only wider)");
     if (corrector) {
-        const ControlVariateEstimates cv = estimate_control_variate(out.monte_carlo().totals.control_variate, req.level);
+        const ControlVariateEstimates cv = control_variate_estimates(totals.control_variate, req.level, coefficients);
         ControlVariateReport r;
         r.source = corrector->source;
         r.grid = corrector->grid;
         r.corrector_seconds = corrector_seconds; // not corrector->seconds: a kept corrector cost nothing
         r.beta = cv.beta;
         r.beta_mobility = cv.beta_mobility;
+        r.pilot_excursions = coefficients ? pilot.control_variate.count() : 0;
         r.variance_reduction = cv.variance_reduction;
         r.variance_reduction_mobility = cv.variance_reduction_mobility;
         r.plain_diffusivity = out.estimates.diffusivity;
@@ -363,13 +459,13 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
         if (out.monte_carlo().totals.interrupted)
             out.warnings.push_back("the --check-dt run was not started: the run was interrupted");
         else
-            out.discretisation = run_check(req, out, out.warnings, out.monte_carlo().totals.interrupted, false, g);
+            out.discretisation = run_check(req, out, out.warnings, out.monte_carlo().totals.interrupted, false, g, coefficients);
     }
     if (req.check_knots) {
         if (out.monte_carlo().totals.interrupted)
             out.warnings.push_back("the --check-knots run was not started: the run was interrupted");
         else
-            out.knots_check = run_check(req, out, out.warnings, out.monte_carlo().totals.interrupted, true, g);
+            out.knots_check = run_check(req, out, out.warnings, out.monte_carlo().totals.interrupted, true, g, coefficients);
     }
     out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
     return out;

@@ -107,9 +107,11 @@ std::string to_table(const DiffusivityResult& r) {
     table_row(os, "mean E[t1]", r.estimates.mean_duration, sc.time, "s", false);
     if (r.control_variate) {
         const ControlVariateReport& c = *r.control_variate;
-        os << "\ncontrol variate (corrector: " << c.source << ", " << c.grid << "): variance of D reduced "
-           << format_number(c.variance_reduction, 3) << "x, of M0 " << format_number(c.variance_reduction_mobility, 3)
-           << "x; without it:\n";
+        os << "\ncontrol variate (corrector: " << c.source << ", " << c.grid << "; coefficients "
+           << (c.pilot_excursions > 0 ? "from a pilot of " + std::to_string(c.pilot_excursions) + " excursions"
+                                      : std::string("fitted on the run"))
+           << "): variance of D reduced " << format_number(c.variance_reduction, 3) << "x, of M0 "
+           << format_number(c.variance_reduction_mobility, 3) << "x; without it:\n";
         table_row(os, "plain D", c.plain_diffusivity, sc.diffusivity, "m^2/s");
         table_row(os, "plain M0", c.plain_mobility, sc.velocity, "m/s");
     }
@@ -128,8 +130,12 @@ std::string to_table(const DiffusivityResult& r) {
            << "\n                                  M0 - M0(" << c.knots << " knots) = "
            << difference_text(c.mobility_difference, "m/s") << "\n";
     }
+    // The work (steps, seconds) is the run's and its pilot's: the line says so.
+    std::string what = "excursions";
+    if (r.control_variate && r.control_variate->pilot_excursions > 0)
+        what += " + " + std::to_string(r.control_variate->pilot_excursions) + " of the control variate's pilot";
     os << "\n"
-       << work_line(r.estimates.excursions, "excursions", q.control.seed, q.engine, r.monte_carlo().totals,
+       << work_line(r.estimates.excursions, what.c_str(), q.control.seed, q.engine, r.monte_carlo().totals,
                     "; relative half-width of D: " + format_number(100 * (d.hi - d.value) / d.value, 3) + "%")
        << notes(r.warnings);
     return os.str();

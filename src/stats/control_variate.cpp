@@ -190,7 +190,11 @@ void ControlVariateSums::assign_words(const std::uint64_t* in) {
 
 std::uint64_t ControlVariateSums::count() const { return static_cast<std::uint64_t>(sums_[0].value()); }
 
-ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, double level) {
+namespace {
+
+/// The estimates with the coefficients fitted on `s` itself (no `fixed`) or
+/// given.
+ControlVariateEstimates estimate(const ControlVariateSums& s, double level, const ControlVariateCoefficients* fixed) {
     if (s.count() < 2) throw InvalidParameter("excursions", "at least 2 completed excursions are needed");
     normal_quantile_two_sided(level); // validates the level
     const Means E(s);
@@ -210,7 +214,7 @@ ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, do
     const Big d = ew2 / tbar, c = E(w * T) / tbar;
     const Poly phi = w2 - d * T - Big(2) * c * w;
     const Big ec2 = E.raw(monomial(0, 0, 0, 2));
-    const Big beta = ec2 > 0 ? E(phi * C) / ec2 : Big(0);
+    const Big beta = fixed ? Big(fixed->beta) : ec2 > 0 ? E(phi * C) / ec2 : Big(0);
     const Big d_cv = (ew2 - beta * E.raw(monomial(0, 0, 0, 1))) / tbar;
     const Poly psi = w2 - beta * C - d_cv * T - Big(2) * c * w;
     const Big var_phi = E.square(phi), var_psi = E.square(psi);
@@ -220,7 +224,7 @@ ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, do
 
     // M0: the plain influence w (times tbar), its regression on M.
     const Big em2 = E.raw(monomial(0, 0, 2, 0));
-    const Big beta_m = em2 > 0 ? E(w * M) / em2 : Big(0);
+    const Big beta_m = fixed ? Big(fixed->beta_mobility) : em2 > 0 ? E(w * M) / em2 : Big(0);
     const Big m0_cv = (E.raw(monomial(1, 0, 0, 0)) - beta_m * E.raw(monomial(0, 0, 1, 0))) / tbar;
     const Poly chi = U - beta_m * M - m0_cv * T;
     const Big var_w = E.square(w), var_chi = E.square(chi);
@@ -228,6 +232,22 @@ ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, do
     r.mobility = make_interval(static_cast<double>(m0_cv), se(var_chi), level);
     r.variance_reduction_mobility = ratio(var_w, var_chi);
     return r;
+}
+
+} // namespace
+
+ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, double level) {
+    return estimate(s, level, nullptr);
+}
+
+ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, double level,
+                                                 const ControlVariateCoefficients& fixed) {
+    return estimate(s, level, &fixed);
+}
+
+ControlVariateCoefficients fit_control_variate(const ControlVariateSums& s) {
+    const ControlVariateEstimates e = estimate(s, 0.95, nullptr);
+    return {e.beta, e.beta_mobility};
 }
 
 } // namespace stickslip

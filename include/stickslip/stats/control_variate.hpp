@@ -121,6 +121,23 @@ struct ControlVariateEstimates {
     std::uint64_t samples = 0;
 };
 
+/// The coefficients of the control variates (dimensionless): beta on C in
+/// D's estimate, beta' on M in M0's (estimate_control_variate). Any values
+/// keep the estimates unbiased; the run's interval is honest only when they do
+/// not come from the excursions it corrects (docs/validation.md, "Why D's
+/// interval under-covers without drag": fitted on the run itself, they follow
+/// its few largest excursions and the interval covers 82-94% without drag).
+struct ControlVariateCoefficients {
+    double beta = 0.0;           ///< coefficient on C = M^2 - Q in D_cv
+    double beta_mobility = 0.0;  ///< coefficient on M in M0_cv
+};
+
+/// The variance-minimising coefficients of a set of excursions (typically an
+/// independent pilot run): beta = E[phi C] / E[C^2] and beta' = E[w M] /
+/// E[M^2] in the notation of estimate_control_variate; 0 where every C (M)
+/// is 0. InvalidParameter ("excursions") below 2 samples.
+ControlVariateCoefficients fit_control_variate(const ControlVariateSums& s);
+
 /// The control-variate estimates from the sums of (U [m], t [s], M [m],
 /// C [m^2]) over N excursions, with intervals at `level` in (0, 1). With
 /// E[.] the sample mean, tbar = E[t], M0_hat = sum U / sum t, w = U - M0_hat t,
@@ -135,5 +152,11 @@ struct ControlVariateEstimates {
 /// from the exact sums. InvalidParameter ("excursions") below 2 samples,
 /// ("level") for a level outside (0, 1).
 ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, double level);
+
+/// The same estimates with the coefficients given (an independent pilot's,
+/// fit_control_variate): beta and beta' are `fixed`'s, the standard errors
+/// those of psi and U - beta' M - M0_cv t at them, from `s` alone.
+ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, double level,
+                                                 const ControlVariateCoefficients& fixed);
 
 } // namespace stickslip
