@@ -213,7 +213,7 @@ def condensed(records):
             print(f"| {c} | {n} | " + " | ".join(cell(rn, key, k, ref) for k in ("sym", "log", "rel")) +
                   f" | {neg} |")
     # Not inflated: the mean half-width against 1.96 times the spread of D over the runs.
-    print("\n| case | N | sd of D / mean se | mean half-width / (1.96 sd of D) |")
+    print("\n| case | N | sd of D / mean se | mean half-width / (1.96 sd of D), bounded intervals |")
     print("|---|---|---|---|")
     for c, rc in groups.items():
         key = "D" if "D" in rc[0] else "Dt"
@@ -223,8 +223,11 @@ def condensed(records):
             mean = sum(v) / len(v)
             sd = math.sqrt(sum((x - mean) ** 2 for x in v) / (len(v) - 1))
             se = sum(r[key][1] for r in rn) / len(rn)
-            half = sum(min(r[key][3], 1e300) - r[key][2] for r in rn) / (2 * len(rn))
-            print(f"| {c} | {n} | {sd / se:.2f} | {half / (Q95 * sd):.2f} |")
+            finite = [r for r in rn if r[key][3] is not None and math.isfinite(r[key][3])]
+            half = sum(r[key][3] - r[key][2] for r in finite) / (2 * len(finite))
+            unbounded = len(rn) - len(finite)
+            print(f"| {c} | {n} | {sd / se:.2f} | {half / (Q95 * sd):.2f}" +
+                  (f" ({unbounded} unbounded left out)" if unbounded else "") + " |")
     # The printed interval of D must be the relative-error one (make_relative_interval).
     same = differ = 0
     for r in records:
