@@ -72,7 +72,9 @@ stickslip::LongExcursionEstimates plain_of(const Samples& s, double level = 0.95
 struct Reference {
     long double d_cv, se_d, beta, vr, m0_cv, se_m, beta_m, vr_m;
 
-    explicit Reference(const Samples& s) {
+    /// With `fixed` {beta, beta'}: the estimates at those coefficients (a
+    /// pilot's) instead of the fitted ones.
+    explicit Reference(const Samples& s, const long double* fixed = nullptr) {
         const long double n = static_cast<long double>(s.size());
         long double su = 0, st = 0, sm = 0, sc = 0;
         for (std::size_t k = 0; k < s.size(); ++k) {
@@ -99,9 +101,9 @@ struct Reference {
             sphi2 += phi * phi;
             sphic += phi * s.c[k];
         }
-        beta = sc2 > 0 ? sphic / sc2 : 0;
+        beta = fixed ? fixed[0] : sc2 > 0 ? sphic / sc2 : 0;
         d_cv = (sw2 - beta * sc) / st;
-        beta_m = sm2 > 0 ? swm / sm2 : 0;
+        beta_m = fixed ? fixed[1] : sm2 > 0 ? swm / sm2 : 0;
         m0_cv = (su - beta_m * sm) / st;
         long double spsi2 = 0, schi2 = 0;
         for (std::size_t k = 0; k < s.size(); ++k) {
@@ -172,6 +174,31 @@ TEST(ControlVariateEstimator, HandDataSetKnownAnswer) {
     EXPECT_EQ(e.diffusivity.level, 0.95);
     EXPECT_LT(e.mobility.lo, e.mobility.value);
     EXPECT_GT(e.mobility.hi, e.mobility.value);
+}
+
+TEST(ControlVariateEstimator, GivenCoefficientsAreUsedAsGivenAndFittedOnesAreThePilots) {
+    Samples s;
+    s.push(1.5, 1.0, 0.8, 0.3);
+    s.push(-0.5, 0.5, -0.6, -0.2);
+    s.push(2.0, 2.0, 1.1, 0.9);
+    s.push(0.25, 0.75, 0.1, -0.5);
+    s.push(3.0, 2.5, 1.2, 0.4);
+    s.push(-1.0, 1.25, -1.3, -0.6);
+    const long double fixed[2] = {0.7L, 1.3L};
+    const ControlVariateEstimates e =
+        estimate_control_variate(sums_of(s), 0.95, stickslip::ControlVariateCoefficients{0.7, 1.3});
+    EXPECT_EQ(e.beta, 0.7);
+    EXPECT_EQ(e.beta_mobility, 1.3);
+    expect_matches(e, Reference(s, fixed), 1e-13);
+    // The fit of a pilot's sums is what the estimate fitted on them uses, and
+    // given back, it gives that estimate bit for bit.
+    const stickslip::ControlVariateCoefficients fit = stickslip::fit_control_variate(sums_of(s));
+    const ControlVariateEstimates fitted = estimate_control_variate(sums_of(s), 0.95);
+    EXPECT_EQ(fit.beta, fitted.beta);
+    EXPECT_EQ(fit.beta_mobility, fitted.beta_mobility);
+    const ControlVariateEstimates again = estimate_control_variate(sums_of(s), 0.95, fit);
+    EXPECT_EQ(again.diffusivity.value, fitted.diffusivity.value);
+    EXPECT_EQ(again.mobility.value, fitted.mobility.value);
 }
 
 TEST(ControlVariateEstimator, StronglyDrivenCaseKeepsItsDigits) {
