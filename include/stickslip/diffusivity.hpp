@@ -86,8 +86,8 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     /// pilot_seed(seed), the run's sample indices), not on the excursions they
     /// correct, so that the interval covers what it says without drag too
     /// (docs/validation.md, "Why D's interval under-covers without drag":
-    /// fitted on the run itself the interval covers 82-94% there, with a
-    /// pilot of 8192 93-97%; smaller pilots widen the interval). At most four
+    /// at 2000 excursions, fitted on the run itself the interval covers
+    /// 82-94% there, with the pilot 92-95%; smaller pilots cover less). At most four
     /// times the run's excursions (pilot_excursions), at the coarser of the
     /// run's step and the automatic one. 0: fitted on the run itself (the
     /// interval before this setting). Its cost is reported in the run's work.
@@ -158,8 +158,8 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
       SettingInfo{"control-variate-pilot", "",
                   "excursions of an independent pilot run on which the control variate's coefficients are "
                   "fitted (8192 by default, at most 4 times --excursions, at the coarser of --dt and the automatic "
-                  "step): the interval then covers 93-97% without drag at 2000 excursions or more, where "
-                  "coefficients fitted on the run's own excursions (0) give 82-94%"});
+                  "step); 0 fits them on the run's own excursions. Measured without drag at 2000 excursions, D's "
+                  "95% interval covers 92-95% with the pilot, 82-94% with 0"});
 }
 
 /// The --check-dt comparison: the same estimates at twice the step (and the
