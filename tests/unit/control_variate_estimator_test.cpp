@@ -160,7 +160,8 @@ Samples martingale_case(std::size_t n, double m0, double noise, unsigned seed) {
     return s;
 }
 
-TEST(ControlVariateEstimator, HandDataSetKnownAnswer) {
+/// Six excursions by hand, with every sign of U, M and C.
+Samples hand_data_set() {
     Samples s;
     s.push(1.5, 1.0, 0.8, 0.3);
     s.push(-0.5, 0.5, -0.6, -0.2);
@@ -168,6 +169,11 @@ TEST(ControlVariateEstimator, HandDataSetKnownAnswer) {
     s.push(0.25, 0.75, 0.1, -0.5);
     s.push(3.0, 2.5, 1.2, 0.4);
     s.push(-1.0, 1.25, -1.3, -0.6);
+    return s;
+}
+
+TEST(ControlVariateEstimator, HandDataSetKnownAnswer) {
+    const Samples s = hand_data_set();
     const ControlVariateEstimates e = estimate_control_variate(sums_of(s), 0.95);
     EXPECT_EQ(e.samples, 6u);
     expect_matches(e, Reference(s), 1e-13);
@@ -177,13 +183,7 @@ TEST(ControlVariateEstimator, HandDataSetKnownAnswer) {
 }
 
 TEST(ControlVariateEstimator, GivenCoefficientsAreUsedAsGivenAndFittedOnesAreThePilots) {
-    Samples s;
-    s.push(1.5, 1.0, 0.8, 0.3);
-    s.push(-0.5, 0.5, -0.6, -0.2);
-    s.push(2.0, 2.0, 1.1, 0.9);
-    s.push(0.25, 0.75, 0.1, -0.5);
-    s.push(3.0, 2.5, 1.2, 0.4);
-    s.push(-1.0, 1.25, -1.3, -0.6);
+    const Samples s = hand_data_set();
     const long double fixed[2] = {0.7L, 1.3L};
     const ControlVariateEstimates e =
         estimate_control_variate(sums_of(s), 0.95, stickslip::ControlVariateCoefficients{0.7, 1.3});
