@@ -200,6 +200,15 @@ struct DiscretisationCheck {
     }
 };
 
+/// D's interval is flagged (ControlVariateReport::flagged, and a note) when
+/// the tail index of its influence function, as a run measures it (Hill's,
+/// from the sqrt(N) largest of N terms: biased low at a few thousand), is
+/// below this. Read off 300 runs per case at N = 200, 500 and 2000
+/// (docs/validation.md, "The run's own diagnosis"): it flags at least 90% of
+/// the runs whose interval misses at N = 200-500 wherever the coverage is
+/// below 93%, and few runs with drag, where the interval is nominal.
+inline constexpr double interval_flag_tail_index = 2.25;
+
 /// How the control variate of a diffusivity run went (theory.md, section 12).
 struct ControlVariateReport {
     /// The fields, each one's unit and meaning declared in fields() below.
@@ -215,6 +224,26 @@ struct ControlVariateReport {
     Estimate plain_diffusivity;
     Estimate plain_mobility;
     /// @}
+    /// The shape of D_cv's influence function and of the plain D's
+    /// (influence_tail.hpp), measured on whichever of the run and its pilot ran
+    /// second, at the estimates of the first (a fixed number of excursions:
+    /// the pilot's, at the run's estimates and its fitted beta;
+    /// --rel-precision: the run's, at the pilot's); NaN and 0 (not written)
+    /// without a pilot or when the second was not run. Units and meanings in
+    /// fields() below.
+    /// @{
+    std::uint64_t shape_excursions = 0;
+    double skewness = std::numeric_limits<double>::quiet_NaN();
+    double excess_kurtosis = std::numeric_limits<double>::quiet_NaN();
+    double tail_index = std::numeric_limits<double>::quiet_NaN();
+    std::uint64_t tail_terms = 0;
+    double plain_skewness = std::numeric_limits<double>::quiet_NaN();
+    double plain_excess_kurtosis = std::numeric_limits<double>::quiet_NaN();
+    double plain_tail_index = std::numeric_limits<double>::quiet_NaN();
+    std::uint64_t plain_tail_terms = 0;
+    /// @}
+    /// The interval of D is flagged: tail_index < interval_flag_tail_index.
+    bool flagged = false;
 
     /// The fields, in report order (result_fields.hpp).
     template <class Visit> static constexpr void fields(Visit&& visit) {
@@ -242,6 +271,34 @@ struct ControlVariateReport {
               FieldInfo{"variance_reduction_mobility", "", "the same for M0"});
         visit(&S::plain_diffusivity, FieldInfo{"plain.diffusivity", "m^2/s", "D without the control variate"});
         visit(&S::plain_mobility, FieldInfo{"plain.mobility", "m/s", "M0 without the control variate"});
+        visit(&S::shape_excursions,
+              FieldInfo{"influence.excursions", "",
+                        "excursions the shape of D's influence function is measured on: the pilot's (at the run's "
+                        "estimates), or with --rel-precision the run's (at the pilot's)",
+                        FieldForm::WhenSet});
+        visit(&S::skewness, FieldInfo{"influence.skewness", "", "skewness of D's influence function",
+                                      FieldForm::WhenSet});
+        visit(&S::excess_kurtosis,
+              FieldInfo{"influence.excess_kurtosis", "",
+                        "its excess kurtosis (not a stable number where tail_index < 4)", FieldForm::WhenSet});
+        visit(&S::tail_index,
+              FieldInfo{"influence.tail_index", "",
+                        "Hill's estimate of alpha in P(|influence| > x) ~ x^-alpha from its tail_terms (sqrt of the "
+                        "excursions) largest terms: below 4 no fourth moment, below 2 no variance; biased low from "
+                        "a few thousand excursions (docs/validation.md)",
+                        FieldForm::WhenSet});
+        visit(&S::tail_terms, FieldInfo{"influence.tail_terms", "", "terms Hill's estimate is from", FieldForm::WhenSet});
+        visit(&S::flagged,
+              FieldInfo{"influence.flagged", "",
+                        "D's interval may cover well below its level: tail_index below 2.25 (a note says so; "
+                        "docs/validation.md, \"The run's own diagnosis\")"});
+        visit(&S::plain_skewness, FieldInfo{"plain.influence.skewness", "", "the same for the plain D", FieldForm::WhenSet});
+        visit(&S::plain_excess_kurtosis,
+              FieldInfo{"plain.influence.excess_kurtosis", "", "the same for the plain D", FieldForm::WhenSet});
+        visit(&S::plain_tail_index,
+              FieldInfo{"plain.influence.tail_index", "", "the same for the plain D", FieldForm::WhenSet});
+        visit(&S::plain_tail_terms,
+              FieldInfo{"plain.influence.tail_terms", "", "the same for the plain D", FieldForm::WhenSet});
     }
 };
 

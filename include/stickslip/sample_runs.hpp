@@ -33,9 +33,11 @@ RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions,
 /// The same with the martingale of the corrector g accumulated in every
 /// excursion (kernels/corrector.hpp) into RunTotals::control_variate; U and t,
 /// and so `sums`, are bitwise those of the plain run. The engine must have a
-/// martingale kernel (engine_has_martingale), else std::logic_error.
+/// martingale kernel (engine_has_martingale), else std::logic_error. With
+/// `centres`, RunTotals::control_variate also sums the shape of the plain
+/// and the control variate's influence functions at them (influence_tail.hpp).
 RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
-                              const CorrectorTable& g);
+                              const CorrectorTable& g, const InfluenceCentres* centres = nullptr);
 /// Whether the prepared engine's kernels accumulate a martingale: the PDMP,
 /// the inclusion engine's resolvent scheme, and its event scheme with
 /// coloured noise; otherwise *why (if given) says why not, for a note.

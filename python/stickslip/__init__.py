@@ -159,8 +159,10 @@ D, mobility M0 and mean long-excursion duration E[t1] from N long excursions.
     D = sum (U - M0 t)^2 / sum t over i.i.d. long excursions (displacement U [m],
     duration t [s]): the renewal-reward form of lim var U(t)/t, correct for any
     mobility, with delta-method confidence intervals. Same as
-    ``stickslip diffusivity``; below 5000 excursions the standard errors are
-    themselves noisy and a warning says so. With rel_precision > 0 the run goes
+    ``stickslip diffusivity``; where the control variate's pilot measures a
+    tail of D's influence function so heavy that the interval may cover well
+    below its level (``control_variate`` ``influence.flagged``), a warning
+    says so (without the pilot: below 5000 excursions). With rel_precision > 0 the run goes
     on in batches until D's interval is that narrow (`.precision` says how it
     ended). With engine="kolmogorov" nothing is sampled: the Kolmogorov
     equations are solved on grids to the relative precision rel_precision of D

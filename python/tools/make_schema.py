@@ -57,6 +57,8 @@ def block_schema(fields, keep, axis=None):
             required.append(head)
     for head, inner in nested.items():
         properties[head] = block_schema(inner, {})
+        if not properties[head]["required"]:  # every field only when set: the object may be absent
+            required.remove(head)
     out = {k: v for k, v in keep.items() if k not in ("type", "required", "properties", "additionalProperties")}
     out.update({"type": "object", "required": required, "properties": properties, "additionalProperties": False})
     return out

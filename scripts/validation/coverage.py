@@ -88,6 +88,8 @@ def one_run(binary, case, n, seed, model=MODEL, only=None):
             rec["D"] = est(j["diffusivity"])
             if "control_variate" in j:
                 rec["pilot"] = j["control_variate"]["pilot_excursions"]
+                if "influence" in j["control_variate"]:  # the run's own diagnosis of its interval
+                    rec["influence"] = j["control_variate"]["influence"]
             rec["M0"] = est(j["mobility"])
             rec["Et"] = est(j["mean_duration"])
             rec["T"] = n * j["mean_duration"]["value"]

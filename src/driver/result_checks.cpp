@@ -15,7 +15,7 @@
 namespace stickslip::detail {
 
 void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
-                               std::vector<std::string>& warnings) {
+                               std::vector<std::string>& warnings, bool diagnosed) {
     const ModelParams& p = e.model.params;
     const EngineSettings& s = e.settings;
     const ResolvedEngine& resolved = e.resolved;
@@ -50,7 +50,7 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
                           engine.coarse_against_tau(p)};
     });
     if (!lattice.empty()) warnings.push_back(lattice);
-    if (done < few_excursions)
+    if (done < few_excursions && !diagnosed)
         warnings.push_back("only " + std::to_string(done) +
                            " excursions (fewer than 5000): U is heavy-tailed, so the standard errors are "
                            "themselves uncertain; use 10000 or more for reliable intervals");

@@ -21,10 +21,11 @@ inline constexpr std::uint64_t few_excursions = 5000;
 /// Throws CappedExcursions when excursions hit the runaway guard (unless
 /// allowed: then warns) or fewer than 2 completed, UntrustworthyResult when
 /// every excursion ended within its first step; adds the standard warnings
-/// (interrupted run, truncated PDMP lattice, few excursions, meaning of
-/// mean_duration).
+/// (interrupted run, truncated PDMP lattice, few excursions unless the run
+/// measured the shape of its influence function (`diagnosed`: its own note
+/// then says whether the interval holds), meaning of mean_duration).
 void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
-                               std::vector<std::string>& warnings);
+                               std::vector<std::string>& warnings, bool diagnosed = false);
 
 /// Throws UntrustworthyResult when an estimate or its standard error is not
 /// a finite number (naming it), so that no NaN is ever reported as a result.

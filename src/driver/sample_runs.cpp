@@ -67,7 +67,7 @@ bool engine_has_martingale(const PreparedEngine& e, std::string* why) {
 }
 
 RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions, const RunControl& ctl,
-                              const CorrectorTable& g) {
+                              const CorrectorTable& g, const InfluenceCentres* centres) {
     if (!engine_has_martingale(e)) throw std::logic_error("run_long_excursions: this engine has no martingale");
     const std::uint64_t seed = ctl.seed;
     return detail::visit_engine(e, [&](const auto& engine) {
@@ -75,7 +75,7 @@ RunTotals run_long_excursions(const PreparedEngine& e, std::uint64_t excursions,
         RunTotals t;
         if constexpr (HasMartingale<std::decay_t<decltype(engine)>>) {
             t = detail::run_blocks<ControlVariateBlock>(
-                excursions, ctl, [] { return ControlVariateBlock{}; },
+                excursions, ctl, [centres] { return ControlVariateBlock{centres}; },
                 [&engine, &g, seed, cancel = ctl.cancel](std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
                                                           ControlVariateBlock& block) {
                     if (!engine.long_excursions_with(seed, first, count, out, cancel, g)) return false;

@@ -164,6 +164,10 @@ void ControlVariateBlock::add(double u, double t, double m, double c) {
     }
     sums_[0].hi += 1.0; // the count, exact below 2^53
     ++n_;
+    if (centres_) {
+        plain_tail_.add(centres_->plain(u, t, c));
+        tail_.add(centres_->control_variate(u, t, c));
+    }
 }
 
 void ControlVariateSums::add_block(const ControlVariateBlock& b) {
@@ -174,18 +178,28 @@ void ControlVariateSums::add_block(const ControlVariateBlock& b) {
         sums_[k].add(s.hi);
         sums_[k].add(s.lo);
     }
+    plain_tail_.add_block(b.plain_tail());
+    tail_.add_block(b.tail());
 }
 
 void ControlVariateSums::merge(const ControlVariateSums& o) {
     for (int k = 0; k < n_mono; ++k) sums_[k].merge(o.sums_[k]);
+    plain_tail_.merge(o.plain_tail_);
+    tail_.merge(o.tail_);
 }
 
 void ControlVariateSums::to_words(std::uint64_t* out) const {
     for (int k = 0; k < n_mono; ++k) sums_[k].to_words(out + k * ExactSum::words);
+    out += n_mono * ExactSum::words;
+    plain_tail_.to_words(out);
+    tail_.to_words(out + InfluenceTailSums::words);
 }
 
 void ControlVariateSums::assign_words(const std::uint64_t* in) {
     for (int k = 0; k < n_mono; ++k) sums_[k] = ExactSum::from_words(in + k * ExactSum::words);
+    in += n_mono * ExactSum::words;
+    plain_tail_.assign_words(in);
+    tail_.assign_words(in + InfluenceTailSums::words);
 }
 
 std::uint64_t ControlVariateSums::count() const { return static_cast<std::uint64_t>(sums_[0].value()); }
@@ -243,6 +257,29 @@ ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, do
 ControlVariateEstimates estimate_control_variate(const ControlVariateSums& s, double level,
                                                  const ControlVariateCoefficients& fixed) {
     return estimate(s, level, &fixed);
+}
+
+std::optional<InfluenceCentres> influence_centres(const ControlVariateSums& s,
+                                                  const ControlVariateCoefficients& coefficients) {
+    if (s.count() < 2) return std::nullopt;
+    const Means E(s);
+    const Big tbar = E.raw(monomial(0, 1, 0, 0));
+    const Big m0 = E.raw(monomial(1, 0, 0, 0)) / tbar;
+    const Poly U = Poly::var(0), T = Poly::var(1), C = Poly::var(3);
+    const Poly w = U - m0 * T;
+    const Big ew2 = E(w * w);
+    const Big d = ew2 / tbar, c = E(w * T) / tbar;
+    const Big beta = coefficients.beta;
+    const Big d_cv = (ew2 - beta * E.raw(monomial(0, 0, 0, 1))) / tbar;
+    const Big var_phi = E.square(w * w - d * T - Big(2) * c * w);
+    const Big var_psi = E.square(w * w - beta * C - d_cv * T - Big(2) * c * w);
+    if (!(var_phi > 0) || !(var_psi > 0)) return std::nullopt;
+    InfluenceCentres r;
+    r.plain = {static_cast<double>(m0), static_cast<double>(d), static_cast<double>(c), 0.0,
+               static_cast<double>(sqrt(var_phi))};
+    r.control_variate = {static_cast<double>(m0), static_cast<double>(d_cv), static_cast<double>(c),
+                         coefficients.beta, static_cast<double>(sqrt(var_psi))};
+    return r;
 }
 
 ControlVariateCoefficients fit_control_variate(const ControlVariateSums& s) {

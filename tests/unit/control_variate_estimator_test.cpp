@@ -29,6 +29,10 @@ using stickslip::ControlVariateEstimates;
 using stickslip::ControlVariateSums;
 using stickslip::ExactSum;
 using stickslip::estimate_control_variate;
+using stickslip::fit_control_variate;
+using stickslip::influence_centres;
+using stickslip::InfluenceCentres;
+using stickslip::InfluenceTailSums;
 
 struct Samples {
     std::vector<double> u, t, m, c;
@@ -41,11 +45,12 @@ struct Samples {
     std::size_t size() const { return u.size(); }
 };
 
-/// Blocks of 64 in index order, as the block driver makes them.
-std::vector<ControlVariateBlock> blocks_of(const Samples& s) {
+/// Blocks of 64 in index order, as the block driver makes them (with
+/// `centres`, summing the influence functions' shape too).
+std::vector<ControlVariateBlock> blocks_of(const Samples& s, const InfluenceCentres* centres = nullptr) {
     std::vector<ControlVariateBlock> out;
     for (std::size_t k = 0; k < s.size(); ++k) {
-        if (k % 64 == 0) out.emplace_back();
+        if (k % 64 == 0) out.emplace_back(centres);
         out.back().add(s.u[k], s.t[k], s.m[k], s.c[k]);
     }
     return out;
@@ -313,11 +318,14 @@ std::vector<std::uint64_t> words_of(const ControlVariateSums& s) {
 
 TEST(ControlVariateSums, MergeOrderAndSerialisationLeaveNoTrace) {
     const Samples s = martingale_case(6400 + 37, 3.0, 0.1, 51); // a last, partial block
-    auto blocks = blocks_of(s);
+    const auto centres = influence_centres(sums_of(s), fit_control_variate(sums_of(s)));
+    ASSERT_TRUE(centres.has_value());
+    auto blocks = blocks_of(s, &*centres);
     ControlVariateSums forward;
     for (const auto& b : blocks) forward.add_block(b);
     EXPECT_EQ(forward.count(), s.size());
-    EXPECT_EQ(forward.words(), std::size_t{ControlVariateBlock::monomials} * ExactSum::words);
+    EXPECT_EQ(forward.words(), std::size_t{ControlVariateBlock::monomials} * ExactSum::words +
+                                   2 * InfluenceTailSums::words); // the monomials, then the two shapes' sums
 
     std::mt19937 gen(52);
     std::shuffle(blocks.begin(), blocks.end(), gen);
@@ -336,7 +344,7 @@ TEST(ControlVariateSums, MergeOrderAndSerialisationLeaveNoTrace) {
     std::vector<std::uint64_t> reduced = words_of(part[0]);
     for (int p = 1; p < 3; ++p) {
         const std::vector<std::uint64_t> w = words_of(part[p]);
-        for (int k = 0; k < ControlVariateBlock::monomials; ++k)
+        for (std::size_t k = 0; k < w.size() / ExactSum::words; ++k) // every ExactSum, the shapes' too
             ExactSum::merge_words(w.data() + k * ExactSum::words, reduced.data() + k * ExactSum::words);
     }
     ControlVariateSums restored;
@@ -351,6 +359,9 @@ TEST(ControlVariateSums, MergeOrderAndSerialisationLeaveNoTrace) {
     EXPECT_EQ(e0, bits(estimate_control_variate(shuffled, 0.95)));
     EXPECT_EQ(e0, bits(estimate_control_variate(tree, 0.95)));
     EXPECT_EQ(e0, bits(estimate_control_variate(restored, 0.95)));
+    EXPECT_EQ(forward.tail().count(), s.size());
+    EXPECT_EQ(restored.tail().shape().tail_index, forward.tail().shape().tail_index);
+    EXPECT_EQ(restored.plain_tail().shape().excess_kurtosis, forward.plain_tail().shape().excess_kurtosis);
 }
 
 TEST(ControlVariateEstimator, RefusesTooFewSamplesAndBadLevels) {

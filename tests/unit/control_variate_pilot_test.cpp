@@ -5,7 +5,9 @@
 // estimates are its own sums at them; pilot 0 fits them on the run itself.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <string>
 
 #include "stickslip/corrector.hpp"
 #include "stickslip/diffusivity.hpp"
@@ -49,6 +51,38 @@ TEST(ControlVariatePilot, TheRunsCoefficientsAreItsPilotsAndItsEstimatesItsOwnSu
     EXPECT_EQ(r.control_variate->beta, expected.beta);
     EXPECT_EQ(r.monte_carlo().totals.work, own.work + pilot.work) << "the pilot's cost is the run's";
 
+    // The shape of D's influence functions: measured on the pilot, at the
+    // run's estimates and its own fitted beta.
+    const auto centres = ss::influence_centres(own.control_variate, ss::fit_control_variate(own.control_variate));
+    ASSERT_TRUE(centres.has_value());
+    const ss::RunTotals shaped = ss::run_long_excursions(engine, 2000, pilot_control, corrector->table, &*centres);
+    EXPECT_EQ(shaped.control_variate.sum(1).value(), pilot.control_variate.sum(1).value()) << "the sums are unchanged";
+    const ss::InfluenceShape shape = shaped.control_variate.tail().shape();
+    ASSERT_EQ(shape.samples, 2000u);
+    EXPECT_EQ(r.control_variate->shape_excursions, 2000u);
+    EXPECT_EQ(r.control_variate->skewness, shape.skewness);
+    EXPECT_EQ(r.control_variate->excess_kurtosis, shape.excess_kurtosis);
+    EXPECT_EQ(r.control_variate->tail_index, shape.tail_index);
+    EXPECT_EQ(r.control_variate->tail_terms, shape.tail_terms);
+    EXPECT_EQ(r.control_variate->plain_tail_index, shaped.control_variate.plain_tail().shape().tail_index);
+    // Coloured noise with a bias and no drag: a heavy tail, so the interval is
+    // flagged, and the note says so in place of the one on few excursions.
+    EXPECT_LT(shape.tail_index, ss::interval_flag_tail_index);
+    EXPECT_TRUE(r.control_variate->flagged);
+    bool flag_note = false, few_note = false;
+    for (const std::string& w : r.warnings) {
+        flag_note |= w.rfind("D's interval may cover well below its level", 0) == 0;
+        few_note |= w.find("fewer than 5000") != std::string::npos;
+    }
+    EXPECT_TRUE(flag_note);
+    EXPECT_FALSE(few_note) << "the run's own diagnosis replaces the general note";
+    q.control.threads = 1; // every field bit for bit on one thread
+    const ss::DiffusivityResult one = ss::compute_diffusivity(q);
+    EXPECT_EQ(one.control_variate->tail_index, r.control_variate->tail_index);
+    EXPECT_EQ(one.control_variate->excess_kurtosis, r.control_variate->excess_kurtosis);
+    EXPECT_EQ(one.control_variate->plain_skewness, r.control_variate->plain_skewness);
+    q.control.threads = 2;
+
     q.control_variate_pilot = 0; // the coefficients fitted on the run: the same draws, another estimate
     const ss::DiffusivityResult fitted = ss::compute_diffusivity(q);
     EXPECT_EQ(fitted.control_variate->pilot_excursions, 0u);
@@ -56,6 +90,8 @@ TEST(ControlVariatePilot, TheRunsCoefficientsAreItsPilotsAndItsEstimatesItsOwnSu
               ss::estimate_control_variate(own.control_variate, 0.95).diffusivity.value);
     EXPECT_EQ(fitted.control_variate->plain_diffusivity.value, r.control_variate->plain_diffusivity.value);
     EXPECT_EQ(fitted.monte_carlo().totals.work, own.work);
+    EXPECT_TRUE(std::isnan(fitted.control_variate->tail_index)) << "no pilot, no centre";
+    EXPECT_FALSE(fitted.control_variate->flagged);
 }
 
 TEST(ControlVariatePilot, APilotOfOneOrBeyondItsIndicesIsRefused) {

@@ -38,10 +38,12 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 
 #include "stickslip/stats/double_double.hpp"
 #include "stickslip/stats/estimators.hpp"
 #include "stickslip/stats/exact_sum.hpp"
+#include "stickslip/stats/influence_tail.hpp"
 
 namespace stickslip {
 
@@ -51,6 +53,10 @@ namespace stickslip {
 /// the same samples in the same order give the same bits on every machine.
 class ControlVariateBlock {
 public:
+    ControlVariateBlock() = default;
+    /// A block that also sums the shape of both influence functions
+    /// (influence_tail.hpp) at `centres` (nullptr: not), which must outlive it.
+    explicit ControlVariateBlock(const InfluenceCentres* centres) : centres_(centres) {}
     /// Number of monomials U^a t^b M^e C^d with a + b + e + 2 d <= 4, the
     /// constant 1 (the count) included.
     static constexpr int monomials = 46;
@@ -65,10 +71,16 @@ public:
     /// the count), as the double-double hi + lo, in the monomial's unit
     /// (m^(a+e+2d) s^b).
     detail::dd::DD sum(int k) const { return sums_[static_cast<std::size_t>(k)]; }
+    /// The shape sums of the plain D's influence function and of D_cv's (empty
+    /// without centres).
+    const InfluenceTailBlock& plain_tail() const { return plain_tail_; }
+    const InfluenceTailBlock& tail() const { return tail_; }
 
 private:
     std::uint64_t n_ = 0;
     std::array<detail::dd::DD, monomials> sums_{}; ///< in the order of ControlVariateSums; 0 is the count
+    const InfluenceCentres* centres_ = nullptr;
+    InfluenceTailBlock plain_tail_, tail_;
 };
 
 /// The exact, order-free sums of every monomial of ControlVariateBlock over a
@@ -81,8 +93,9 @@ public:
     void add_block(const ControlVariateBlock& block);
     /// Adds every sample of `other`, exactly.
     void merge(const ControlVariateSums& other);
-    /// Serialised size in 64-bit words: monomials ExactSum's in turn.
-    std::size_t words() const { return ControlVariateBlock::monomials * ExactSum::words; }
+    /// Serialised size in 64-bit words: monomials ExactSum's in turn, then
+    /// the two influence functions' shape sums.
+    std::size_t words() const { return ControlVariateBlock::monomials * ExactSum::words + 2 * InfluenceTailSums::words; }
     /// Writes the canonical form to out[0 .. words()): each monomial's
     /// ExactSum words, the count first. Equal sums give equal words.
     void to_words(std::uint64_t* out) const;
@@ -93,9 +106,14 @@ public:
     /// The exact sum of monomial k (0 the count; the order is internal to
     /// control_variate.cpp, shared with ControlVariateBlock::sum).
     const ExactSum& sum(int k) const { return sums_[static_cast<std::size_t>(k)]; }
+    /// The shape sums of the plain D's influence function and of D_cv's, over
+    /// the blocks that had centres (ControlVariateBlock).
+    const InfluenceTailSums& plain_tail() const { return plain_tail_; }
+    const InfluenceTailSums& tail() const { return tail_; }
 
 private:
     std::array<ExactSum, ControlVariateBlock::monomials> sums_{};
+    InfluenceTailSums plain_tail_, tail_;
 };
 
 /// D and M0 with the control variate, and what it gained. See
@@ -137,6 +155,14 @@ struct ControlVariateCoefficients {
 /// E[M^2] in the notation of estimate_control_variate; 0 where every C (M)
 /// is 0. InvalidParameter ("excursions") below 2 samples.
 ControlVariateCoefficients fit_control_variate(const ControlVariateSums& s);
+
+/// Where a run evaluates its influence functions (influence_tail.hpp): the
+/// plain D's phi and, at `coefficients`, D_cv's psi, each centred at the
+/// estimates of `s` (typically the pilot the coefficients were fitted on) and
+/// scaled by its standard deviation there; nullopt when that is 0 or `s`
+/// has fewer than 2 samples.
+std::optional<InfluenceCentres> influence_centres(const ControlVariateSums& s,
+                                                  const ControlVariateCoefficients& coefficients);
 
 /// The control-variate estimates from the sums of (U [m], t [s], M [m],
 /// C [m^2]) over N excursions, with intervals at `level` in (0, 1). With
