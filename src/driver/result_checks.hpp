@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "driver/step_check.hpp"
@@ -26,6 +27,15 @@ inline constexpr std::uint64_t few_excursions = 5000;
 /// then says whether the interval holds), meaning of mean_duration).
 void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals, bool allow_capped,
                                std::vector<std::string>& warnings, bool diagnosed = false);
+
+/// The note of a run whose D interval is flagged (ControlVariateReport::
+/// flagged): the tail of D's influence function, measured on `excursions`,
+/// has index `tail_index` below `threshold` (interval_flag_tail_index).
+std::string interval_flag_note(std::uint64_t excursions, double tail_index, double threshold);
+/// The first words of that note, by which a sweep gathers its points' notes.
+inline constexpr std::string_view interval_flag_note_start = "D's interval may cover well below its level";
+/// A sweep's one note for its `points` of `total` points whose interval is flagged.
+std::string sweep_interval_flag_note(std::size_t points, std::size_t total, double threshold);
 
 /// Throws UntrustworthyResult when an estimate or its standard error is not
 /// a finite number (naming it), so that no NaN is ever reported as a result.

@@ -466,14 +466,7 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
             r.tail_index = shape.tail_index;
             r.tail_terms = shape.tail_terms;
             r.flagged = shape.tail_index < interval_flag_tail_index;
-            if (r.flagged)
-                out.warnings.push_back(
-                    "D's interval may cover well below its level: the tail of its influence function, measured on " +
-                    std::to_string(shape.samples) + " excursions, has index " + format_number(shape.tail_index, 3) +
-                    " < " + format_number(interval_flag_tail_index, 3) +
-                    " (Hill's estimate: a tail this heavy makes the run's own standard error unreliable); more "
-                    "excursions narrow the interval without making its level exact (88-93% for 95% measured at "
-                    "20000 excursions on such models): compare runs with other seeds, or take --level 0.99");
+            if (r.flagged) out.warnings.push_back(detail::interval_flag_note(shape.samples, shape.tail_index, interval_flag_tail_index));
         }
         if (plain_shape.samples > 0) {
             r.plain_skewness = plain_shape.skewness;

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/format.hpp"
+#include "driver/result_checks.hpp"
 #include "driver/step_check.hpp"
 #include "stickslip/analytic.hpp"
 #include "stickslip/drift_input.hpp"
@@ -452,16 +453,21 @@ SweepResult compute_sweep(const SweepRequest& req) {
                                " m s^-2" + law_suffix);
     std::size_t narrow_points = 0; // points whose interval is narrower than the automatic step's check
     double narrowest = 1.0;
+    std::size_t flagged_points = 0; // points whose interval of D is flagged
     for (const auto& p : out.points)
         for (const auto& w : p.warnings) {
             if (w.starts_with(detail::precision_note_start)) {
                 ++narrow_points;
                 narrowest = std::min(narrowest, relative_upper_half_width(p.estimates.diffusivity));
+            } else if (w.starts_with(detail::interval_flag_note_start)) {
+                ++flagged_points;
             } else if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end() &&
                        w.rfind("only ", 0) != 0 && w.rfind("drift law (", 0) != 0)
                 out.warnings.push_back(w);
         }
     if (narrow_points > 0) out.warnings.push_back(detail::sweep_precision_note(narrow_points, narrowest));
+    if (flagged_points > 0)
+        out.warnings.push_back(detail::sweep_interval_flag_note(flagged_points, out.points.size(), interval_flag_tail_index));
     if (req.excursions < 5000 && !out.solved())
         out.warnings.push_back("fewer than 5000 excursions per point: the standard errors (and so the slope errors) "
                                "are themselves uncertain");

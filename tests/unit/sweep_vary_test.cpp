@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "stickslip/drift_input.hpp"
@@ -130,3 +131,31 @@ TEST(DriftExpressionConstants, NamesButV) {
 }
 
 } // namespace
+
+// Guards the sweep's notes: the points whose interval of D is flagged (the
+// pilot's tail index of D's influence function, diffusivity.hpp) are counted
+// in one note, not one note per point with its own numbers.
+TEST(SweepVary, FlaggedIntervalsAreOneNote) {
+    ss::SweepRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-2);
+    r.params.relaxation = std::numeric_limits<double>::infinity(); // no drag: heavy tails
+    r.params.bias = 0.3;
+    r.noises = {1, 2, 3};
+    r.taus = {0.1};
+    r.excursions = 128;
+    r.control.seed = 3;
+    const ss::SweepResult res = ss::compute_sweep(r);
+    std::size_t flagged = 0;
+    for (const auto& p : res.points)
+        for (const auto& w : p.warnings) flagged += w.rfind("D's interval may cover well below its level", 0) == 0;
+    ASSERT_GT(flagged, 0u) << "coloured noise with a bias and no drag, 128 excursions: flagged";
+    std::size_t notes = 0;
+    for (const auto& w : res.warnings) {
+        EXPECT_NE(w.rfind("D's interval may cover", 0), 0u) << "a point's own note in the sweep's: " << w;
+        if (w.find("points D's interval may cover well below its level") != std::string::npos) {
+            ++notes;
+            EXPECT_EQ(w.rfind("at " + std::to_string(flagged) + " of 3 points", 0), 0u) << w;
+        }
+    }
+    EXPECT_EQ(notes, 1u);
+}
