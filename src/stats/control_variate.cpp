@@ -206,6 +206,28 @@ std::uint64_t ControlVariateSums::count() const { return static_cast<std::uint64
 
 namespace {
 
+/// D's influence functions over a run's sums (times tbar, the notation of
+/// estimate_control_variate): the centring that the estimates and the shape's
+/// centres (influence_centres) share.
+struct DiffusivityInfluence {
+    Big tbar, m0, ew2, d, c;
+    Poly T = Poly::var(1), C = Poly::var(3), w, w2, phi;
+
+    explicit DiffusivityInfluence(const Means& E)
+        : tbar(E.raw(monomial(0, 1, 0, 0))), m0(E.raw(monomial(1, 0, 0, 0)) / tbar) {
+        w = Poly::var(0) - m0 * T; // E[w] = 0 exactly
+        w2 = w * w;
+        ew2 = E(w2);
+        d = ew2 / tbar;
+        c = E(w * T) / tbar;
+        phi = w2 - d * T - Big(2) * c * w;
+    }
+    /// D_cv at the coefficient beta.
+    Big d_cv(const Means& E, const Big& beta) const { return (ew2 - beta * E.raw(monomial(0, 0, 0, 1))) / tbar; }
+    /// psi at beta and that D_cv.
+    Poly psi(const Big& beta, const Big& d_cv) const { return w2 - beta * C - d_cv * T - Big(2) * c * w; }
+};
+
 /// The estimates with the coefficients fitted on `s` itself (no `fixed`) or
 /// given.
 ControlVariateEstimates estimate(const ControlVariateSums& s, double level, const ControlVariateCoefficients* fixed) {
@@ -213,25 +235,20 @@ ControlVariateEstimates estimate(const ControlVariateSums& s, double level, cons
     normal_quantile_two_sided(level); // validates the level
     const Means E(s);
     const Big n = big(s.sum(0));
-    const Big tbar = E.raw(monomial(0, 1, 0, 0));
-    const Big m0 = E.raw(monomial(1, 0, 0, 0)) / tbar;
-    const Poly U = Poly::var(0), T = Poly::var(1), M = Poly::var(2), C = Poly::var(3);
-    const Poly w = U - m0 * T; // E[w] = 0 exactly
-    const Poly w2 = w * w;
-    const Big ew2 = E(w2);
+    const DiffusivityInfluence D(E);
+    const Big& tbar = D.tbar;
+    const Poly U = Poly::var(0), T = D.T, M = Poly::var(2), C = D.C;
+    const Poly& w = D.w;
     const auto se = [&](const Big& var) { return static_cast<double>(sqrt(var / (n - 1)) / tbar); };
 
     ControlVariateEstimates r;
     r.samples = s.count();
 
     // D: the plain influence phi (times tbar), its regression on C.
-    const Big d = ew2 / tbar, c = E(w * T) / tbar;
-    const Poly phi = w2 - d * T - Big(2) * c * w;
     const Big ec2 = E.raw(monomial(0, 0, 0, 2));
-    const Big beta = fixed ? Big(fixed->beta) : ec2 > 0 ? E(phi * C) / ec2 : Big(0);
-    const Big d_cv = (ew2 - beta * E.raw(monomial(0, 0, 0, 1))) / tbar;
-    const Poly psi = w2 - beta * C - d_cv * T - Big(2) * c * w;
-    const Big var_phi = E.square(phi), var_psi = E.square(psi);
+    const Big beta = fixed ? Big(fixed->beta) : ec2 > 0 ? E(D.phi * C) / ec2 : Big(0);
+    const Big d_cv = D.d_cv(E, beta);
+    const Big var_phi = E.square(D.phi), var_psi = E.square(D.psi(beta, d_cv));
     r.beta = static_cast<double>(beta);
     r.diffusivity = make_relative_interval(static_cast<double>(d_cv), se(var_psi), level);
     r.variance_reduction = ratio(var_phi, var_psi);
@@ -263,21 +280,15 @@ std::optional<InfluenceCentres> influence_centres(const ControlVariateSums& s,
                                                   const ControlVariateCoefficients& coefficients) {
     if (s.count() < 2) return std::nullopt;
     const Means E(s);
-    const Big tbar = E.raw(monomial(0, 1, 0, 0));
-    const Big m0 = E.raw(monomial(1, 0, 0, 0)) / tbar;
-    const Poly U = Poly::var(0), T = Poly::var(1), C = Poly::var(3);
-    const Poly w = U - m0 * T;
-    const Big ew2 = E(w * w);
-    const Big d = ew2 / tbar, c = E(w * T) / tbar;
+    const DiffusivityInfluence D(E);
     const Big beta = coefficients.beta;
-    const Big d_cv = (ew2 - beta * E.raw(monomial(0, 0, 0, 1))) / tbar;
-    const Big var_phi = E.square(w * w - d * T - Big(2) * c * w);
-    const Big var_psi = E.square(w * w - beta * C - d_cv * T - Big(2) * c * w);
+    const Big d_cv = D.d_cv(E, beta);
+    const Big var_phi = E.square(D.phi), var_psi = E.square(D.psi(beta, d_cv));
     if (!(var_phi > 0) || !(var_psi > 0)) return std::nullopt;
     InfluenceCentres r;
-    r.plain = {static_cast<double>(m0), static_cast<double>(d), static_cast<double>(c), 0.0,
+    r.plain = {static_cast<double>(D.m0), static_cast<double>(D.d), static_cast<double>(D.c), 0.0,
                static_cast<double>(sqrt(var_phi))};
-    r.control_variate = {static_cast<double>(m0), static_cast<double>(d_cv), static_cast<double>(c),
+    r.control_variate = {static_cast<double>(D.m0), static_cast<double>(d_cv), static_cast<double>(D.c),
                          coefficients.beta, static_cast<double>(sqrt(var_psi))};
     return r;
 }
