@@ -3,7 +3,11 @@
 // the nondimensional system of theory.md, section 3.
 //
 // Model (theory.md, section 1): dV/dt + dphi(V) contains b(V) + force(t), with
-// phi(v) = friction*|v| and b(v) = -v/relaxation + bias. The random force is
+// phi(v) = friction*|v| and b(v) = -v/relaxation + bias. A static friction
+// above the kinetic one (theory.md, section 1) widens the band of forces that
+// hold an object at rest: it starts only when |b(0) + force| exceeds
+// static_friction, then slides against friction. Unset, it is the friction
+// itself, and every number is that of the one-coefficient model. The random force is
 // sqrt(noise/2)*X(t), X the paper's Ornstein-Uhlenbeck process with
 // E[X(0)X(t)] = exp(-|t|/tau)/tau, so that as tau -> 0 the force tends to a white
 // noise of intensity `noise` (theory.md, section 2). tau = 0 is white noise.
@@ -18,6 +22,7 @@
 /// design.
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,6 +38,9 @@ struct ModelParams {
     double tau = 0.5;          ///< noise correlation time [s], >= 0 (0: white noise)
     double relaxation = 0.067; ///< tauL, viscous relaxation time [s], > 0 or +inf
     double bias = 0.342;       ///< gbar, constant force [m s^-2], any finite sign
+    /// Delta_s, static friction [m s^-2], >= friction; NaN (unset): equal to
+    /// friction. Read it through static_friction_level().
+    double static_friction = std::numeric_limits<double>::quiet_NaN();
 
     /// @name A drift law other than the affine one (drift_input.hpp)
     /// When one is given, relaxation and bias are not used: the law is b(v).
@@ -49,6 +57,13 @@ struct ModelParams {
     std::function<double(double)> drift_function{}; ///< b(v) as a callable (Python); empty = none
     int knots = 1025;          ///< knots of the interpolant of a non-affine law (odd, 3..2049)
     /// @}
+
+    /// The static friction Delta_s [m s^-2] that holds a stuck object:
+    /// static_friction, or friction when it is unset.
+    double static_friction_level() const { return static_friction == static_friction ? static_friction : friction; }
+    /// True when the static friction exceeds the kinetic one (a static band
+    /// wider than the sliding threshold; theory.md, section 1).
+    bool has_static_band() const { return static_friction_level() > friction; }
 
     /// True when a law other than the affine one is given (drift, drift_table,
     /// drift_table_v or drift_function).
@@ -68,16 +83,18 @@ struct ModelParams {
     double drift_at(double v) const;
     /// b(0) [m s^-2]: bias for the affine law; sets the noise thresholds.
     double drift_at_zero() const;
-    /// Upper noise threshold x* = (friction - b(0))/a, in the paper's X units
-    /// [s^-1/2]: while stuck, the object starts moving up when X exceeds it.
+    /// Upper noise threshold x* = (Delta_s - b(0))/a, in the paper's X units
+    /// [s^-1/2] (Delta_s the static friction, the friction unless set): while
+    /// stuck, the object starts moving up when X exceeds it.
     double upper_threshold() const;
-    /// Lower noise threshold x-* = (-friction - b(0))/a [s^-1/2].
+    /// Lower noise threshold x-* = (-Delta_s - b(0))/a [s^-1/2].
     double lower_threshold() const;
 };
 
 /// The noise thresholds [s^-1/2] of p when its drift at rest is b0 [m s^-2]:
-/// (friction - b0)/a (upper, side +1) or (-friction - b0)/a (lower, side -1),
-/// a = sqrt(noise/2). The one formula behind ModelParams' and Model's
+/// (Delta_s - b0)/a (upper, side +1) or (-Delta_s - b0)/a (lower, side -1),
+/// a = sqrt(noise/2), Delta_s = p.static_friction_level(): the edges of the
+/// static band, where a stuck object starts and a landing one sticks. The one formula behind ModelParams' and Model's
 /// thresholds, which differ only in where b0 comes from.
 double noise_threshold(const ModelParams& p, double b0, int side);
 
@@ -89,6 +106,10 @@ void visit_settings(ModelParams& p, Visitor&& v) {
     v(p.tau, SettingInfo{"tau", "s", "noise correlation time, >= 0 (0 = white noise)"});
     v(p.relaxation, SettingInfo{"relaxation", "s", "viscous relaxation time: drag -v/relaxation, > 0, or inf for none (the paper's tauL)", "NUM|inf"});
     v(p.bias, SettingInfo{"bias", "m s^-2", "constant force per unit mass, e.g. gravity on an incline (the paper's gbar)"});
+    v(OptionalNumber{p.static_friction},
+      SettingInfo{"static-friction", "m s^-2",
+                  "static friction Delta_s >= friction: a stuck object starts only when the force exceeds it, then "
+                  "slides against friction; default: equal to friction"});
     v(TextValue{p.drift}, SettingInfo{"drift", "m s^-2", "drift law b(v) as an expression in v [m/s], replacing relaxation and bias: e.g. \"0.8*v - 0.5*v^3\", \"0.4*tanh(v/0.1) - v/2\"", "EXPR"});
     v(TextValue{p.drift_params}, SettingInfo{"drift-params", "", "values of named constants of --drift: \"a=0.8,c=0.5\"", "NAME=NUM,..."});
     v(TextValue{p.drift_table}, SettingInfo{"drift-table", "", "drift law b(v) from a file of v,b rows (m/s, m s^-2), linear between them, replacing relaxation and bias", "FILE"});
@@ -129,6 +150,12 @@ ModelParams to_nondimensional(const ModelParams& p);
 
 /// Inverse of to_nondimensional for a chosen friction and noise (SI).
 ModelParams from_nondimensional(const ModelParams& nd, double friction, double noise);
+
+/// The note of a white-noise run with a static friction above the friction:
+/// a white force holds the object at rest for no positive time, so the static
+/// band changes nothing there (theory.md, section 1). Said once, for the
+/// references and the sampled runs.
+std::string white_noise_static_friction_note();
 
 /// Throws InvalidParameter with one clear message for the first problem found:
 /// non-positive friction or noise, negative or non-finite tau, non-positive

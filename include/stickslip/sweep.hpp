@@ -10,7 +10,8 @@
 // of the --drift expression (given as NAME=value in each point's
 // drift_params, replacing a value given there): the points are then value-major, each value a whole
 // (tau, noise) grid, and the exponents are fitted per (value, tau). Without
-// it nothing changes, point numbers included.
+// it nothing changes, point numbers included. --vary static-friction sweeps
+// the model's static friction (m s^-2, each value >= --friction) the same way.
 //
 // Independence: point number k uses the sample indices
 // [k * 2^40, k * 2^40 + excursions) of the run's seed, so every point has its
@@ -72,7 +73,8 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     double rel_precision = 0.0;
     /// A named constant of the --drift expression to sweep over ("" for none):
     /// every point's drift_params gains NAME=value for each of vary_values
-    /// (replacing a value drift_params gives it, as a placeholder).
+    /// (replacing a value drift_params gives it, as a placeholder); or
+    /// vary_static_friction, the model's static friction [m s^-2].
     std::string vary;
     /// The values of `vary` (in the constant's own units; sorted increasing
     /// in the result). Empty without --vary.
@@ -82,6 +84,9 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     std::function<std::function<bool(const Progress&)>(std::size_t k, std::size_t n, const std::string& point)>
         point_progress;
 };
+
+/// The name --vary takes to sweep the static friction (ModelParams::static_friction).
+inline constexpr const char* vary_static_friction = "static-friction";
 
 /// The request's settings: RunSettings' with --noise and --tau taken as
 /// lists, then ExcursionSettings' and --estimator.
@@ -94,7 +99,8 @@ void visit_settings(SweepRequest& r, Visitor&& v) {
     v(r.estimator, SettingInfo{"estimator", "", "renewal (default) or paper (eq. 12)"});
     v(TextValue{r.vary}, SettingInfo{"vary", "",
                                      "a named constant of --drift to sweep over as a third axis, its values in "
-                                     "--vary-values: --drift \"a*v - c*v^3\" --drift-params a=0.8 --vary c",
+                                     "--vary-values: --drift \"a*v - c*v^3\" --drift-params a=0.8 --vary c; or "
+                                     "static-friction (m s^-2, each >= --friction)",
                                      "NAME"});
     v(NumberList{r.vary_values, true, true},
       SettingInfo{"vary-values", "", "values of the --vary constant: comma-separated or lo:hi:n (n evenly spaced)"});

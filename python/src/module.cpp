@@ -189,6 +189,7 @@ std::string params_repr(const ModelParams& p) {
         if (p.has_drift_law() && (f.name == "relaxation" || f.name == "bias")) continue;
         out += (out.size() > 7 ? ", " : "") + f.name + "=" + float_repr(f.value);
     }
+    if (!std::isnan(p.static_friction)) out += ", static_friction=" + float_repr(p.static_friction);
     if (!p.drift.empty()) out += ", drift=" + py::repr(py::str(p.drift)).cast<std::string>();
     if (!p.drift_params.empty()) out += ", drift_params=" + py::repr(py::str(p.drift_params)).cast<std::string>();
     if (!p.drift_table.empty()) out += ", drift_table=" + py::repr(py::str(p.drift_table)).cast<std::string>();
@@ -201,6 +202,7 @@ std::string params_repr(const ModelParams& p) {
 py::tuple params_tuple(const ModelParams& p) {
     py::list values;
     for (const auto& f : param_fields(p)) values.append(f.value);
+    values.append(p.static_friction_level()); // unset and equal to the friction: the same model
     return py::tuple(values);
 }
 
@@ -226,6 +228,8 @@ Keyword arguments only; relaxation=float('inf') means no viscous drag (then
             line.resize(14, ' ');
             d += line + f.help + " [" + f.unit + "]\n";
         }
+        d += "  static_friction  static friction Delta_s >= friction, or None (the default): equal to friction; a "
+             "stuck object starts only when the force exceeds it, then slides against friction [m s^-2]\n";
         return call + ")\n\n" + d + "\nDefaults are the paper's Fig. 2 case. Invalid values raise\n"
                                     "InvalidParameterError (a ValueError) with the CLI's message.";
     }();
@@ -407,13 +411,21 @@ void bind_core(py::module_& m) {
             },
             (f.help + " [" + f.unit + "]").c_str());
     }
+    params.def_property_readonly(
+        "static_friction",
+        [](const ModelParams& p) -> py::object {
+            return std::isnan(p.static_friction) ? py::object(py::none()) : py::object(py::float_(p.static_friction));
+        },
+        "static friction Delta_s [m s^-2]: a stuck object starts only when the force exceeds it, then slides "
+        "against friction; None: equal to friction");
     params        .def_property_readonly("force_amplitude", &ModelParams::force_amplitude,
                                "amplitude a = sqrt(noise/2) of the random force a*X [m s^-2 per s^-1/2]")
         .def_property_readonly("white", &ModelParams::white, "True for white noise (tau = 0)")
         .def_property_readonly("upper_threshold", &ModelParams::upper_threshold,
-                               "x* = (friction - bias)/a [s^-1/2]: a stuck object starts moving up when X > x*")
+                               "x* = (Delta_s - b(0))/a [s^-1/2], Delta_s the static friction (friction unless "
+                               "set): a stuck object starts moving up when X > x*")
         .def_property_readonly("lower_threshold", &ModelParams::lower_threshold,
-                               "x-* = (-friction - bias)/a [s^-1/2]")
+                               "x-* = (-Delta_s - b(0))/a [s^-1/2]")
         .def_property_readonly("has_stationary_state", &has_stationary_state,
                                "False only without drag (relaxation inf) and |bias| >= friction")
         .def("nondimensional", &to_nondimensional,
@@ -452,9 +464,10 @@ void bind_core(py::module_& m) {
             [](const ModelParams& p) {
                 py::dict d;
                 for (const auto& f : param_fields(p)) d[py::str(f.name)] = f.value;
+                if (!std::isnan(p.static_friction)) d["static_friction"] = p.static_friction; // set only
                 return d;
             },
-            "The fields as a dict of floats (Params(**d) gives it back).")
+            "The fields as a dict of floats (Params(**d) gives it back); static_friction only when set.")
         .def("__repr__", &params_repr)
         .def("__eq__",
              [](const ModelParams& a, const py::object& other) -> py::object {

@@ -95,10 +95,12 @@ bool in_params(const Request& r, const Field& field) {
         const auto* p = static_cast<const char*>(member);
         return p >= lo && p < lo + sizeof(ModelParams);
     };
-    // The model's numbers, and its drift-law settings (a TextValue refers to
-    // the member; knots is an int member): all come from `params`.
+    // The model's numbers, and its drift-law settings (a TextValue or an
+    // OptionalNumber refers to the member; knots is an int member): all come
+    // from `params`.
     if constexpr (std::is_same_v<Field, double> || std::is_same_v<Field, int>) return inside(&field);
-    else if constexpr (std::is_same_v<Field, TextValue>) return inside(&field.value);
+    else if constexpr (std::is_same_v<Field, TextValue> || std::is_same_v<Field, OptionalNumber>)
+        return inside(&field.value); // the drift law's texts, the static friction
     return false;
 }
 

@@ -43,7 +43,7 @@ class Scales:
 
 class Params:
     def __init__(self, *, friction: float = 3.84, noise: float = 5.0, tau: float = 0.5,
-                 relaxation: float = 0.067, bias: float = 0.342,
+                 relaxation: float = 0.067, bias: float = 0.342, static_friction: float | None = None,
                  drift: str | Callable[[float], float] | tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
                  drift_params: str = "", drift_table: str = "", knots: int = 1025) -> None: ...
     @property
@@ -56,6 +56,8 @@ class Params:
     def relaxation(self) -> float: ...    # [s], > 0 or inf (no drag)
     @property
     def bias(self) -> float: ...          # [m s^-2]
+    @property
+    def static_friction(self) -> float | None: ...  # Delta_s [m s^-2] >= friction; None: equal to friction
     @property
     def drift(self) -> str | tuple[list[float], list[float]] | None: ...  # b(v), when not affine
     @property

@@ -56,6 +56,9 @@ void finish_long_excursion_run(const PreparedEngine& e, const RunTotals& totals,
                            "themselves uncertain; use 10000 or more for reliable intervals");
     const ModelParams nd = to_nondimensional(p);
     if (!duration.empty()) warnings.push_back(duration);
+    if (p.white() && p.has_static_band())
+        warnings.push_back(white_noise_static_friction_note() + "; a time step holds it for O(dt) at a landing, a "
+                                                                "difference that vanishes as dt -> 0");
     if (p.white())
         warnings.push_back("white noise: mean_duration is the cycle time between the velocity levels +-" +
                            format_number(resolved.white_level) + " m/s, not a stick-slip excursion");

@@ -22,12 +22,18 @@ double ModelParams::drift_at(double v) const {
 double ModelParams::drift_at_zero() const { return has_drift_law() ? make_drift_law(*this)(0.0) : bias; }
 
 double noise_threshold(const ModelParams& p, double b0, int side) {
-    return (side * p.friction - b0) / p.force_amplitude();
+    return (side * p.static_friction_level() - b0) / p.force_amplitude();
 }
 
 double ModelParams::upper_threshold() const { return noise_threshold(*this, drift_at_zero(), +1); }
 
 double ModelParams::lower_threshold() const { return noise_threshold(*this, drift_at_zero(), -1); }
+
+std::string white_noise_static_friction_note() {
+    return "white noise: a static friction above the friction holds the object at rest for no positive time (the "
+           "force's integral over a time r grows like sqrt(r), the static band's like r), so every white-noise "
+           "quantity is that of the static friction equal to the friction (docs/theory.md, section 1)";
+}
 
 Scales scales_of(const ModelParams& p) {
     Scales s{};
@@ -48,6 +54,7 @@ ModelParams to_nondimensional(const ModelParams& p) {
     nd.tau = p.tau / s.time;
     nd.relaxation = std::isinf(p.relaxation) ? p.relaxation : p.relaxation / s.time;
     nd.bias = p.bias / p.friction;
+    nd.static_friction = p.static_friction / p.friction; // NaN (unset) stays unset
     return nd;
 }
 
@@ -62,6 +69,7 @@ ModelParams from_nondimensional(const ModelParams& nd, double friction, double n
     p.tau = nd.tau * s.time;
     p.relaxation = std::isinf(nd.relaxation) ? nd.relaxation : nd.relaxation * s.time;
     p.bias = nd.bias * friction;
+    p.static_friction = nd.static_friction * friction;
     return p;
 }
 
@@ -86,6 +94,12 @@ void validate_numbers(const ModelParams& p) {
                                                  detail::format_number(p.relaxation));
     if (!std::isfinite(p.bias))
         throw InvalidParameter("bias", "bias must be a finite number (m s^-2), got " + detail::format_number(p.bias));
+    // NaN is "unset" (the parsers refuse a NaN typed as the value).
+    if (!std::isnan(p.static_friction) && !(std::isfinite(p.static_friction) && p.static_friction >= p.friction))
+        throw InvalidParameter("static-friction",
+                               "static-friction must be a finite number >= friction = " + detail::format_number(p.friction) +
+                                   " m s^-2 (an object at rest is held at least as firmly as a sliding one is "
+                                   "braked), got " + detail::format_number(p.static_friction));
     // Products that overflow would make every later formula meaningless.
     const Scales s = scales_of(p);
     if (!std::isfinite(s.diffusivity) || s.diffusivity <= 0 || !std::isfinite(s.time) || s.time <= 0) {

@@ -45,7 +45,8 @@ DiffusivityRequest point_request(const SweepRequest& req, double varied, double 
     static_cast<ExcursionSettings&>(d) = req;
     d.params.noise = noise;
     d.params.tau = tau;
-    if (!req.vary.empty()) d.params.drift_params = drift_params_with(d.params.drift_params, req.vary, varied);
+    if (req.vary == vary_static_friction) d.params.static_friction = varied;
+    else if (!req.vary.empty()) d.params.drift_params = drift_params_with(d.params.drift_params, req.vary, varied);
     d.estimator = req.estimator;
     d.rel_precision = req.rel_precision;
     d.control.first_index = req.control.first_index + k * sweep_index_stride;
@@ -87,15 +88,21 @@ PreparedSweep prepare_sweep(const SweepRequest& req) {
     if (req.taus.empty()) throw InvalidParameter("tau", "the sweep needs at least one tau value");
     if (req.vary.empty() && !req.vary_values.empty())
         throw InvalidParameter("vary-values", "--vary-values needs --vary NAME, the constant of --drift they are for");
-    if (!req.vary.empty()) {
+    if (!req.vary.empty() && req.vary != vary_static_friction) {
         if (req.params.drift.empty())
-            throw InvalidParameter("vary", "--vary sweeps a named constant of a --drift expression; there is none");
+            throw InvalidParameter("vary", "--vary sweeps a named constant of a --drift expression, or "
+                                           "static-friction; there is no --drift for \"" + req.vary + "\"");
         const auto names = drift_expression_constants(req.params.drift);
         if (std::find(names.begin(), names.end(), req.vary) == names.end())
             throw InvalidParameter("vary", "\"" + req.vary + "\" is not a constant of the --drift expression \"" +
                                                req.params.drift + "\"" +
                                                (names.empty() ? std::string(", which has none")
                                                               : " (its constants: " + join(names, ", ") + ")"));
+    }
+    if (req.vary == vary_static_friction && !std::isnan(req.params.static_friction))
+        throw InvalidParameter("static-friction", "--vary static-friction sweeps the static friction: give its "
+                                                  "values in --vary-values, not --static-friction");
+    if (!req.vary.empty()) {
         if (req.vary_values.empty())
             throw InvalidParameter("vary-values", "--vary " + req.vary + " needs at least one value in --vary-values");
         for (double x : req.vary_values)

@@ -46,6 +46,8 @@ WhiteNoiseResult compute_white_noise(const WhiteNoiseRequest& req) {
     out.request = req;
     out.request.params.tau = 0.0;
     const ModelParams& p = out.request.params;
+    if (p.has_static_band())
+        out.warnings.push_back(white_noise_static_friction_note());
     if (p.has_drift_law()) {
         // Any law: the stationary quantities by quadrature; the transient
         // Fokker-Planck solver is written for the affine law.

@@ -98,6 +98,9 @@ ordered_json params_json(const RunSettings& r) {
     const ModelParams& p = r.params;
     ordered_json j;
     j["friction"] = p.friction;
+    // Written only above the friction: equal, it is the one-coefficient model,
+    // whose reports stay as they were.
+    if (p.has_static_band()) j["static_friction"] = p.static_friction;
     j["noise"] = p.noise;
     j["tau"] = p.tau;
     if (p.has_drift_law()) {
@@ -120,6 +123,7 @@ ordered_json nondimensional_json(const RunSettings& r) {
     const ModelParams nd = to_nondimensional(r.params);
     const Scales sc = scales_of(r.params);
     ordered_json j;
+    if (r.params.has_static_band()) j["static_friction"] = nd.static_friction; // in units of the friction
     j["tau"] = nd.tau;
     if (!r.params.has_drift_law()) { // a law other than the affine one is given in SI only
         j["relaxation"] = json_number(nd.relaxation);
@@ -274,6 +278,12 @@ std::string drift_law_text(const ModelParams& p) {
     return "drift b(v) from a table of " + std::to_string(p.drift_table_v.size()) + " rows";
 }
 
+std::string friction_text(const ModelParams& p) {
+    std::string t = "friction " + format_number(p.friction) + " m/s^2";
+    if (p.has_static_band()) t += " (static " + format_number(p.static_friction) + ")";
+    return t;
+}
+
 std::string drift_text(const ModelParams& p) {
     if (p.has_drift_law()) return drift_law_text(p);
     return "relaxation " + relaxation_text(p.relaxation) + ", bias " + format_number(p.bias) + " m/s^2";
@@ -281,12 +291,13 @@ std::string drift_text(const ModelParams& p) {
 
 std::string param_line(const ModelParams& p, const EngineSettings& s) {
     std::ostringstream os = report_stream();
-    os << "friction " << format_number(p.friction) << " m/s^2, noise " << format_number(p.noise) << " m^2/s^3, tau "
+    os << friction_text(p) << ", noise " << format_number(p.noise) << " m^2/s^3, tau "
        << format_number(p.tau) << " s, ";
     os << drift_text(p) << "\n";
     const ModelParams nd = to_nondimensional(p);
     const Scales sc = scales_of(p);
     os << "nondimensional: tau' " << format_number(nd.tau);
+    if (p.has_static_band()) os << ", static friction' " << format_number(nd.static_friction);
     if (!p.has_drift_law())
         os << ", relaxation' " << (std::isinf(nd.relaxation) ? std::string("inf") : format_number(nd.relaxation))
            << ", bias' " << format_number(nd.bias);

@@ -106,6 +106,9 @@ std::string dump(const ordered_json& j, int indent);
 /// by stickslip/number_text.hpp).
 std::ostringstream report_stream();
 
+/// "friction F m/s^2", with " (static S)" when the static friction is higher.
+std::string friction_text(const ModelParams& p);
+
 /// "stickslip WHAT: ENGINE engine, dt X s" + extra + "\n".
 std::string engine_line(const char* what, const EngineSettings& s, const std::string& extra);
 /// The drift law's settings as the JSON's params give them (drift,

@@ -35,8 +35,9 @@ std::string model_line(const SweepResult& r) {
             vary += (k ? ", " : "") + format_number(q.vary_values[k]);
     }
     ModelParams shown = q.params; // the swept constant's value, if drift_params gives one, is a placeholder
-    if (r.varies()) shown.drift_params = drift_params_without(shown.drift_params, q.vary);
-    return "friction " + format_number(q.params.friction) + " m/s^2, " + drift_text(shown) + vary + "\n\n";
+    if (r.varies() && q.vary != vary_static_friction)
+        shown.drift_params = drift_params_without(shown.drift_params, q.vary);
+    return friction_text(q.params) + ", " + drift_text(shown) + vary + "\n\n";
 }
 
 /// The swept constant's column of a table (name, then the point's value), or "".

@@ -76,7 +76,7 @@ std::string to_table(const WhiteNoiseResult& r) {
     const Scales sc = scales_of(q.params);
     std::ostringstream os = report_stream();
     os << "stickslip analytic: exact white-noise references\n";
-    os << "friction " << format_number(q.params.friction) << " m/s^2, noise " << format_number(q.params.noise)
+    os << friction_text(q.params) << ", noise " << format_number(q.params.noise)
        << " m^2/s^3, ";
     os << drift_text(q.params) << "\n\n";
     using number_text::pad;

@@ -333,6 +333,12 @@ const BadInput kBadInputs[] = {
     {{"diffusivity", "--relaxation", "0"}, "relaxation"},
     {{"diffusivity", "--relaxation", "nan"}, "relaxation"},
     {{"diffusivity", "--bias", "nan"}, "bias"},
+    // Static friction below the friction, NaN, negative, with a drift law (issue 46).
+    {{"diffusivity", "--static-friction", "3"}, "--static-friction: static-friction must be a finite number >= friction"},
+    {{"diffusivity", "--static-friction", "nan"}, "--static-friction: static-friction must be a number, got NaN"},
+    {{"diffusivity", "--static-friction", "-1"}, "--static-friction"},
+    {{"diffusivity", "--static-friction", "inf"}, "--static-friction"},
+    {{"density", "--drift", "0.3 - v", "--static-friction", "1"}, "--static-friction"},
     {{"diffusivity", "--scheme", "resolvent", "--dt", "0"}, "dt"},
     {{"diffusivity", "--scheme", "resolvent", "--dt", "-1e-4"}, "dt"},
     {{"diffusivity", "--scheme", "resolvent", "--dt", "1e-3x"}, "dt"},

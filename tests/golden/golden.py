@@ -4,6 +4,9 @@
 
     golden.py STICKSLIP_BINARY            # compare every case of cases.txt
     golden.py STICKSLIP_BINARY --update   # rewrite tests/data/golden/ (say why in the commit)
+    golden.py STICKSLIP_BINARY --static-equal
+        # every case again with --static-friction equal to its friction: the
+        # same output, less the settings listing's static-friction line
 
 Each case's stdout is compared byte for byte with its stored file after the
 parts that change from run to run are normalised: the JSON "work" blocks (and
@@ -52,13 +55,37 @@ def normalise(text):
     return re.sub(r",(\n\s*[}\]])", r"\1", "".join(out))
 
 
+DEFAULT_FRICTION = "3.84"  # ModelParams' default (the paper's Fig. 2 case)
+
+
+def with_static_friction(args):
+    """args with --static-friction equal to the case's friction."""
+    friction = DEFAULT_FRICTION
+    for i, a in enumerate(args):
+        if a == "--friction" and i + 1 < len(args):
+            friction = args[i + 1]
+        elif a.startswith("--friction="):
+            friction = a.split("=", 1)[1]
+    return [*args, "--static-friction", friction]
+
+
+def without_static_setting(text):
+    """text less the settings listing's static-friction line and the command
+    line (JSON or CSV), which name the flag."""
+    return "".join(line for line in text.splitlines(True)
+                   if not re.match(r'^\s*("static-friction": |# #? ?static-friction = |"command": |# command: )', line))
+
+
 def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
     binary, update = argv[1], "--update" in argv[2:]
+    static_equal = "--static-equal" in argv[2:]
     env = dict(os.environ, LC_ALL="C")
     failed = 0
     for name, args in cases():
+        if static_equal:
+            args = with_static_friction(args)
         r = subprocess.run([binary, *args, "--quiet"], capture_output=True, text=True, env=env)
         path = os.path.join(DATA, name + ".txt")
         if r.returncode != 0:
@@ -66,7 +93,9 @@ def main(argv):
             failed += 1
             continue
         got = normalise(r.stdout)
-        if update:
+        if static_equal:
+            got = without_static_setting(got)
+        if update and not static_equal:
             os.makedirs(DATA, exist_ok=True)
             with open(path, "w") as f:
                 f.write(got)
@@ -75,6 +104,8 @@ def main(argv):
         try:
             with open(path) as f:
                 want = f.read()
+            if static_equal:
+                want = without_static_setting(want)
         except FileNotFoundError:
             print(f"FAIL {name}: no golden file {path} (run with --update)")
             failed += 1

@@ -163,6 +163,15 @@ bool engine_of(const std::string& name, EngineSettings& s) {
 /// The drift law of the rows "..., any b(v)": a non-affine law (quadratic drag).
 const char* const kAnyLaw = "0.3 - v*abs(v)";
 
+/// Static friction over friction in the requests made below: 1 (unset) for
+/// the table's cells, 1.5 for the test that a static band changes no cell.
+double g_static_ratio = 1.0;
+
+/// Sets the static friction of p from g_static_ratio (unset at 1).
+void set_static_friction(ModelParams& p) {
+    if (g_static_ratio != 1.0) p.static_friction = g_static_ratio * p.friction;
+}
+
 /// tau [s] of a row's noise: white 0, coloured the default (the paper's Fig. 2
 /// case, 0.5 s); `law`: the row is "white, any b(v)" or "coloured, any b(v)".
 bool tau_of(const std::string& noise, double& tau, bool& law) {
@@ -188,6 +197,7 @@ std::pair<std::string, Validate> simulated(Fill fill) {
                 r.engine = e;
                 r.params.tau = tau;
                 if (law) r.params.drift = kAnyLaw;
+                set_static_friction(r.params);
                 r.control.threads = 1;
                 if (e.engine != Engine::Kolmogorov) fill(r);
                 if constexpr (std::is_same_v<R, SweepRequest>) {
@@ -204,6 +214,7 @@ WhiteNoiseRequest white_noise_request(double tau, bool law) {
     WhiteNoiseRequest r;
     r.params.tau = tau;
     if (law) r.params.drift = kAnyLaw;
+    set_static_friction(r.params);
     return r;
 }
 
@@ -252,6 +263,22 @@ Outcome outcome_of(const Validate& v, const EngineSettings& e, double tau, bool 
     }
 }
 
+/// What a cell asks: its engine, tau, law and command's validation.
+struct CellRequest {
+    EngineSettings engine;
+    double tau = 0;
+    bool law = false;
+    Validate validate;
+};
+
+/// The request of cell c; false for an engine, noise or command this test does not know.
+bool request_of(const Cell& c, CellRequest& q) {
+    const auto v = validations().find(c.command);
+    if (!engine_of(c.engine, q.engine) || !tau_of(c.noise, q.tau, q.law) || v == validations().end()) return false;
+    q.validate = v->second;
+    return true;
+}
+
 // ---- the tests ----------------------------------------------------------------------
 
 TEST(Capabilities, TableCoversEveryEngineNoiseAndCommand) {
@@ -293,20 +320,42 @@ TEST(Capabilities, TableCoversEveryEngineNoiseAndCommand) {
     }
 }
 
+TEST(Capabilities, StaticFrictionChangesNoCell) {
+    // A static friction above the friction (issue 46) runs wherever the
+    // one-coefficient model runs and is refused where it is refused, for the
+    // same setting: the table's cells hold for it too (ARCHITECTURE.md).
+    const Table& t = architecture_table();
+    ASSERT_EQ(t.error, "");
+    int checked = 0;
+    for (const Cell& c : t.cells) {
+        CellRequest q;
+        if (!request_of(c, q)) continue;
+        g_static_ratio = 1.0;
+        const Outcome plain = outcome_of(q.validate, q.engine, q.tau, q.law);
+        g_static_ratio = 1.5;
+        const Outcome banded = outcome_of(q.validate, q.engine, q.tau, q.law);
+        g_static_ratio = 1.0;
+        ++checked;
+        EXPECT_EQ(banded.refused, plain.refused) << "cell " << c.name() << ": " << banded.text;
+        EXPECT_EQ(banded.setting, plain.setting) << "cell " << c.name() << ": " << banded.text;
+    }
+    EXPECT_EQ(checked, static_cast<int>(t.cells.size()));
+}
+
 TEST(Capabilities, EveryCellIsWhatValidateDoes) {
     const Table& t = architecture_table();
     ASSERT_EQ(t.error, "");
     int checked = 0;
     for (const Cell& c : t.cells) {
-        EngineSettings engine;
-        double tau = 0;
-        bool law = false;
-        const auto v = validations().find(c.command);
-        if (!engine_of(c.engine, engine) || !tau_of(c.noise, tau, law) || v == validations().end()) {
+        CellRequest q;
+        if (!request_of(c, q)) {
             ADD_FAILURE() << "cell " << c.name() << ": unknown engine, noise or command";
             continue;
         }
-        const Outcome o = outcome_of(v->second, engine, tau, law);
+        const EngineSettings& engine = q.engine;
+        const double tau = q.tau;
+        const bool law = q.law;
+        const Outcome o = outcome_of(q.validate, engine, tau, law);
         ++checked;
         if (c.value == "refused") {
             if (!o.refused) {

@@ -53,6 +53,32 @@ TEST(Params, ValidationNamesTheParameter) {
     p = {}; p.relaxation = nan; expect_bad(p, "relaxation");
     p = {}; p.bias = nan; expect_bad(p, "bias");
     p = {}; p.relaxation = inf; p.tau = 0; EXPECT_NO_THROW(ss::validate(p));
+    p = {}; p.static_friction = 0.5 * p.friction; expect_bad(p, "static-friction");
+    p = {}; p.static_friction = -1; expect_bad(p, "static-friction");
+    p = {}; p.static_friction = inf; expect_bad(p, "static-friction");
+    p = {}; p.static_friction = p.friction; EXPECT_NO_THROW(ss::validate(p));
+    p = {}; p.static_friction = 2 * p.friction; EXPECT_NO_THROW(ss::validate(p));
+}
+
+TEST(Params, StaticFrictionSetsTheBandUnsetItIsTheFriction) {
+    ss::ModelParams p; // Fig. 2: unset
+    EXPECT_EQ(p.static_friction_level(), p.friction);
+    EXPECT_FALSE(p.has_static_band());
+    const double x_up = p.upper_threshold(), x_down = p.lower_threshold();
+    p.static_friction = p.friction; // equal: the same thresholds, bit for bit
+    EXPECT_EQ(p.upper_threshold(), x_up);
+    EXPECT_EQ(p.lower_threshold(), x_down);
+    EXPECT_FALSE(p.has_static_band());
+    p.static_friction = 1.5 * p.friction; // the band's edges: (+-Delta_s - b(0)) / a
+    EXPECT_TRUE(p.has_static_band());
+    const double a = std::sqrt(p.noise / 2.0);
+    EXPECT_DOUBLE_EQ(p.upper_threshold(), (p.static_friction - p.bias) / a);
+    EXPECT_DOUBLE_EQ(p.lower_threshold(), (-p.static_friction - p.bias) / a);
+    // Nondimensional: in units of the friction, and back.
+    const ss::ModelParams nd = ss::to_nondimensional(p);
+    EXPECT_DOUBLE_EQ(nd.static_friction, 1.5);
+    EXPECT_DOUBLE_EQ(ss::from_nondimensional(nd, p.friction, p.noise).static_friction, p.static_friction);
+    EXPECT_TRUE(std::isnan(ss::to_nondimensional(ss::ModelParams{}).static_friction));
 }
 
 TEST(Params, ScalesOfNondimensionalSystem) {

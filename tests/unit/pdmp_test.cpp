@@ -419,3 +419,35 @@ TEST(PdmpKernels, InitialStateRoundsToLatticeAndPicksMode) {
     EXPECT_EQ(ss::pdmp_initial_state(c, (c.k_minus - 1) * 0.125, 0.0).y, -1);
     EXPECT_EQ(ss::pdmp_initial_state(c, c.k_plus * 0.125, 0.0).y, 0);
 }
+
+TEST(PdmpConstants, StaticBandEdgesAreTheStaticFrictions) {
+    // With a static friction Delta_s > Delta the band k- .. k+ is where
+    // |b(0) + a x| <= Delta_s: a stuck object stays there and a landing one
+    // sticks there; the flows slide against Delta.
+    for (ss::ModelParams p : {fig2(), dry()}) {
+        p.static_friction = 1.5 * p.friction;
+        const ss::PdmpConstants c = ss::make_pdmp_constants(p, grid(0.125));
+        const double a = std::sqrt(p.noise / 2.0);
+        for (int i = -c.n_max; i <= c.n_max; ++i) {
+            const double force = p.bias + a * i * 0.125;
+            const bool in_band = std::fabs(force) <= p.static_friction;
+            EXPECT_EQ(i >= c.k_minus && i <= c.k_plus, in_band) << "i=" << i;
+            EXPECT_EQ(ss::pdmp_mode_at_rest(c, i, +1), force < -p.static_friction ? -1 : 0) << "i=" << i;
+            EXPECT_EQ(ss::pdmp_mode_at_rest(c, i, -1), force > p.static_friction ? +1 : 0) << "i=" << i;
+        }
+        // The slip starts with the jump in acceleration Delta_s - Delta > 0.
+        EXPECT_GT(ss::pdmp_acceleration(c, c.k_plus + 1, +1), p.static_friction - p.friction);
+        EXPECT_LT(ss::pdmp_acceleration(c, c.k_minus - 1, -1), p.friction - p.static_friction);
+        EXPECT_LT(ss::pdmp_acceleration(c, c.k_minus - 1, -1), 0.0);
+        // Equal to the friction, the band is the one-coefficient model's.
+        ss::ModelParams q = p;
+        q.static_friction = q.friction;
+        ss::ModelParams unset = p;
+        unset.static_friction = std::numeric_limits<double>::quiet_NaN();
+        const ss::PdmpConstants ce = ss::make_pdmp_constants(q, grid(0.125));
+        const ss::PdmpConstants cu = ss::make_pdmp_constants(unset, grid(0.125));
+        EXPECT_EQ(ce.k_plus, cu.k_plus);
+        EXPECT_EQ(ce.k_minus, cu.k_minus);
+        EXPECT_EQ(ce.n_max, cu.n_max);
+    }
+}

@@ -234,6 +234,67 @@ TEST(ResolventStep, StickingStepGivesExactlyZero) {
     EXPECT_EQ(ss::soft_threshold(f, c.h_friction), f - c.h_friction);
 }
 
+namespace {
+/// A side uniform chosen by the test (the static start's bridge test).
+struct FixedSideUniform {
+    double u;
+    double side_uniform() const { return u; }
+};
+} // namespace
+
+TEST(ResolventStep, StaticFrictionRules) {
+    ss::ModelParams p;
+    p.static_friction = 1.5 * p.friction;
+    const double dt = 1e-3;
+    const ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(dt));
+    ASSERT_TRUE(c.static_band);
+    EXPECT_EQ(c.h_static, dt * p.static_friction);
+    const double hk = c.h_friction, hs = c.h_static;
+    // At rest: held while |f| <= h Delta_s, else started with f -+ h Delta.
+    EXPECT_EQ(ss::static_friction_step(c, 0.0, 0.9 * hs, 0.9 * hs), 0.0);
+    EXPECT_EQ(ss::static_friction_step(c, 0.0, -0.9 * hs, -0.9 * hs), 0.0);
+    EXPECT_EQ(ss::static_friction_step(c, 0.0, 1.1 * hs, 1.1 * hs), 1.1 * hs - hk);
+    EXPECT_EQ(ss::static_friction_step(c, 0.0, -1.1 * hs, -1.1 * hs), -1.1 * hs + hk);
+    // Sliding: the soft threshold with h Delta (stays positive, or lands).
+    EXPECT_EQ(ss::static_friction_step(c, 0.2, 1.3 * hk, 0.0), 1.3 * hk - hk);
+    EXPECT_EQ(ss::static_friction_step(c, 0.2, 0.5 * hk, 0.0), 0.0);
+    // Passing through 0: stops there when the force alone is in the static
+    // band, goes on to the other side when it is beyond it.
+    EXPECT_EQ(ss::static_friction_step(c, 0.2, -1.2 * hk, -1.2 * hk), 0.0);
+    EXPECT_EQ(ss::static_friction_step(c, 0.2, -2.0 * hs, -1.6 * hs), -2.0 * hs + hk);
+    EXPECT_EQ(ss::static_friction_step(c, -0.2, 1.2 * hk, 1.2 * hk), 0.0);
+    EXPECT_EQ(ss::static_friction_step(c, -0.2, 2.0 * hs, 1.6 * hs), 2.0 * hs - hk);
+    // Starting from rest with X at the band's edges: the mean force inside
+    // the static band but beyond the kinetic one starts the slip when X
+    // crossed the edge (its end beyond it, or the bridge: u below exp(-e)).
+    const double f_mid = 1.2 * hk; // between h Delta and h Delta_s
+    FixedSideUniform never{1.0}, always{0.0};
+    EXPECT_EQ(ss::resolvent_static_start(c, c.x_up - 1.0, c.x_up + 0.01, f_mid, never), f_mid - hk);
+    EXPECT_EQ(ss::resolvent_static_start(c, c.x_up - 0.01, c.x_up - 0.01, f_mid, always), f_mid - hk);
+    EXPECT_EQ(ss::resolvent_static_start(c, c.x_up - 0.01, c.x_up - 0.01, f_mid, never), 0.0);
+    EXPECT_EQ(ss::resolvent_static_start(c, c.x_down + 0.01, c.x_down - 0.01, -f_mid, never), -f_mid + hk);
+    // Below the kinetic band no start, whatever X did.
+    EXPECT_EQ(ss::resolvent_static_start(c, c.x_up - 1.0, c.x_up + 0.01, 0.5 * hk, always), 0.0);
+    EXPECT_EQ(ss::resolvent_static_start(c, 0.0, 0.0, 1.1 * hs, never), 1.1 * hs - hk);
+}
+
+TEST(ResolventStep, StaticFrictionEqualToFrictionIsTheSoftThreshold) {
+    // Delta_s = Delta: the static rules reduce to the soft threshold bit for
+    // bit (the runs take the soft threshold's branch anyway; this is the
+    // algebra behind "the same numbers").
+    ss::ModelParams p;
+    p.static_friction = p.friction;
+    ss::ResolventConstants c = ss::make_resolvent_constants(p, with_dt(1e-3));
+    EXPECT_FALSE(c.static_band);
+    c.static_band = true; // force the static branch
+    const double hk = c.h_friction;
+    for (double v : {0.0, 0.3, -0.3})
+        for (double f : {-3.0 * hk, -hk, -0.5 * hk, 0.0, 0.5 * hk, hk, 3.0 * hk}) {
+            const double f0 = f - (1.0 - 0.0) * v; // no drag here: the free flight from rest
+            EXPECT_EQ(ss::static_friction_step(c, v, f, f0), ss::soft_threshold(f, hk)) << "v " << v << " f " << f;
+        }
+}
+
 TEST(ResolventStep, BridgeCrossingProbability) {
     ss::ModelParams p;
     for (double dt : {1e-4, 1e-3}) {
@@ -274,6 +335,7 @@ struct ScriptedNormals {
         return {q.first, q.second};
     }
     double uniform() { return 0.5; }
+    double side_uniform() const { return 0.5; } // the static band's start test (unused at Delta_s = Delta)
 };
 } // namespace
 

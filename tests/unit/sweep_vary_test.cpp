@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "stickslip/drift_input.hpp"
 #include "stickslip/errors.hpp"
@@ -44,6 +45,23 @@ void expect_refused(const ss::SweepRequest& r, const std::string& setting, const
     }
 }
 
+/// Point k of sweep r is, bit for bit, the diffusivity run of `model` (with
+/// the point's noise and tau) on the point's own sample indices.
+void expect_point_is_its_run(const ss::SweepRequest& r, const ss::SweepPoint& p, std::size_t k,
+                             ss::ModelParams model) {
+    ss::DiffusivityRequest d;
+    d.engine = r.engine;
+    d.params = std::move(model);
+    d.params.noise = p.noise;
+    d.params.tau = p.tau;
+    d.excursions = r.excursions;
+    d.control.seed = r.control.seed;
+    d.control.first_index = k * ss::sweep_index_stride;
+    const ss::DiffusivityResult one = ss::compute_diffusivity(d);
+    EXPECT_EQ(p.estimates.diffusivity.value, one.estimates.diffusivity.value) << k;
+    EXPECT_EQ(p.estimates.mobility.value, one.estimates.mobility.value) << k;
+}
+
 TEST(SweepVary, PointsAreValueMajorAndEachIsItsDiffusivityRun) {
     const ss::SweepRequest r = varied_sweep();
     const ss::SweepResult res = ss::compute_sweep(r);
@@ -59,18 +77,10 @@ TEST(SweepVary, PointsAreValueMajorAndEachIsItsDiffusivityRun) {
         const ss::SweepPoint& p = res.points[k];
         EXPECT_EQ(p.varied, expected_varied[k]) << k;
         EXPECT_EQ(p.noise, expected_noise[k]) << k;
-        ss::DiffusivityRequest d;
-        d.engine = r.engine;
-        d.params.drift = r.params.drift;
-        d.params.drift_params = "c=" + std::string(k < 2 ? "0.1" : "0.342");
-        d.params.noise = p.noise;
-        d.params.tau = p.tau;
-        d.excursions = r.excursions;
-        d.control.seed = r.control.seed;
-        d.control.first_index = k * ss::sweep_index_stride;
-        const ss::DiffusivityResult one = ss::compute_diffusivity(d);
-        EXPECT_EQ(p.estimates.diffusivity.value, one.estimates.diffusivity.value) << k;
-        EXPECT_EQ(p.estimates.mobility.value, one.estimates.mobility.value) << k;
+        ss::ModelParams model;
+        model.drift = r.params.drift;
+        model.drift_params = "c=" + std::string(k < 2 ? "0.1" : "0.342");
+        expect_point_is_its_run(r, p, k, model);
     }
     // The bias c moves M0 with it: the two values are different models.
     EXPECT_GT(res.points[2].estimates.mobility.value, res.points[0].estimates.mobility.value);
@@ -101,10 +111,45 @@ TEST(SweepVary, WithoutItNothingChanges) {
     EXPECT_EQ(ss::to_csv(res).find("varied"), std::string::npos);
 }
 
+TEST(SweepVary, StaticFrictionIsAnAxis) {
+    // --vary static-friction: each point is the diffusivity run with that
+    // static friction (issue 46), bit for bit, on its own sample indices.
+    ss::SweepRequest r;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-3);
+    r.vary = std::string(ss::vary_static_friction);
+    r.vary_values = {5.76, 3.84};
+    r.noises = {5};
+    r.taus = {0.5};
+    r.excursions = 64;
+    r.control.seed = 5;
+    const ss::SweepResult res = ss::compute_sweep(r);
+    ASSERT_EQ(res.points.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+        const ss::SweepPoint& p = res.points[k];
+        EXPECT_EQ(p.varied, k == 0 ? 3.84 : 5.76);
+        ss::ModelParams model;
+        model.static_friction = p.varied;
+        expect_point_is_its_run(r, p, k, model);
+    }
+    EXPECT_NE(ss::to_table(res).find("static-friction swept over 3.84, 5.76"), std::string::npos) << ss::to_table(res);
+    // A value below the friction is refused, naming the point; so is
+    // --static-friction beside the axis that sweeps it.
+    r.vary_values = {3.0};
+    try {
+        ss::validate(r);
+        ADD_FAILURE() << "static friction 3 < friction 3.84 accepted";
+    } catch (const ss::InvalidParameter& e) {
+        EXPECT_EQ(e.parameter(), "static-friction") << e.what();
+    }
+    r.vary_values = {5.76};
+    r.params.static_friction = 4.0;
+    expect_refused(r, "static-friction", "give its values in --vary-values");
+}
+
 TEST(SweepVary, MisuseIsRefusedByName) {
     ss::SweepRequest r = varied_sweep();
     r.params.drift.clear();
-    expect_refused(r, "vary", "there is none");
+    expect_refused(r, "vary", "there is no --drift for \"c\"");
     r = varied_sweep();
     r.vary = "d";
     expect_refused(r, "vary", "\"d\" is not a constant of the --drift expression");

@@ -46,8 +46,8 @@ struct PdmpConstants {
     double bias;      ///< gbar [m s^-2]
     double relaxation;///< tauL [s], possibly +inf
     bool viscous;     ///< relaxation finite
-    int k_plus;       ///< last index with a x <= Delta - gbar (top of the static band)
-    int k_minus;      ///< first index with a x >= -Delta - gbar (bottom of the band)
+    int k_plus;       ///< last index with a x <= Delta_s - gbar (top of the static band; Delta_s the static friction)
+    int k_minus;      ///< first index with a x >= -Delta_s - gbar (bottom of the band)
     std::uint64_t max_events; ///< runaway guard per long excursion
     /// A law other than the affine one: the flow is linear within each of its
     /// pieces (bias then holds b(0), relaxation is unused), and reaching a

@@ -220,7 +220,10 @@ Chain build_chain(const ModelParams& p, const ChainGrid& grid, const DriftLaw& d
                 rate(neg(j, k), neg(j, k - 1), c / chain.width[neg(j, k)]);
         }
         // The face v = 0. Inside the band both flows point to 0 (at an edge
-        // one of them vanishes); above the band both point up, below it down.
+        // one of them vanishes), or, with a static friction above the
+        // friction, one of them may point away between the kinetic and the
+        // static thresholds (no flux into the stuck state from that side);
+        // above the band both point up, below it down.
         const double c_pos = b0 + force - friction, c_neg = b0 + force + friction;
         if (band) {
             rate(pos(j, 0), stuck(j), std::max(-c_pos, 0.0) / chain.width[pos(j, 0)]);

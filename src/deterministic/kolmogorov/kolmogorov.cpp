@@ -80,8 +80,10 @@ KolmogorovGrid make_kolmogorov_grid(const ModelParams& p, const KolmogorovSettin
                                     const DriftLaw& drift) {
     const double a = p.force_amplitude(), sd = 1.0 / std::sqrt(p.tau);
     KolmogorovGrid g;
-    g.lower_threshold = (-p.friction - drift(0.0)) / a;
-    g.upper_threshold = (p.friction - drift(0.0)) / a;
+    // The band is the static one: the stuck line spans it (chain.cpp).
+    const double band_friction = p.static_friction_level();
+    g.lower_threshold = (-band_friction - drift(0.0)) / a;
+    g.upper_threshold = (band_friction - drift(0.0)) / a;
     const double band = g.upper_threshold - g.lower_threshold;
     const std::size_t scale = std::size_t{1} << level;
     const std::size_t coarse_band =

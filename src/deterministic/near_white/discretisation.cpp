@@ -170,8 +170,10 @@ Eigen::SparseMatrix<double> forward_operator(const Layout& l, const DriftLaw& dr
         if (band) {
             const std::size_t s = l.stuck(j);
             for (std::size_t n = 0; n < dofs_per_cell; ++n) {
-                const double out_below = c_neg * at_upper[n]; // c_neg > 0: leaves the negative cell upwards
-                const double out_above = -c_pos * at_lower[n]; // c_pos < 0: leaves the positive cell downwards
+                // Between the kinetic and the static thresholds one flow points
+                // away from 0 (a static friction above the kinetic one): no flux.
+                const double out_below = std::max(c_neg, 0.0) * at_upper[n]; // c_neg > 0: leaves the negative cell upwards
+                const double out_above = std::max(-c_pos, 0.0) * at_lower[n]; // c_pos < 0: leaves the positive cell downwards
                 for (std::size_t m = 0; m < dofs_per_cell; ++m) {
                     add(unknown(below, m), unknown(below, n), -out_below * at_upper[m]);
                     add(unknown(above, m), unknown(above, n), -out_above * at_lower[m]);

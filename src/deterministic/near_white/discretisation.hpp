@@ -20,7 +20,10 @@
 // present chain) has no diffusion limit at all.
 //
 // v = 0. At a node strictly inside the band both half lines flow into 0 and
-// their flux feeds the node's stuck state; elsewhere the face at 0 is an
+// their flux feeds the node's stuck state (with a static friction above the
+// friction, the band is the static one, and between the kinetic and the
+// static thresholds one half line flows away from 0 and feeds nothing);
+// elsewhere the face at 0 is an
 // ordinary upwind face (the flow crosses it: from below above the band, from
 // above below it; at an edge node one side's flow vanishes there). A stuck
 // state follows the noise chain along the band and, when the chain leaves

@@ -170,8 +170,10 @@ Problem make_problem(const ModelParams& p, const DriftLaw& law) {
     pr.tau = p.tau / sc.time;
     pr.drift = scaled_drift_law(law, sc.velocity, sc.acceleration);
     const double eps = std::sqrt(pr.tau), b0 = pr.drift(0.0);
-    pr.z_lower = std::sqrt(2.0) * eps * (-1.0 - b0);
-    pr.z_upper = std::sqrt(2.0) * eps * (1.0 - b0);
+    // The band is the static one (static friction over friction; 1 unless set).
+    const double band = p.static_friction_level() / p.friction;
+    pr.z_lower = std::sqrt(2.0) * eps * (-band - b0);
+    pr.z_upper = std::sqrt(2.0) * eps * (band - b0);
 
     // The velocity range: where white noise's density has fallen e^-40 (the
     // near-white limit), or the slip that the largest force on the noise grid

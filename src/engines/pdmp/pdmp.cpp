@@ -37,14 +37,19 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
         zero_knot(c.drift); // the landing at 0 is a knot (make_drift_law's invariant)
     }
     c.max_events = s.max_work_per_excursion;
-    // k+ is the last lattice index with a x <= friction - bias, k- the first
-    // with a x >= -friction - bias. The rounded quotients can disagree with the
+    // k+ is the last lattice index with a x <= Delta_s - bias, k- the first
+    // with a x >= -Delta_s - bias. The rounded quotients can disagree with the
     // sign of pdmp_acceleration (what the kernels use to decide whether the
     // object moves) when a threshold falls on a lattice point, so they are
     // settled with that very expression: the object at s+ accelerates strictly
     // up, at s- strictly down, and the static band is exactly where it cannot move.
-    const double kp_est = std::floor((p.friction - c.bias) / (c.amp * s.grid));
-    const double km_est = std::ceil((-p.friction - c.bias) / (c.amp * s.grid));
+    // The band is the static one (Delta_s, the friction unless set): where a
+    // stuck object stays and a landing one sticks; the flows slide against the
+    // friction (pdmp_acceleration).
+    const double band = p.static_friction_level();
+    const auto band_edge_push = [&](int i, int y) { return c.bias + c.amp * c.delta * i - y * band; };
+    const double kp_est = std::floor((band - c.bias) / (c.amp * s.grid));
+    const double km_est = std::ceil((-band - c.bias) / (c.amp * s.grid));
     const auto too_many_points = [&](double points) {
         return InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " +
                                             detail::format_number(points) +
@@ -53,10 +58,10 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
     if (!(std::fabs(kp_est) < 1e8 && std::fabs(km_est) < 1e8))
         throw too_many_points(2 * std::fmax(std::fabs(kp_est), std::fabs(km_est)) + 1);
     int kp = static_cast<int>(kp_est), km = static_cast<int>(km_est);
-    while (pdmp_acceleration(c, kp + 1, +1) <= 0.0) ++kp;
-    while (pdmp_acceleration(c, kp, +1) > 0.0) --kp;
-    while (pdmp_acceleration(c, km - 1, -1) >= 0.0) --km;
-    while (pdmp_acceleration(c, km, -1) < 0.0) ++km;
+    while (band_edge_push(kp + 1, +1) <= 0.0) ++kp;
+    while (band_edge_push(kp, +1) > 0.0) --kp;
+    while (band_edge_push(km - 1, -1) >= 0.0) --km;
+    while (band_edge_push(km, -1) < 0.0) ++km;
 
     // Largest lattice half-width with tau*delta*L < 2 (alpha >= 0 inside).
     const double n_allowed = std::ceil(2.0 / (p.tau * s.grid * s.grid)) - 1.0;

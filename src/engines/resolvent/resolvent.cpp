@@ -50,6 +50,9 @@ ResolventConstants make_resolvent_constants(const Model& m, const EngineSettings
                                              detail::format_number(0.5 / lip) + " s");
     }
     c.h_friction = s.dt * p.friction;
+    c.h_static = s.dt * p.static_friction_level(); // == h_friction, bit for bit, when unset or equal
+    c.static_band = p.has_static_band();
+    c.h_rest = s.dt * m.drift_at_zero();
     c.white = p.white();
     c.max_steps = s.max_work_per_excursion;
     if (c.white) {

@@ -305,7 +305,7 @@ bool resolvent_long_excursions(const ResolventConstants& c, std::uint64_t seed, 
 bool detail::resolvent_long_excursions_in_lanes(const ResolventConstants& c, std::uint64_t seed,
                                                 std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
                                                 const std::atomic<bool>* cancel) {
-    if (c.white || c.knots_law) return one_at_a_time(c, seed, first, count, out, cancel);
+    if (c.white || c.knots_law || c.static_band) return one_at_a_time(c, seed, first, count, out, cancel);
     return c.rule == StopRule::Bridge ? run_lanes_bridge(c, seed, first, count, out, cancel)
                                       : run_lanes_stuck(c, seed, first, count, out, cancel);
 }
@@ -313,7 +313,7 @@ bool detail::resolvent_long_excursions_in_lanes(const ResolventConstants& c, std
 bool detail::resolvent_long_excursions_in_lanes_with(const ResolventConstants& c, std::uint64_t seed,
                                                      std::uint64_t first, std::uint64_t count, ExcursionOutcome* out,
                                                      const std::atomic<bool>* cancel, const CorrectorTable& g) {
-    if (c.white || c.knots_law) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
+    if (c.white || c.knots_law || c.static_band) return one_at_a_time_with(c, seed, first, count, out, cancel, g);
     return c.rule == StopRule::Bridge ? run_lanes_bridge_with(c, seed, first, count, out, cancel, g)
                                       : run_lanes_stuck_with(c, seed, first, count, out, cancel, g);
 }
