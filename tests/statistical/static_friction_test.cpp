@@ -102,9 +102,10 @@ TEST(StaticFriction, KolmogorovReproducesStoredMonteCarlo) {
                           std::string(c.what) + ": D kolmogorov vs stored event"));
         EXPECT_TRUE(check(compare(k.mobility.value, k.mobility.error, c.m, c.m_se),
                           std::string(c.what) + ": M0 kolmogorov vs stored event"));
-        if (c.stuck_se > 0)
+        if (c.stuck_se > 0) {
             EXPECT_TRUE(check(compare(k.stuck_probability.value, k.stuck_probability.error, c.stuck, c.stuck_se),
                               std::string(c.what) + ": P(V = 0) kolmogorov vs stored event"));
+        }
     }
     // The one-coefficient model's P(V = 0) is below the static band's: a wider
     // band holds the object longer (Fig. 2: 0.8805 without the band).
