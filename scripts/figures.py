@@ -57,6 +57,18 @@ def use_drift_law(expr, params=""):
     PAPER_B = ["--friction", str(DELTA), "--drift", expr] + (["--drift-params", params] if params else [])
     B_TEXT = f"b(v) = {expr}" + (f" ({params})" if params else "")
 
+def use_static_friction(ratio):
+    """Every figure runs with a static friction `ratio` times its friction
+    (stickslip's --static-friction): a stuck object starts only when the force
+    exceeds it. White-noise curves do not change (a white force holds the
+    object at rest for no positive time: stickslip's note says so)."""
+    global ND, PAPER_B, ZERO_B, B_TEXT
+    ND = ND + ["--static-friction", repr(ratio * 1.0)]
+    PAPER_B = PAPER_B + ["--static-friction", repr(ratio * DELTA)]
+    ZERO_B = ZERO_B + ["--static-friction", repr(ratio * DELTA)]
+    B_TEXT = f"{B_TEXT}, static friction {ratio:g} Delta"
+
+
 TABLE1_TIMES = [0.05, 0.125, 0.25, 0.5, 1.0, 2.5]
 TABLE1_PAPER_MC = [0.950, 0.876, 0.757, 0.569, 0.337, 0.091]
 TABLE1_PAPER_EF = [0.950, 0.875, 0.757, 0.568, 0.336, 0.090]
@@ -893,6 +905,9 @@ def main():
                          "written to build/figures-drift unless --out says otherwise")
     ap.add_argument("--drift-params", metavar="NAME=NUM,...", default="",
                     help="values of the named constants of --drift")
+    ap.add_argument("--static-friction-ratio", metavar="R", type=float,
+                    help="run every figure with a static friction R times its friction (R >= 1; stickslip's "
+                         "--static-friction); written to build/figures-static unless --out says otherwise")
     a = ap.parse_args()
 
     only = FIGURES if not a.only else [s.strip() for s in a.only.split(",") if s.strip()]
@@ -909,12 +924,20 @@ def main():
             ap.error(f"{','.join(dry)} are pure dry friction (b = 0): --drift does not enter them; "
                      f"choose from {','.join(DRIFT_FIGURES)}")
         use_drift_law(a.drift, a.drift_params)
+    ratio = a.static_friction_ratio
+    if ratio is not None:
+        if not (math.isfinite(ratio) and ratio >= 1.0):
+            ap.error(f"--static-friction-ratio must be a finite number >= 1 (the static friction over the "
+                     f"friction), not {ratio:g}")
+        use_static_friction(ratio)
     if a.threads < 1:
         ap.error("--threads must be >= 1")
     if a.out:
         out = a.out
     elif a.drift:  # the paper's figures (docs/, build/figures-quick/) keep the paper's law
         out = os.path.join(a.root, "build", "figures-drift-quick" if a.quick else "figures-drift")
+    elif ratio is not None:
+        out = os.path.join(a.root, "build", "figures-static-quick" if a.quick else "figures-static")
     elif a.quick:  # CI smoke runs never touch docs/
         out = os.path.join(a.root, "build", "figures-quick")
     else:
@@ -931,9 +954,10 @@ def main():
     if a.only and os.path.exists(summary_path):
         with open(summary_path) as f:
             summary = json.load(f)
-        # Figures of another drift law are not merged with these: start afresh.
+        # Figures of another drift law or static friction are not merged with these: start afresh.
         meta = summary.get("meta", {})
-        if (meta.get("drift", PAPER_DRIFT), meta.get("drift_params", "")) != (a.drift or PAPER_DRIFT, a.drift_params):
+        if (meta.get("drift", PAPER_DRIFT), meta.get("drift_params", ""), meta.get("static_friction_ratio")) != \
+                (a.drift or PAPER_DRIFT, a.drift_params, ratio):
             summary = {}
     timing = summary.get("timing_seconds", {}) if a.only else {}
     written = []
@@ -966,7 +990,7 @@ def main():
     summary["meta"] = {
         "command": " ".join(["bash", "scripts/figures"] + [shlex.quote(x) for x in user_args()]),
         "mode": "quick" if a.quick else "default", "only": only if (a.only or a.drift) else "all",
-        "drift": a.drift or PAPER_DRIFT, "drift_params": a.drift_params,
+        "drift": a.drift or PAPER_DRIFT, "drift_params": a.drift_params, "static_friction_ratio": ratio,
         "threads": a.threads, "seed": a.seed, "stickslip_version": version,
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "cpus": os.cpu_count(), "seconds_this_run": round(total, 1),

@@ -195,6 +195,12 @@ struct ResolvedEngine {
     /// excursions (brute force, transient moments).
     std::string stop_rule;   ///< "bridge" | "stuck" | "velocity-levels" (white) | "exact" (PDMP, event scheme)
     double lattice_bound = 0; ///< PDMP: L [s^-1/2]
+    /// PDMP: the lattice step delta [s^-1/2]: --grid, or with a static band the
+    /// largest step <= --grid that fits a whole number of steps across the band.
+    double lattice_step = 0;
+    /// PDMP: x_0 [s^-1/2], the lattice being x_i = delta i + x_0 (0 without a
+    /// static band; with one the shift that puts the static edges on lattice points).
+    double lattice_offset = 0;
     int lattice_points = 0;   ///< PDMP: 2N+1
     double truncated_mass = 0;///< PDMP: stationary Gaussian mass of X beyond +-L
     double jump_rate = 0;     ///< PDMP: Lambda [s^-1]

@@ -70,6 +70,7 @@ def main():
     ap.add_argument("--no-header", action="store_true", help="rows only (to append to an earlier table)")
     ap.add_argument("--cases", help="indices of the cases to run, e.g. 1,2 (default: all)")
     ap.add_argument("--ratios", help="ratios Delta_s/Delta, e.g. 1.5,3 (default: 1.2,1.5,3)")
+    ap.add_argument("--only", help="the sampled engines whose label starts with this, e.g. pdmp (default: all)")
     a = ap.parse_args()
     cases = [CASES[int(i)] for i in a.cases.split(",")] if a.cases else CASES
     ratios = [float(r) for r in a.ratios.split(",")] if a.ratios else RATIOS
@@ -101,6 +102,8 @@ def main():
                 records.append(rec)
                 continue
             for label, flags, n in engines(friction, ref["mean_duration"]["value"]):
+                if a.only and not label.startswith(a.only):
+                    continue
                 d = run(a.bin, "diffusivity %s %s --excursions %d --seed %d" % (m, flags, n, a.seed))
                 p = run(a.bin, "density %s %s --excursions %d --bins 4 --seed %d" % (m, flags, max(n // 4, 1000),
                                                                                     a.seed + 1))

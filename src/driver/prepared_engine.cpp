@@ -75,6 +75,8 @@ PreparedEngine prepare_engine(const ModelParams& p, const EngineSettings& given,
         e.constants = c;
         r.stop_rule = "exact";
         r.lattice_bound = c.n_max * c.delta;
+        r.lattice_step = c.delta;
+        r.lattice_offset = c.x_offset;
         r.lattice_points = 2 * c.n_max + 1;
         r.truncated_mass = std::erfc(r.lattice_bound * std::sqrt(p.tau) / std::sqrt(2.0));
         r.jump_rate = c.rate;

@@ -153,6 +153,8 @@ ordered_json engine_details_json(const ResolvedEngine& e, const RunSettings& r) 
         j["lower_threshold"] = e.lower_threshold;
     }
     if (!has_time_step(r.engine)) {
+        j["lattice_step"] = e.lattice_step;
+        j["lattice_offset"] = e.lattice_offset;
         j["lattice_bound"] = e.lattice_bound;
         j["lattice_points"] = e.lattice_points;
         j["truncated_mass"] = e.truncated_mass;

@@ -421,33 +421,58 @@ TEST(PdmpKernels, InitialStateRoundsToLatticeAndPicksMode) {
 }
 
 TEST(PdmpConstants, StaticBandEdgesAreTheStaticFrictions) {
-    // With a static friction Delta_s > Delta the band k- .. k+ is where
-    // |b(0) + a x| <= Delta_s: a stuck object stays there and a landing one
-    // sticks there; the flows slide against Delta.
-    for (ss::ModelParams p : {fig2(), dry()}) {
-        p.static_friction = 1.5 * p.friction;
-        const ss::PdmpConstants c = ss::make_pdmp_constants(p, grid(0.125));
-        const double a = std::sqrt(p.noise / 2.0);
-        for (int i = -c.n_max; i <= c.n_max; ++i) {
-            const double force = p.bias + a * i * 0.125;
-            const bool in_band = std::fabs(force) <= p.static_friction;
-            EXPECT_EQ(i >= c.k_minus && i <= c.k_plus, in_band) << "i=" << i;
-            EXPECT_EQ(ss::pdmp_mode_at_rest(c, i, +1), force < -p.static_friction ? -1 : 0) << "i=" << i;
-            EXPECT_EQ(ss::pdmp_mode_at_rest(c, i, -1), force > p.static_friction ? +1 : 0) << "i=" << i;
+    // With a static friction Delta_s > Delta the lattice is shifted and its
+    // step shortened so that both static edges, where |b(0) + a x| = Delta_s,
+    // are lattice points k- - 1 and k+ + 1 (a slip starts there, on time);
+    // the band k- .. k+ is the points strictly between: a stuck object stays
+    // there and a landing one sticks there; the flows slide against Delta.
+    for (double g : {0.125, 0.05, 0.025}) {
+        for (ss::ModelParams p : {fig2(), dry()}) {
+            p.static_friction = 1.5 * p.friction;
+            const ss::PdmpConstants c = ss::make_pdmp_constants(p, grid(g));
+            const double a = std::sqrt(p.noise / 2.0);
+            EXPECT_LE(c.delta, g);
+            EXPECT_GT(c.delta, g * (1.0 - 2.0 * g * a / (2.0 * p.static_friction)));
+            EXPECT_LE(std::fabs(c.x_offset), 0.5 * c.delta + 1e-15);
+            const double tol = 1e-9 * p.static_friction;
+            EXPECT_NEAR(p.bias + a * ss::pdmp_noise(c, c.k_plus + 1), p.static_friction, tol) << "grid " << g;
+            EXPECT_NEAR(p.bias + a * ss::pdmp_noise(c, c.k_minus - 1), -p.static_friction, tol) << "grid " << g;
+            for (int i = -c.n_max; i <= c.n_max; ++i) {
+                const double force = p.bias + a * ss::pdmp_noise(c, i);
+                const bool in_band = i >= c.k_minus && i <= c.k_plus;
+                if (in_band) {
+                    EXPECT_LT(std::fabs(force), p.static_friction - tol) << "i=" << i;
+                } else {
+                    EXPECT_GT(std::fabs(force), p.static_friction - tol) << "i=" << i;
+                }
+                EXPECT_EQ(ss::pdmp_mode_at_rest(c, i, +1), i < c.k_minus ? -1 : 0) << "i=" << i;
+                EXPECT_EQ(ss::pdmp_mode_at_rest(c, i, -1), i > c.k_plus ? +1 : 0) << "i=" << i;
+                EXPECT_NEAR(ss::pdmp_acceleration(c, i, +1), force - p.friction, tol) << "i=" << i;
+                // The chain's drift, delta Lambda (2 alpha_i - 1), is the OU's -x/tau at every inner point.
+                if (std::abs(i) < c.n_max) {
+                    EXPECT_NEAR(c.delta * c.rate * (2.0 * ss::pdmp_up_probability(c, i) - 1.0),
+                                -ss::pdmp_noise(c, i) / p.tau, 1e-9 / p.tau)
+                        << "i=" << i;
+                }
+            }
+            // The lattice stays where the up probability is in [0, 1].
+            EXPECT_GE(ss::pdmp_up_probability(c, c.n_max - 1), 0.0);
+            EXPECT_LE(ss::pdmp_up_probability(c, -c.n_max + 1), 1.0);
+            // The slip starts with the jump in acceleration Delta_s - Delta > 0.
+            EXPECT_NEAR(ss::pdmp_acceleration(c, c.k_plus + 1, +1), p.static_friction - p.friction, tol);
+            EXPECT_NEAR(ss::pdmp_acceleration(c, c.k_minus - 1, -1), p.friction - p.static_friction, tol);
+            // Equal to the friction, the lattice and band are the one-coefficient model's.
+            ss::ModelParams q = p;
+            q.static_friction = q.friction;
+            ss::ModelParams unset = p;
+            unset.static_friction = std::numeric_limits<double>::quiet_NaN();
+            const ss::PdmpConstants ce = ss::make_pdmp_constants(q, grid(g));
+            const ss::PdmpConstants cu = ss::make_pdmp_constants(unset, grid(g));
+            EXPECT_EQ(ce.k_plus, cu.k_plus);
+            EXPECT_EQ(ce.k_minus, cu.k_minus);
+            EXPECT_EQ(ce.n_max, cu.n_max);
+            EXPECT_EQ(ce.delta, g);
+            EXPECT_EQ(ce.x_offset, 0.0);
         }
-        // The slip starts with the jump in acceleration Delta_s - Delta > 0.
-        EXPECT_GT(ss::pdmp_acceleration(c, c.k_plus + 1, +1), p.static_friction - p.friction);
-        EXPECT_LT(ss::pdmp_acceleration(c, c.k_minus - 1, -1), p.friction - p.static_friction);
-        EXPECT_LT(ss::pdmp_acceleration(c, c.k_minus - 1, -1), 0.0);
-        // Equal to the friction, the band is the one-coefficient model's.
-        ss::ModelParams q = p;
-        q.static_friction = q.friction;
-        ss::ModelParams unset = p;
-        unset.static_friction = std::numeric_limits<double>::quiet_NaN();
-        const ss::PdmpConstants ce = ss::make_pdmp_constants(q, grid(0.125));
-        const ss::PdmpConstants cu = ss::make_pdmp_constants(unset, grid(0.125));
-        EXPECT_EQ(ce.k_plus, cu.k_plus);
-        EXPECT_EQ(ce.k_minus, cu.k_minus);
-        EXPECT_EQ(ce.n_max, cu.n_max);
     }
 }

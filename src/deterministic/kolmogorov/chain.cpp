@@ -67,7 +67,7 @@ ChainGrid make_grid(const ModelParams& p, const KolmogorovGrid& g) {
         grid.down.resize(n);
         for (std::size_t j = 0; j < n; ++j) {
             const int i = static_cast<int>(j) - c.n_max;
-            grid.x[j] = c.delta * i;
+            grid.x[j] = pdmp_noise(c, i);
             const double alpha = pdmp_up_probability(c, i);
             grid.up[j] = c.rate * alpha;
             grid.down[j] = c.rate * (1.0 - alpha);

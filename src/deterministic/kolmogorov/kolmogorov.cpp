@@ -108,8 +108,8 @@ KolmogorovGrid make_kolmogorov_grid(const ModelParams& p, const KolmogorovSettin
         g.lattice_step = c.delta;
         g.lattice_bound = c.n_max * c.delta;
         g.x_spacing = c.delta;
-        g.lower_threshold = c.k_minus * c.delta;
-        g.upper_threshold = c.k_plus * c.delta;
+        g.lower_threshold = pdmp_noise(c, c.k_minus);
+        g.upper_threshold = pdmp_noise(c, c.k_plus);
         g.band_intervals = static_cast<std::size_t>(c.k_plus - c.k_minus);
         g.band_first = static_cast<std::size_t>(c.k_minus + c.n_max);
         g.x_nodes = 2 * static_cast<std::size_t>(c.n_max) + 1;

@@ -21,35 +21,57 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
                                       "white noise");
     validate(s);
     PdmpConstants c{};
-    c.delta = s.grid;
-    c.rate = 2.0 / (p.tau * p.tau * s.grid * s.grid);
-    c.half_tau_delta = 0.5 * p.tau * s.grid;
     c.amp = p.force_amplitude();
+    c.bias = p.has_drift_law() ? (*m.law)(0.0) : p.bias; // b(0): where the static band lies
+    const double band = p.static_friction_level();
+    // With a static band, the largest step <= grid that fits a whole number N
+    // of steps across the band (its edges s-+ = (-+Delta_s - b(0))/a), and the
+    // shift that puts the lower edge on a lattice point (kernels/pdmp.hpp).
+    // The 1e-9 keeps N when grid already fits the band (as when the
+    // Kolmogorov engine rebuilds these constants from the step chosen here).
+    double step = s.grid;
+    double lower_edge_index = 0.0, band_steps = 0.0;
+    if (p.has_static_band()) {
+        const double lower_edge = (-band - c.bias) / c.amp, width = 2.0 * band / c.amp;
+        band_steps = std::ceil(width / s.grid - 1e-9);
+        if (!(band_steps >= 2.0 && band_steps < 1e8))
+            throw InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " +
+                                               detail::format_number(band_steps) +
+                                               " lattice steps across the static band; choose grid so that tau*grid^2 "
+                                               "is between 1e-16 and 1");
+        step = width / band_steps;
+        lower_edge_index = std::nearbyint(lower_edge / step);
+        c.x_offset = lower_edge - lower_edge_index * step;
+        c.force_offset = c.amp * c.x_offset;
+    }
+    c.delta = step;
+    c.rate = 2.0 / (p.tau * p.tau * step * step);
+    c.half_tau_delta = 0.5 * p.tau * step;
     c.friction = p.friction;
-    c.bias = p.bias;
     c.relaxation = p.relaxation;
     c.viscous = !std::isinf(p.relaxation);
     c.knots_law = p.has_drift_law();
     if (c.knots_law) {
         c.drift = *m.law;
-        c.bias = c.drift(0.0); // b(0): the static band and the acceleration at rest
         c.viscous = false;
         zero_knot(c.drift); // the landing at 0 is a knot (make_drift_law's invariant)
     }
     c.max_events = s.max_work_per_excursion;
-    // k+ is the last lattice index with a x <= Delta_s - bias, k- the first
-    // with a x >= -Delta_s - bias. The rounded quotients can disagree with the
+    // Without a static band, k+ is the last lattice index with a x <= Delta -
+    // bias, k- the first with a x >= -Delta - bias. The rounded quotients can disagree with the
     // sign of pdmp_acceleration (what the kernels use to decide whether the
     // object moves) when a threshold falls on a lattice point, so they are
     // settled with that very expression: the object at s+ accelerates strictly
     // up, at s- strictly down, and the static band is exactly where it cannot move.
-    // The band is the static one (Delta_s, the friction unless set): where a
-    // stuck object stays and a landing one sticks; the flows slide against the
-    // friction (pdmp_acceleration).
-    const double band = p.static_friction_level();
+    // The band is where a stuck object stays and a landing one sticks; the
+    // flows slide against the friction (pdmp_acceleration).
+    // With a static band the edges are the lattice points lower_edge_index
+    // and lower_edge_index + band_steps, and the band is the points strictly
+    // between: at an edge the force equals the static friction and a slip
+    // starts (the continuum process is there for no positive time).
     const auto band_edge_push = [&](int i, int y) { return c.bias + c.amp * c.delta * i - y * band; };
-    const double kp_est = std::floor((band - c.bias) / (c.amp * s.grid));
-    const double km_est = std::ceil((-band - c.bias) / (c.amp * s.grid));
+    const double kp_est = std::floor((band - c.bias) / (c.amp * step));
+    const double km_est = std::ceil((-band - c.bias) / (c.amp * step));
     const auto too_many_points = [&](double points) {
         return InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " +
                                             detail::format_number(points) +
@@ -58,21 +80,30 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
     if (!(std::fabs(kp_est) < 1e8 && std::fabs(km_est) < 1e8))
         throw too_many_points(2 * std::fmax(std::fabs(kp_est), std::fabs(km_est)) + 1);
     int kp = static_cast<int>(kp_est), km = static_cast<int>(km_est);
-    while (band_edge_push(kp + 1, +1) <= 0.0) ++kp;
-    while (band_edge_push(kp, +1) > 0.0) --kp;
-    while (band_edge_push(km - 1, -1) >= 0.0) --km;
-    while (band_edge_push(km, -1) < 0.0) ++km;
+    if (p.has_static_band()) {
+        km = static_cast<int>(lower_edge_index) + 1;
+        kp = static_cast<int>(lower_edge_index + band_steps) - 1;
+    } else {
+        while (band_edge_push(kp + 1, +1) <= 0.0) ++kp;
+        while (band_edge_push(kp, +1) > 0.0) --kp;
+        while (band_edge_push(km - 1, -1) >= 0.0) --km;
+        while (band_edge_push(km, -1) < 0.0) ++km;
+    }
 
-    // Largest lattice half-width with tau*delta*L < 2 (alpha >= 0 inside).
-    const double n_allowed = std::ceil(2.0 / (p.tau * s.grid * s.grid)) - 1.0;
+    // Largest lattice half-width with tau*delta*L < 2 (alpha >= 0 inside;
+    // shifted, L reaches |x_offset| further on one side).
+    const double shift = std::fabs(c.x_offset);
+    const double n_allowed = shift == 0.0 ? std::ceil(2.0 / (p.tau * step * step)) - 1.0
+                                          : std::ceil((2.0 / (p.tau * step) - shift) / step) - 1.0;
     double n;
     if (s.lattice_bound > 0) {
-        n = std::floor(s.lattice_bound / s.grid);
-        if (n * s.grid * p.tau * s.grid >= 2.0)
-            throw InvalidParameter("lattice-bound", "tau*grid*L = " + detail::format_number(p.tau * s.grid * n * s.grid) +
+        n = std::floor(s.lattice_bound / step);
+        if ((n * step + shift) * p.tau * step >= 2.0)
+            throw InvalidParameter("lattice-bound", "tau*grid*L = " +
+                                                        detail::format_number(p.tau * step * (n * step + shift)) +
                                                         " must be < 2; use a smaller lattice-bound or grid");
     } else {
-        n = std::ceil(8.0 / std::sqrt(p.tau) / s.grid);
+        n = std::ceil(8.0 / std::sqrt(p.tau) / step);
         n = std::fmax(n, std::fmax(kp + 5.0, -km + 5.0));
         n = std::fmin(n, n_allowed);
     }
@@ -87,7 +118,7 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
     if (!(n >= 1) || n > 1e8) throw too_many_points(2 * n + 1);
     const bool reaches = kp + 2 <= n && km - 2 >= -n;
     if (!reaches && s.lattice_bound > 0)
-        throw InvalidParameter("lattice-bound", "lattice-bound L = " + detail::format_number(n * s.grid) +
+        throw InvalidParameter("lattice-bound", "lattice-bound L = " + detail::format_number(n * step) +
                                                     " s^-1/2 does not reach the noise thresholds x* = " +
                                                     detail::format_number(m.upper_threshold()) + ", x-* = " +
                                                     detail::format_number(m.lower_threshold()) + " (s^-1/2) plus two grid steps");
@@ -95,7 +126,7 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
         throw InvalidParameter("grid", "tau*grid*L must be < 2, but the lattice must reach the noise thresholds x* = " +
                                            detail::format_number(m.upper_threshold()) + ", x-* = " + detail::format_number(m.lower_threshold()) +
                                            " (s^-1/2); with grid " + detail::format_number(s.grid) + " it only reaches L = " +
-                                           detail::format_number(n * s.grid) + ": use a finer grid");
+                                           detail::format_number(n * step) + ": use a finer grid");
     c.n_max = static_cast<int>(n);
     c.k_plus = kp;
     c.k_minus = km;

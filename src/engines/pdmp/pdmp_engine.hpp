@@ -83,7 +83,7 @@ public:
     void sample_piece(const Piece& p, double g, double offset, F& f) const {
         double v = 0.0, u = p.u0;
         pdmp_flow_state(c_, p.s, g - offset - p.t0, v, u);
-        f(c_.delta * p.s.i, p.s.y, v, u);
+        f(pdmp_noise(c_, p.s.i), p.s.y, v, u);
     }
 
     /// Long excursion k (the one `diffusivity` runs) sampled on the grid phase
@@ -124,11 +124,11 @@ public:
             });
         }
         return pdmp_long_excursion(c_, rng, [&](const PdmpState& s, double t0, double u0, double) {
-            f(PathPoint{t0, c_.delta * s.i, s.y, s.v, u0});
+            f(PathPoint{t0, pdmp_noise(c_, s.i), s.y, s.v, u0});
         });
     }
     PathPoint regeneration_point(const ExcursionOutcome& o) const {
-        return {o.duration, c_.delta * (c_.k_plus + 1), 1, 0.0, o.displacement};
+        return {o.duration, pdmp_noise(c_, c_.k_plus + 1), 1, 0.0, o.displacement};
     }
 
     /// The times a path from a given state can be seen at: exactly those asked.
@@ -175,7 +175,7 @@ public:
         const double horizon = static_cast<double>(npoints - 1) * every;
         const ExcursionOutcome o = pdmp_path(c_, s, horizon, rng, [&](const PdmpState& st, double t0, double u0,
                                                                       double dur) { sampler(Piece{st, t0, u0, dur}); });
-        if (sampler.next < npoints) f(PathPoint{horizon, c_.delta * s.i, s.y, s.v, o.displacement});
+        if (sampler.next < npoints) f(PathPoint{horizon, pdmp_noise(c_, s.i), s.y, s.v, o.displacement});
     }
 
     /// Work [events] of a path of duration t [s], on average at least.
@@ -212,7 +212,7 @@ public:
 
     /// The start noise of a path when none is given [s^-1/2]: the lattice
     /// point just above the upper threshold.
-    double default_start_noise(const Model&) const { return (c_.k_plus + 1) * c_.delta; }
+    double default_start_noise(const Model&) const { return pdmp_noise(c_, c_.k_plus + 1); }
 
     /// What a report of a path sampled every dt [s] says about the sampling.
     static std::string sampling_note(double dt) {
