@@ -202,16 +202,18 @@ public:
                          : std::string()) +
                "; " + cure;
     }
-    /// What E[t1] of this engine means, for coloured noise.
+    /// What E[t1] of this engine means, for coloured noise. With a static band
+    /// the regeneration states are the static edges themselves (the lattice is
+    /// shifted onto them: kernels/pdmp.hpp), so E[t1] has no such offset.
     static std::string mean_duration_note(const ModelParams& p) {
-        if (p.white()) return {};
+        if (p.white() || p.has_static_band()) return {};
         return "pdmp mean_duration runs between the lattice points beyond the thresholds: it exceeds the "
                "continuum E[t1] by a few % (about 12% at tau = 1 s, grid 0.125); halve --grid to see it "
                "converge. D and M0 are not affected";
     }
 
     /// The start noise of a path when none is given [s^-1/2]: the lattice
-    /// point just above the upper threshold.
+    /// point just above the upper threshold (with a static band, the upper edge).
     double default_start_noise(const Model&) const { return pdmp_noise(c_, c_.k_plus + 1); }
 
     /// What a report of a path sampled every dt [s] says about the sampling.
