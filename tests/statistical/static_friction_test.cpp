@@ -50,12 +50,25 @@ void expect_agree(const ss::DiffusivityResult& r, const ss::KolmogorovResult& k,
                       what + ": M0 vs kolmogorov"));
 }
 
+/// The event scheme at its automatic step.
+ss::EngineSettings event_auto() {
+    ss::EngineSettings s;
+    s.scheme = ss::Scheme::Event;
+    return s;
+}
+
+/// The PDMP engine at a grid [s^-1/2].
+ss::EngineSettings pdmp_at(double grid) {
+    ss::EngineSettings s;
+    s.engine = ss::Engine::Pdmp;
+    s.grid = grid;
+    return s;
+}
+
 TEST(StaticFriction, DragFreeEnginesAgreeWithKolmogorov) {
     const ss::ModelParams p = dry_static();
     const ss::KolmogorovResult k = ss::solve_kolmogorov(p);
-    ss::EngineSettings event; // the event scheme at its automatic step
-    event.scheme = ss::Scheme::Event;
-    expect_agree(run_le(p, event, 10000, 461), k, 0.0, "dry tau'=1, Delta_s 1.5: event dt auto");
+    expect_agree(run_le(p, event_auto(), 10000, 461), k, 0.0, "dry tau'=1, Delta_s 1.5: event dt auto");
     // The resolvent scheme at dt' = 3e-3 (measured at 1e-2 and 1e-3: D +0.7%
     // and -0.6%, each within 1.2 se; allowance 1%).
     expect_agree(run_le(p, ss::fixed_step_settings(ss::Scheme::Resolvent, 3e-3), 10000, 462), k, 0.01,
@@ -63,18 +76,13 @@ TEST(StaticFriction, DragFreeEnginesAgreeWithKolmogorov) {
     // The PDMP, its lattice shifted so that the static edges are lattice
     // points: its own chain's D is 0.15% below the continuum's at grid 0.05
     // (PdmpLatticeIsSecondOrderAtTheStaticEdge): allowance 0.5%.
-    ss::EngineSettings pdmp;
-    pdmp.engine = ss::Engine::Pdmp;
-    pdmp.grid = 0.05;
-    expect_agree(run_le(p, pdmp, 4000, 463), k, 0.005, "dry tau'=1, Delta_s 1.5: pdmp grid 0.05");
+    expect_agree(run_le(p, pdmp_at(0.05), 4000, 463), k, 0.005, "dry tau'=1, Delta_s 1.5: pdmp grid 0.05");
 }
 
 TEST(StaticFriction, Fig2CaseEnginesAgreeWithKolmogorov) {
     const ss::ModelParams p = fig2_static();
     const ss::KolmogorovResult k = ss::solve_kolmogorov(p);
-    ss::EngineSettings event;
-    event.scheme = ss::Scheme::Event;
-    expect_agree(run_le(p, event, 5000, 471), k, 0.0, "Fig. 2, Delta_s 1.5: event dt auto");
+    expect_agree(run_le(p, event_auto(), 5000, 471), k, 0.0, "Fig. 2, Delta_s 1.5: event dt auto");
     // The resolvent scheme at dt = 1e-3 s: measured D +0.2% and +0.8% (0.6
     // and 1.6 se), M0 +0.25% and +0.54% (2.7 and 4.2 se; 1e4 and 5e3
     // excursions), first order in dt with the bridge start (at 3e-4 s: M0
@@ -82,10 +90,7 @@ TEST(StaticFriction, Fig2CaseEnginesAgreeWithKolmogorov) {
     expect_agree(run_le(p, ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-3), 5000, 472), k, 0.006,
                  "Fig. 2, Delta_s 1.5: resolvent dt 1e-3");
     // The PDMP at grid 0.1: its chain's D -0.25%, M0 +0.03% (allowance 0.5%).
-    ss::EngineSettings pdmp;
-    pdmp.engine = ss::Engine::Pdmp;
-    pdmp.grid = 0.1;
-    expect_agree(run_le(p, pdmp, 4000, 473), k, 0.005, "Fig. 2, Delta_s 1.5: pdmp grid 0.1");
+    expect_agree(run_le(p, pdmp_at(0.1), 4000, 473), k, 0.005, "Fig. 2, Delta_s 1.5: pdmp grid 0.1");
 }
 
 TEST(StaticFriction, PdmpLatticeIsSecondOrderAtTheStaticEdge) {
