@@ -63,7 +63,7 @@ def use_static_friction(ratio):
     exceeds it. White-noise curves do not change (a white force holds the
     object at rest for no positive time: stickslip's note says so)."""
     global ND, PAPER_B, ZERO_B, B_TEXT
-    ND = ND + ["--static-friction", repr(ratio * 1.0)]
+    ND = ND + ["--static-friction", repr(float(ratio))]  # ND's friction is 1
     PAPER_B = PAPER_B + ["--static-friction", repr(ratio * DELTA)]
     ZERO_B = ZERO_B + ["--static-friction", repr(ratio * DELTA)]
     B_TEXT = f"{B_TEXT}, static friction {ratio:g} Delta"

@@ -52,8 +52,8 @@ template <class F, DeclaredFields T> void fields(F& f, T& x) { declared_fields(f
 template <class F> void fields(F& f, Estimate& x) { f(x.value, x.error, x.lo, x.hi, x.level, x.kind); }
 template <class F> void fields(F& f, EstimateSeries& x) { f(x.items, x.level, x.shape); }
 template <class F> void fields(F& f, ResolvedEngine& x) {
-    f(x.stop_rule, x.lattice_step, x.lattice_offset, x.lattice_bound, x.lattice_points, x.truncated_mass, x.jump_rate, x.white_level, x.upper_threshold,
-      x.lower_threshold);
+    f(x.stop_rule, x.lattice_step, x.lattice_offset, x.lattice_bound, x.lattice_points, x.truncated_mass, x.jump_rate,
+      x.white_level, x.upper_threshold, x.lower_threshold);
 }
 template <class F> void fields(F& f, RunTotals& x) {
     f(x.sums, x.moments, x.requested, x.threads, x.interrupted, x.control_variate);

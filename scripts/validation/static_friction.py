@@ -99,17 +99,14 @@ def main():
                 cells += ["%.6g +- %.2g" % v if v else "-", ""]
             print("| %s | %g | kolmogorov | %s |" % (name, ratio, " | ".join(cells)))
             mean_duration = ref["mean_duration"]["value"]
-            if mean_duration > MAX_MEAN_DURATION:
+            chosen = [e for e in engines(friction, mean_duration) if not a.only or e[0].startswith(a.only)]
+            limit = lambda label: EVENT_MAX_MEAN_DURATION if label.startswith("event") else MAX_MEAN_DURATION
+            skipped = [e[0] for e in chosen if mean_duration > limit(e[0])]
+            if skipped:
                 print("| %s | %g | %s | skipped: E[t1] = %.3g s (one excursion is that long) |"
-                      % (name, ratio, "sampled engines" if mean_duration > EVENT_MAX_MEAN_DURATION
-                         else "resolvent, pdmp", mean_duration))
-                if mean_duration > EVENT_MAX_MEAN_DURATION:
-                    records.append(rec)
-                    continue
-            for label, flags, n in engines(friction, mean_duration):
-                if a.only and not label.startswith(a.only):
-                    continue
-                if mean_duration > MAX_MEAN_DURATION and not label.startswith("event"):
+                      % (name, ratio, ", ".join(skipped), mean_duration))
+            for label, flags, n in chosen:
+                if label in skipped:
                     continue
                 d = run(a.bin, "diffusivity %s %s --excursions %d --seed %d" % (m, flags, n, a.seed))
                 p = run(a.bin, "density %s %s --excursions %d --bins 4 --seed %d" % (m, flags, max(n // 4, 1000),

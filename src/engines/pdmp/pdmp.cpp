@@ -24,6 +24,11 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
     c.amp = p.force_amplitude();
     c.bias = p.has_drift_law() ? (*m.law)(0.0) : p.bias; // b(0): where the static band lies
     const double band = p.static_friction_level();
+    const auto too_many_points = [&](double points) {
+        return InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " +
+                                            detail::format_number(points) +
+                                            " lattice points; choose grid so that tau*grid^2 is between 1e-16 and 1");
+    };
     // With a static band, the largest step <= grid that fits a whole number N
     // of steps across the band (its edges s-+ = (-+Delta_s - b(0))/a), and the
     // shift that puts the lower edge on a lattice point (kernels/pdmp.hpp).
@@ -34,11 +39,7 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
     if (p.has_static_band()) {
         const double lower_edge = (-band - c.bias) / c.amp, width = 2.0 * band / c.amp;
         band_steps = std::ceil(width / s.grid - 1e-9);
-        if (!(band_steps >= 2.0 && band_steps < 1e8))
-            throw InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " +
-                                               detail::format_number(band_steps) +
-                                               " lattice steps across the static band; choose grid so that tau*grid^2 "
-                                               "is between 1e-16 and 1");
+        if (!(band_steps >= 2.0 && band_steps < 1e8)) throw too_many_points(band_steps + 1.0);
         step = width / band_steps;
         lower_edge_index = std::nearbyint(lower_edge / step);
         c.x_offset = lower_edge - lower_edge_index * step;
@@ -72,11 +73,6 @@ PdmpConstants make_pdmp_constants(const Model& m, const EngineSettings& s) {
     const auto band_edge_push = [&](int i, int y) { return c.bias + c.amp * c.delta * i - y * band; };
     const double kp_est = std::floor((band - c.bias) / (c.amp * step));
     const double km_est = std::ceil((-band - c.bias) / (c.amp * step));
-    const auto too_many_points = [&](double points) {
-        return InvalidParameter("grid", "grid = " + detail::format_number(s.grid) + " gives " +
-                                            detail::format_number(points) +
-                                            " lattice points; choose grid so that tau*grid^2 is between 1e-16 and 1");
-    };
     if (!(std::fabs(kp_est) < 1e8 && std::fabs(km_est) < 1e8))
         throw too_many_points(2 * std::fmax(std::fabs(kp_est), std::fabs(km_est)) + 1);
     int kp = static_cast<int>(kp_est), km = static_cast<int>(km_est);
