@@ -23,6 +23,7 @@
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
+#include "stickslip/spectrum.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -60,6 +61,7 @@ Examples:
   stickslip analytic --friction 1 --noise 1 --relaxation inf --bias 0 --v0 1 --times 0.5,1
   stickslip moments --friction 1 --noise 1 --tau 5e-6 --relaxation inf --bias 0 --dt 1e-3
   stickslip density --format csv --output density.csv
+  stickslip spectrum --frequencies 0,0.1,1,10 --format json  # S(w), Fig. 2 case
   stickslip sweep --noise 1:10:5 --tau 0.125,0.5 --excursions 4000 --format csv
   stickslip sweep --drift "a*v - c*v^3" --drift-params a=0.8 --vary c \
       --vary-values 0.2:1:5 --tau 0.25 --noise 5 --engine kolmogorov   # D against c
@@ -295,6 +297,12 @@ std::vector<Action> register_all(CLI::App& app) {
                     "the stationary autocorrelation <V(t)V(0)> (closed forms of Touchette et al. 2010 for pure dry "
                     "friction, a Fokker-Planck solution otherwise). Physical units; tau is not used.",
                     &compute_white_noise, {}),
+        add_command(app,
+                    "Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt over all t (C the stationary "
+                    "autocovariance of V; S(0) = D) at angular frequencies --frequencies, without sampling: the "
+                    "kolmogorov engine's complex resolvent solves on its grids, extrapolated like D, each value with "
+                    "its estimated error; white noise without drag in closed form.",
+                    &compute_spectrum, {}),
         add_command(app,
                     "D, M0 and E[t1] over a grid of noise and tau values (the paper's Figs. 4 and 9), with the local "
                     "log-log slope d log D / d log noise and its error, and per tau the fitted exponent of D ~ "

@@ -104,6 +104,17 @@ double dry_friction_mobility(const ModelParams& p);    ///< (Gamma/Delta) g/(1-g
 /// White-noise diffusivity D [m^2/s] without drag: closed form in g
 /// (5/4 Gamma^3/Delta^4 at g = 0).
 double dry_friction_diffusivity(const ModelParams& p); ///< Gamma^3/Delta^4 (5g^4+22g^2+5)/(4(1-g^2)^4)
+/// White-noise two-sided velocity spectrum S(w) = int C(t) e^{-i w t} dt over
+/// all t [m^2/s] without drag, at the angular frequency w >= 0 [rad/s]:
+/// S(0) = dry_friction_diffusivity. The resolvent equation (i w - L) phi =
+/// V - M0, L = (bias - Delta sgn v) d/dv + (Gamma/2) d^2/dv^2, has constant
+/// coefficients on each half line, so phi is a line plus one decaying
+/// exponential on each, joined C^1 at v = 0, and S = 2 Re E[(V - M0) phi]
+/// against the two-exponential stationary density (theory.md, section on the
+/// spectrum). Evaluated in extended precision; the terms of order 1/w'^2
+/// cancel, so the relative rounding error is about 1e-19/w'^2 (w' = w
+/// Gamma/Delta^2). Not validated (see white_noise_reference).
+double dry_friction_spectrum(const ModelParams& p, double w);
 
 // ---- Pure dry friction, transient (Touchette, Van der Straeten, Just 2010) ----
 //

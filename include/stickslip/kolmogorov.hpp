@@ -224,6 +224,10 @@ enum class KolmogorovDiscretisation {
     NearWhite, ///< the moment-exact noise chain in z with DG in v (every tau' > 0)
 };
 
+/// The most frequencies one solve takes (KolmogorovSettings::frequencies):
+/// each is a complex factorisation of every grid of the last round.
+inline constexpr std::size_t kolmogorov_max_frequencies = 200;
+
 /// Resolution and budget of solve_kolmogorov. Zero means automatic where said.
 /// Invalid values throw InvalidParameter named after the field.
 struct KolmogorovSettings {
@@ -267,11 +271,21 @@ struct KolmogorovSettings {
     /// Which discretisation (the chain alone has the PDMP lattice mode; band_intervals,
     /// v_cells, x_range, v_lower, v_upper, v_stretch and v_grading are the chain's).
     KolmogorovDiscretisation discretisation = KolmogorovDiscretisation::Automatic;
+    /// Angular frequencies w [rad/s], each finite and >= 0, at most
+    /// kolmogorov_max_frequencies, at which to solve the two-sided velocity
+    /// spectrum S(w) (KolmogorovResult::spectrum); empty: none. Each costs one
+    /// complex sparse LU per grid of the last round (about 3 times a real
+    /// one), after the rounds, which D's error alone chooses.
+    std::vector<double> frequencies;
     /// Optional stop flag (RunControl::stop: Ctrl-C, SIGTERM), polled between
     /// rounds of grids: once set, the solve returns the estimates of the
     /// rounds finished (at least the first), marked interrupted.
     const std::atomic<bool>* stop = nullptr;
 };
+
+/// Throws InvalidParameter, named after the field, for an invalid setting
+/// (solve_kolmogorov's own check, also of a caller that solves no grid).
+void validate(const KolmogorovSettings& settings);
 
 /// The discretisation that solve_kolmogorov runs for p (SI) and settings:
 /// Chain or NearWhite, never Automatic. Automatic takes the near-white one
@@ -312,6 +326,12 @@ struct KolmogorovResult : MethodResult {
     /// the v sequence's finest (the finest velocity cells, coarse in x): its
     /// velocity_density is the stationary density reported.
     std::vector<KolmogorovGridSolution> levels;
+    /// The two-sided velocity spectrum S(w) = int over all t of C(t)
+    /// e^{-i w t} dt [m^2/s], C the stationary autocovariance of V, at
+    /// KolmogorovSettings::frequencies (empty without them): one complex
+    /// resolvent solve per grid and frequency, extrapolated over the last
+    /// round's grids like D. S(0) = D (Green-Kubo in the project's convention).
+    std::vector<Estimate> spectrum;
     bool converged = false;              ///< whether D's estimated error is below rel_precision
     /// Stopped by KolmogorovSettings::stop before the target: the estimates
     /// of the rounds finished (the note says so).

@@ -25,6 +25,7 @@
 #include "stickslip/params.hpp"
 #include "stickslip/result_fields.hpp"
 #include "stickslip/stats/run_totals.hpp"
+#include "stickslip/spectrum.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -172,6 +173,15 @@ std::string to_json(const WhiteNoiseResult& r, int indent = 2);
 /// per time.
 std::string to_table(const WhiteNoiseResult& r);
 std::string to_csv(const WhiteNoiseResult& r); ///< one row per time (or one row of stationary values)
+
+/// The velocity spectrum as one JSON object (`indent` as above): the
+/// solve's D, M0 (and for the Kolmogorov engine P(V = 0), E[t1], precision
+/// and grids), then `frequency` and `spectrum` arrays.
+std::string to_json(const SpectrumResult& r, int indent = 2);
+/// The velocity spectrum as a table: the stationary values, then one row
+/// per frequency.
+std::string to_table(const SpectrumResult& r);
+std::string to_csv(const SpectrumResult& r); ///< one row per frequency
 
 /// The sweep as one JSON object (`indent` as above).
 std::string to_json(const SweepResult& r, int indent = 2);

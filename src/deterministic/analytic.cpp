@@ -62,6 +62,7 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <cfloat>
 #include <cmath>
+#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -476,6 +477,32 @@ double dry_friction_diffusivity(const ModelParams& p) {
     const Real kk = (delta - g) * (delta + g);
     return static_cast<double>(gamma * gamma * gamma * (5 * g2 * g2 + 22 * g2 * d2 + 5 * d2 * d2) /
                                (4 * kk * kk * kk * kk));
+}
+
+double dry_friction_spectrum(const ModelParams& p, double w) {
+    if (w == 0) return dry_friction_diffusivity(p);
+    using C = std::complex<Real>;
+    const Real gamma = p.noise, delta = p.friction, b = p.bias;
+    const Real c_pos = b - delta, c_neg = b + delta;                  // the drift on v > 0 and v < 0
+    const Real k_pos = 2 * (delta - b) / gamma, k_neg = 2 * (delta + b) / gamma; // density e^{-k+ v}, e^{k- v}
+    const Real a = 1 / (1 / k_pos + 1 / k_neg);                     // its value at v = 0
+    const Real m0 = a * (1 / (k_pos * k_pos) - 1 / (k_neg * k_neg));
+    const C iw(0, static_cast<Real>(w));
+    const C alpha = Real(1) / iw;
+    const C beta_pos = (c_pos * alpha - m0) / iw, beta_neg = (c_neg * alpha - m0) / iw;
+    // The decaying roots of (Gamma/2) r^2 + c r - i w = 0 on each side.
+    const C r_pos = (-c_pos - std::sqrt(c_pos * c_pos + Real(2) * gamma * iw)) / gamma;
+    const C r_neg = (-c_neg + std::sqrt(c_neg * c_neg + Real(2) * gamma * iw)) / gamma;
+    // phi continuous and C^1 at 0.
+    const C c_plus = (beta_neg - beta_pos) * r_neg / (r_neg - r_pos);
+    const C c_minus = (beta_neg - beta_pos) * r_pos / (r_neg - r_pos);
+    // int_0^inf (v - M0)(alpha v + beta) e^{-k v} dv, and the exponential's share.
+    auto line = [&](Real k, C beta, Real sign) {
+        return alpha * (Real(2) / (k * k * k)) + sign * (beta - m0 * alpha) / (k * k) - m0 * beta / k;
+    };
+    const C pos = line(k_pos, beta_pos, 1) + c_plus * (Real(1) / ((k_pos - r_pos) * (k_pos - r_pos)) - m0 / (k_pos - r_pos));
+    const C neg = line(k_neg, beta_neg, -1) - c_minus * (Real(1) / ((k_neg + r_neg) * (k_neg + r_neg)) + m0 / (k_neg + r_neg));
+    return static_cast<double>(2 * a * (pos + neg).real());
 }
 
 // ---- Pure dry friction, transient ---------------------------------------------

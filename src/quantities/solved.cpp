@@ -7,23 +7,26 @@
 
 namespace stickslip::detail {
 
-KolmogorovSettings kolmogorov_settings(const RunSettings& r, double rel_precision) {
+KolmogorovSettings kolmogorov_settings(const RunSettings& r, double rel_precision,
+                                       const std::vector<double>& frequencies) {
     KolmogorovSettings s;
+    s.frequencies = frequencies;
     if (rel_precision > 0) s.rel_precision = rel_precision;
     s.threads = r.control.threads == 1 ? 1 : 2;
     s.stop = r.control.stop;
     return s;
 }
 
-void validate_solved(const RunSettings& r, double rel_precision) {
+void validate_solved(const RunSettings& r, double rel_precision, const std::vector<double>& frequencies) {
     validate(r.engine);
-    validate_kolmogorov(r.params, kolmogorov_settings(r, rel_precision));
+    validate_kolmogorov(r.params, kolmogorov_settings(r, rel_precision, frequencies));
 }
 
-KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes) {
+KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes,
+                       const std::vector<double>& frequencies) {
     validate(r.engine);
     const Model model = make_model(r.params); // the run's law, made once
-    KolmogorovResult result = solve_kolmogorov(model, kolmogorov_settings(r, rel_precision));
+    KolmogorovResult result = solve_kolmogorov(model, kolmogorov_settings(r, rel_precision, frequencies));
     if (r.params.has_drift_law()) {
         const DriftLawReport& law = model.law_report;
         notes.push_back(drift_law_note(law));

@@ -22,17 +22,20 @@ namespace stickslip::detail {
 /// precision of D asked for (--rel-precision; 0, Monte Carlo's "off", takes the
 /// solver's default KolmogorovSettings::rel_precision), threads 1 when the run
 /// asks for one, else 2 (the solver uses at most 2).
-KolmogorovSettings kolmogorov_settings(const RunSettings& r, double rel_precision);
+/// `frequencies` [rad/s]: those of the spectrum (KolmogorovSettings::frequencies).
+KolmogorovSettings kolmogorov_settings(const RunSettings& r, double rel_precision,
+                                       const std::vector<double>& frequencies = {});
 
 /// Every check of a run with the Kolmogorov engine: the engine settings (a
 /// typo in an unused one is still reported) and validate_kolmogorov
 /// (InvalidParameter: white noise names "tau" and says what to use instead;
 /// a model beyond the grids' reach names the setting to change).
-void validate_solved(const RunSettings& r, double rel_precision);
+void validate_solved(const RunSettings& r, double rel_precision, const std::vector<double>& frequencies = {});
 
 /// Solves the run's model (validated first). `notes` gets the solver's
 /// remarks: the budget reached before the precision, the drift law used.
-KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes);
+KolmogorovResult solve(const RunSettings& r, double rel_precision, std::vector<std::string>& notes,
+                       const std::vector<double>& frequencies = {});
 
 /// The solver's D, M0 and E[t1] as the long-excursion estimates a sampled run
 /// fills (kind Solved; no excursions: `completed` 0), so that a result's

@@ -115,6 +115,10 @@ COMMANDS = [
                                     "--v0", "1", "--times", "0.1,1", "--velocities=-1,0,1"]),
     ("analytic_drift", ["analytic", "--drift", "-v + 0.3 - 0.1*v^3"]),
     ("analytic_drift_velocities", ["analytic", "--drift", "-v + 0.3 - 0.1*v^3", "--velocities=-1,0,1"]),
+    # spectrum: the kolmogorov engine (the chain on the Fig. 2 case), the
+    # white-noise closed form
+    ("spectrum_kolmogorov", ["spectrum", "--frequencies", "0,1", "--rel-precision", "0.01"]),
+    ("spectrum_closed_form", ["spectrum", "--tau", "0", "--relaxation", "inf", "--bias", "0.3", "--frequencies", "0,1"]),
 ]
 
 # Runs stopped by SIGTERM after a moment: the result so far, marked

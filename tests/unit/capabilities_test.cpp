@@ -29,6 +29,7 @@
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/errors.hpp"
 #include "stickslip/observables.hpp"
+#include "stickslip/spectrum.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -242,6 +243,7 @@ const std::map<std::string, Validate>& validations() {
         }),
         simulated<MomentsRequest>([](MomentsRequest& r) { r.trajectories = 64; }),
         simulated<TrajectoryRequest>([](TrajectoryRequest& r) { r.index = 0; }),
+        simulated<SpectrumRequest>([](SpectrumRequest&) {}), // samples nothing: no settings to make it small
         {WhiteNoiseRequest::command,
          [](const EngineSettings&, double tau, bool law) { validate(white_noise_request(tau, law)); }},
     };

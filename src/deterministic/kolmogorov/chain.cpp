@@ -32,6 +32,7 @@
 // probability (1 - tau delta x/2)/2, all of it inwards at the ends) and the
 // stuck states those of its static band k- .. k+.
 #include "deterministic/kolmogorov/chain.hpp"
+#include "deterministic/spectral_resolvent.hpp"
 
 #include "stickslip/engine.hpp"
 #include "stickslip/kernels/pdmp.hpp"
@@ -365,6 +366,26 @@ ChainSolution solve_chain(const Chain& chain) {
             sol.diffusivity_x += sol.stationary[from] * it.value() * jump * jump;
         }
     return sol;
+}
+
+std::vector<double> chain_spectrum(const Chain& chain, const ChainSolution& sol, const std::vector<double>& frequencies) {
+    const std::size_t n = chain.size();
+    std::vector<double> shifted(n), ones(n, 1.0);
+    for (std::size_t i = 0; i < n; ++i) shifted[i] = chain.velocity[i] - sol.mobility;
+    std::vector<double> out;
+    out.reserve(frequencies.size());
+    ResolventSolver resolvent(chain.generator, ones);
+    for (double w : frequencies) {
+        if (w == 0) {
+            out.push_back(sol.diffusivity);
+            continue;
+        }
+        const std::vector<std::complex<double>> phi = resolvent.solve(w, shifted);
+        double sum = 0;
+        for (std::size_t i = 0; i < n; ++i) sum += sol.stationary[i] * shifted[i] * phi[i].real();
+        out.push_back(2.0 * sum);
+    }
+    return out;
 }
 
 } // namespace stickslip::detail::kolmogorov

@@ -39,6 +39,11 @@ KolmogorovGrid make_kolmogorov_grid(const ModelParams& p, const KolmogorovSettin
 /// solve_kolmogorov_grid with the drift law made already.
 KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& grid, const DriftLaw& drift);
 
+/// The velocity spectrum S(w) [m^2/s] of one grid's chain at the angular
+/// frequencies w [rad/s] (chain_spectrum).
+std::vector<double> grid_spectrum(const ModelParams& p, const KolmogorovGrid& grid, const DriftLaw& drift,
+                                  const std::vector<double>& frequencies);
+
 /// One grid, resolved: the x nodes with the rates of the x moves between
 /// them, which nodes carry a stuck state, and the faces of the velocity cells
 /// on each half line. SI units.
@@ -131,6 +136,12 @@ struct ChainSolution {
 /// (COLAMD ordering) of Q less the pinned state's row and column, and with the
 /// same factors the Poisson problem that gives E[t1] (solve_chain's comment).
 ChainSolution solve_chain(const Chain& chain);
+
+/// The chain's two-sided velocity spectrum S(w) [m^2/s] at the angular
+/// frequencies w [rad/s] (each >= 0): 2 Re pi.((g - M0) phi) with
+/// (i w - Q) phi = g - M0 (spectral_resolvent.hpp), one complex sparse LU per
+/// frequency; S(0) is sol's D, the same solve.
+std::vector<double> chain_spectrum(const Chain& chain, const ChainSolution& sol, const std::vector<double>& frequencies);
 
 /// The Scharfetter-Gummel weight B(z) = z/(e^z - 1), B(0) = 1, without
 /// cancellation for small |z| and without overflow for large |z|.

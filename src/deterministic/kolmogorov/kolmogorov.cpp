@@ -138,6 +138,12 @@ KolmogorovGrid make_kolmogorov_grid(const ModelParams& p, const KolmogorovSettin
     return g;
 }
 
+std::vector<double> grid_spectrum(const ModelParams& p, const KolmogorovGrid& grid, const DriftLaw& drift,
+                                  const std::vector<double>& frequencies) {
+    const Chain chain = build_chain(p, make_grid(p, grid), drift);
+    return chain_spectrum(chain, solve_chain(chain), frequencies);
+}
+
 KolmogorovGridSolution solve_grid(const ModelParams& p, const KolmogorovGrid& grid, const DriftLaw& drift) {
     const auto start = std::chrono::steady_clock::now();
     const ChainGrid chain_grid = make_grid(p, grid);
@@ -248,7 +254,9 @@ double modelled_round(const std::vector<double>& states) {
 /// they grow like n^1-1.3.
 double predicted_nonzeros(double n, double n_ref, double z_ref) { return z_ref * portable_pow(n / n_ref, 1.3); }
 
-void validate_settings(const KolmogorovSettings& s) {
+} // namespace
+
+void validate(const KolmogorovSettings& s) {
     auto require = [](bool ok, const char* name, const std::string& what) {
         if (!ok) throw InvalidParameter(name, std::string(name) + " must be " + what);
     };
@@ -271,9 +279,15 @@ void validate_settings(const KolmogorovSettings& s) {
     require(s.threads == 1 || s.threads == 2, "threads", "1 or 2, got " + std::to_string(s.threads));
     require(std::isfinite(s.pdmp_grid) && s.pdmp_grid >= 0, "pdmp_grid",
             ">= 0 s^-1/2 (0: the continuum solver), got " + detail::format_number(s.pdmp_grid));
+    require(s.frequencies.size() <= kolmogorov_max_frequencies, "frequencies",
+            "at most " + std::to_string(kolmogorov_max_frequencies) + " values, got " + std::to_string(s.frequencies.size()));
+    for (double w : s.frequencies)
+        require(std::isfinite(w) && w >= 0, "frequencies", "finite and >= 0 rad/s, got " + detail::format_number(w));
     require(std::isfinite(s.pdmp_lattice_bound) && s.pdmp_lattice_bound >= 0, "pdmp_lattice_bound",
             ">= 0 s^-1/2 (0: the engine's choice), got " + detail::format_number(s.pdmp_lattice_bound));
 }
+
+namespace {
 
 /// Bytes per state of the chain's first round before any is solved: its LU
 /// keeps about 60 nonzeros per state (16 bytes each), with the generator.
@@ -395,7 +409,7 @@ void validate_kolmogorov(const Model& m, const KolmogorovSettings& s) {
         throw InvalidParameter("pdmp_grid", "the PDMP lattice mode belongs to the upwind chain, not to the "
                                             "near-white discretisation");
     require_stationary_state(m);
-    validate_settings(s);
+    validate(s);
     check_noise_band(m);
 }
 
@@ -555,6 +569,36 @@ KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& setti
                       detail::format_number(result.diffusivity.error / std::abs(result.diffusivity.value), 3) +
                       ", target " + detail::format_number(settings.rel_precision, 3) + ")";
     };
+    // The extrapolated estimate of one quantity from its values on the grids
+    // of the round `at` (value(key)); `record`: keep the parts of its error
+    // for the refinement (D's).
+    double x_error = 0, v_error = 0, mixed_error = 0;
+    auto extrapolated = [&](auto value, bool record) {
+        const int vx = lattice ? 0 : at.ax;
+        const Extrapolated in_v = richardson(value({vx, at.kv - 3}), value({vx, at.kv - 2}),
+                                             value({vx, at.kv - 1}), value({vx, at.kv}));
+        if (lattice) {
+            if (record) v_error = in_v.error;
+            return solved_estimate(in_v.value, in_v.error);
+        }
+        const Extrapolated in_x = richardson(value({at.kx - 3, at.av}), value({at.kx - 2, at.av}),
+                                             value({at.kx - 1, at.av}), value({at.kx, at.av}));
+        const double corner = value({at.ax, at.av});
+        auto mixed_at = [&](int x) {
+            return value({x, at.av}) - value({x + 1, at.av}) - value({x, at.av + 1}) +
+                   value({x + 1, at.av + 1});
+        };
+        const double mixed = mixed_at(at.ax);
+        // The model c ~ hx^2 hv is checked per quantity one x level
+        // coarser: where m did not shrink at least 3-fold there (P(V = 0):
+        // 1.2-fold on the Fig. 2 case, where D, M0 and E[t1] shrank 3.3-
+        // 6.6-fold), the charge is 8|m|, covering an x order down to 1/4.
+        const bool model_holds = std::abs(mixed_at(at.ax - 1)) >= 3.0 * std::abs(mixed);
+        const double mixed_charge = (model_holds ? 4.0 / 3.0 : 8.0) * std::abs(mixed);
+        if (record) x_error = in_x.error, v_error = in_v.error, mixed_error = mixed_charge;
+        return solved_estimate(in_x.value + in_v.value - corner + 8.0 * mixed / 3.0,
+                               in_x.error + in_v.error + mixed_charge);
+    };
     for (bool first = true;; first = false) {
         if (!solve_missing(grids_needed(at, lattice), !first)) {
             at = finished;
@@ -563,33 +607,8 @@ KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& setti
         }
         finished = at;
 
-        auto value = [&](GridKey key, auto field) { return field(solved.at(key)); };
-        double x_error = 0, v_error = 0, mixed_error = 0;
         auto estimate = [&](auto field, bool record) {
-            const int vx = lattice ? 0 : at.ax;
-            const Extrapolated in_v = richardson(value({vx, at.kv - 3}, field), value({vx, at.kv - 2}, field),
-                                                 value({vx, at.kv - 1}, field), value({vx, at.kv}, field));
-            if (lattice) {
-                if (record) v_error = in_v.error;
-                return solved_estimate(in_v.value, in_v.error);
-            }
-            const Extrapolated in_x = richardson(value({at.kx - 3, at.av}, field), value({at.kx - 2, at.av}, field),
-                                                 value({at.kx - 1, at.av}, field), value({at.kx, at.av}, field));
-            const double corner = value({at.ax, at.av}, field);
-            auto mixed_at = [&](int x) {
-                return value({x, at.av}, field) - value({x + 1, at.av}, field) - value({x, at.av + 1}, field) +
-                       value({x + 1, at.av + 1}, field);
-            };
-            const double mixed = mixed_at(at.ax);
-            // The model c ~ hx^2 hv is checked per quantity one x level
-            // coarser: where m did not shrink at least 3-fold there (P(V = 0):
-            // 1.2-fold on the Fig. 2 case, where D, M0 and E[t1] shrank 3.3-
-            // 6.6-fold), the charge is 8|m|, covering an x order down to 1/4.
-            const bool model_holds = std::abs(mixed_at(at.ax - 1)) >= 3.0 * std::abs(mixed);
-            const double mixed_charge = (model_holds ? 4.0 / 3.0 : 8.0) * std::abs(mixed);
-            if (record) x_error = in_x.error, v_error = in_v.error, mixed_error = mixed_charge;
-            return solved_estimate(in_x.value + in_v.value - corner + 8.0 * mixed / 3.0,
-                                   in_x.error + in_v.error + mixed_charge);
+            return extrapolated([&](GridKey key) { return field(solved.at(key)); }, record);
         };
         result.diffusivity = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity; }, true);
         result.diffusivity_x = estimate([](const KolmogorovGridSolution& s) { return s.diffusivity_x; }, false);
@@ -652,6 +671,40 @@ KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& setti
             break;
         }
         at = next;
+    }
+    // The spectrum, on the grids of the last round and extrapolated like D:
+    // its frequencies do not steer the refinement (D's error does), and a
+    // grid's complex solves are made only once the round is known.
+    if (!settings.frequencies.empty()) {
+        const std::vector<GridKey> keys = grids_needed(at, lattice);
+        std::vector<std::vector<double>> spectra(keys.size());
+        std::atomic<std::size_t> next{0};
+        std::atomic<bool> stopped{false};
+        auto work = [&] {
+            for (std::size_t i; (i = next++) < keys.size();) {
+                if (settings.stop && settings.stop->load()) {
+                    stopped = true;
+                    return;
+                }
+                spectra[i] = k::grid_spectrum(p, make_grid(keys[i]), drift, settings.frequencies);
+            }
+        };
+        if (settings.threads > 1 && keys.size() > 1) {
+            std::future<void> second = std::async(std::launch::async, work);
+            work();
+            second.get();
+        } else {
+            work();
+        }
+        if (stopped) {
+            interrupted();
+            result.note += "; stopped before the spectrum was solved";
+        } else {
+            std::map<GridKey, const std::vector<double>*> of;
+            for (std::size_t i = 0; i < keys.size(); ++i) of[keys[i]] = &spectra[i];
+            for (std::size_t f = 0; f < settings.frequencies.size(); ++f)
+                result.spectrum.push_back(extrapolated([&](GridKey key) { return (*of.at(key))[f]; }, false));
+        }
     }
     // The grids solved, the v sequence's finest last (its velocity density
     // is the one reported).

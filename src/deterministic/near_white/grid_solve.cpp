@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // One grid's stationary law, D, M0, P(V = 0) and E[t1] (grid_solve.hpp).
 #include "deterministic/near_white/grid_solve.hpp"
+#include "deterministic/spectral_resolvent.hpp"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseLU>
@@ -45,7 +46,8 @@ private:
 
 } // namespace
 
-GridSolution solve_grid(const Layout& l, const DriftLaw& drift, double tau, std::vector<double>* chi_out) {
+GridSolution solve_grid(const Layout& l, const DriftLaw& drift, double tau, std::vector<double>* chi_out,
+                        const std::vector<double>* frequencies) {
     const auto start = std::chrono::steady_clock::now();
     const Matrix a = forward_operator(l, drift, tau);
     const NoiseGrid& g = l.noise;
@@ -149,6 +151,28 @@ GridSolution solve_grid(const Layout& l, const DriftLaw& drift, double tau, std:
     const double r_mass = dot(mass, r);
     for (std::size_t i = 0; i < n; ++i) r[i] -= r_mass * p[i];
     sol.diffusivity = 2.0 * dot(first_moment, r);
+    if (frequencies) {
+        // The forward resolvent (grid_solve.hpp): -s is the weak form of
+        // (v - M0) p; R has no mass for w > 0, so 2 int (v - M0) R = 2 int v R.
+        std::vector<double> weight(n, 0.0), weak(n);
+        each_cell([&](std::size_t, std::size_t, double lo, double hi, std::size_t u) {
+            for (std::size_t m = 0; m < dofs_per_cell; ++m) weight[u + m] = (hi - lo) / static_cast<double>(2 * m + 1);
+        });
+        for (std::size_t j = 0; j < nodes; ++j)
+            if (g.in_band(j)) weight[l.stuck(j)] = 1.0;
+        for (std::size_t i = 0; i < n; ++i) weak[i] = -s[i];
+        ResolventSolver resolvent(a, weight);
+        for (double w : *frequencies) {
+            if (w == 0) {
+                sol.spectrum.push_back(sol.diffusivity);
+                continue;
+            }
+            const std::vector<std::complex<double>> big_r = resolvent.solve(w, weak);
+            double sum = 0;
+            for (std::size_t i = 0; i < n; ++i) sum += first_moment[i] * big_r[i].real();
+            sol.spectrum.push_back(2.0 * sum);
+        }
+    }
 
     // The backward solution chi: A^T chi = -c, c the weak form of v - M0
     // (its P_0, P_1 tests: h (mid - M0), h^2/6; -M0 on a stuck state). Then

@@ -53,13 +53,21 @@ struct GridSolution {
     /// The stuck states' mass per band node (the noise's law while stuck,
     /// times P(V = 0)), and those nodes' z.
     std::vector<double> stuck_mass, stuck_z;
+    /// The two-sided velocity spectrum S(w) at the frequencies asked of
+    /// solve_grid (empty otherwise): 2 int v R with (i w M - A) R = s, M the
+    /// weak form's diagonal mass (h/(2m+1) per coefficient, 1 per stuck
+    /// state) and s the weak form of (v - M0) p (spectral_resolvent.hpp);
+    /// S(0) is D.
+    std::vector<double> spectrum;
 };
 
 /// Solves one grid. `drift` is the nondimensional law, tau' > 0. With `chi`
 /// given, it receives the backward solution chi (one value per unknown: the
 /// Legendre coefficients of chi on each cell, chi itself on a stuck state),
-/// pinned to 0 at the stuck state mid-band. std::runtime_error when the
-/// factorisation fails.
-GridSolution solve_grid(const Layout& layout, const DriftLaw& drift, double tau, std::vector<double>* chi = nullptr);
+/// pinned to 0 at the stuck state mid-band. With `frequencies` given
+/// (nondimensional angular frequencies, each >= 0), it fills spectrum.
+/// std::runtime_error when a factorisation fails.
+GridSolution solve_grid(const Layout& layout, const DriftLaw& drift, double tau, std::vector<double>* chi = nullptr,
+                        const std::vector<double>* frequencies = nullptr);
 
 } // namespace stickslip::detail::near_white

@@ -226,6 +226,11 @@ KolmogorovResult white_limit(const ModelParams& p, const KolmogorovSettings& set
         return solved_estimate(limit, (std::abs(e.value - limit) + e.error) * shrink);
     };
     r.params = p;
+    // The spectrum has no white-noise quadrature here: its values at the
+    // limit tau', their error widened by D's relative distance there from its
+    // white-noise value (the colour's share, which shrinks with tau').
+    const double colour = std::abs(r.diffusivity.value - white.diffusivity) / std::abs(white.diffusivity);
+    for (Estimate& e : r.spectrum) e = solved_estimate(e.value, e.error + colour * std::abs(e.value));
     r.diffusivity = bounded(r.diffusivity, white.diffusivity);
     r.diffusivity_x = bounded(r.diffusivity_x, white.diffusivity);
     r.mobility = bounded(r.mobility, white.mobility);
@@ -240,6 +245,9 @@ KolmogorovResult white_limit(const ModelParams& p, const KolmogorovSettings& set
              format_number(kolmogorov_white_limit_below) + " times sqrt(tau'/" +
              format_number(kolmogorov_white_limit_below) + "); P(V = 0) is bounded by its value there and E[t1] "
              "follows its measured law tau'^-1/2 from there (error: the value itself)" +
+             (r.spectrum.empty() ? std::string()
+                                 : "; the spectrum is the one at tau' = " + format_number(kolmogorov_white_limit_below) +
+                                       ", its error widened by D's relative distance there from the white-noise value") +
              (r.note.empty() ? std::string() : "; at the limit: " + r.note);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.grid().discretisation_error = relative;
@@ -339,6 +347,25 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
                       format_number(result.diffusivity.error / std::abs(result.diffusivity.value), 3) + ", target " +
                       format_number(settings.rel_precision, 3) + ")";
     };
+    // The extrapolated estimate of one quantity from its values q(z, v) on
+    // the grids of the round `at`, with the parts of its error.
+    auto combined = [&](auto q) {
+        const Extrapolated in_z = second_order(q(at.kz - 2, at.av), q(at.kz - 1, at.av), q(at.kz, at.av));
+        const Extrapolated in_v = aitken(q(at.az, at.kv - 2), q(at.az, at.kv - 1), q(at.az, at.kv));
+        const double mixed = q(at.az, at.av) - q(at.az + 1, at.av) - q(at.az, at.av + 1) + q(at.az + 1, at.av + 1);
+        Parts out;
+        out.z_error = in_z.error;
+        out.v_error = in_v.error;
+        out.mixed_error = 3.0 * std::abs(mixed);
+        out.estimate = solved_estimate(in_z.value + in_v.value - q(at.az, at.av), out.z_error + out.v_error + out.mixed_error);
+        return out;
+    };
+    // An estimate in SI units (unit: the quantity's), with the velocity
+    // range's truncation added to its error.
+    auto scaled = [truncation](Parts x, double unit) {
+        return solved_estimate(x.estimate.value * unit,
+                               (x.estimate.error + truncation * std::abs(x.estimate.value)) * unit);
+    };
     for (bool first = true;; first = false) {
         if (!solve_missing(grids_needed(at), !first)) {
             at = finished;
@@ -347,20 +374,7 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         }
         finished = at;
         auto parts = [&](auto field) {
-            auto q = [&](int z, int v) { return field(solved.at({z, v})); };
-            const Extrapolated in_z = second_order(q(at.kz - 2, at.av), q(at.kz - 1, at.av), q(at.kz, at.av));
-            const Extrapolated in_v = aitken(q(at.az, at.kv - 2), q(at.az, at.kv - 1), q(at.az, at.kv));
-            const double mixed = q(at.az, at.av) - q(at.az + 1, at.av) - q(at.az, at.av + 1) + q(at.az + 1, at.av + 1);
-            Parts out;
-            out.z_error = in_z.error;
-            out.v_error = in_v.error;
-            out.mixed_error = 3.0 * std::abs(mixed);
-            out.estimate = solved_estimate(in_z.value + in_v.value - q(at.az, at.av), out.z_error + out.v_error + out.mixed_error);
-            return out;
-        };
-        auto scaled = [truncation](Parts x, double unit) {
-            return solved_estimate(x.estimate.value * unit,
-                                   (x.estimate.error + truncation * std::abs(x.estimate.value)) * unit);
+            return combined([&](int z, int v) { return field(solved.at({z, v})); });
         };
         d_parts = parts([](const GridSolution& s) { return s.diffusivity; });
         result.diffusivity = scaled(d_parts, sc.diffusivity);
@@ -441,6 +455,44 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         at = next;
     }
 
+    // The spectrum, on the grids of the last round and extrapolated like D
+    // (kolmogorov.cpp says why after the rounds).
+    if (!settings.frequencies.empty()) {
+        std::vector<double> scaled_w;
+        for (double w : settings.frequencies) scaled_w.push_back(w * sc.time);
+        const std::vector<GridKey> keys = grids_needed(at);
+        std::vector<std::vector<double>> spectra(keys.size());
+        std::atomic<std::size_t> next{0};
+        std::atomic<bool> stopped{false};
+        auto work = [&] {
+            for (std::size_t i; (i = next++) < keys.size();) {
+                if (settings.stop && settings.stop->load()) {
+                    stopped = true;
+                    return;
+                }
+                spectra[i] = solve_grid(make_level_layout(pr, keys[i].first, keys[i].second), pr.drift, pr.tau, nullptr,
+                                        &scaled_w)
+                                 .spectrum;
+            }
+        };
+        if (settings.threads > 1 && keys.size() > 1) {
+            std::future<void> second = std::async(std::launch::async, work);
+            work();
+            second.get();
+        } else {
+            work();
+        }
+        if (stopped) {
+            interrupted();
+            result.note += "; stopped before the spectrum was solved";
+        } else {
+            std::map<GridKey, const std::vector<double>*> of;
+            for (std::size_t i = 0; i < keys.size(); ++i) of[keys[i]] = &spectra[i];
+            for (std::size_t f = 0; f < scaled_w.size(); ++f)
+                result.spectrum.push_back(
+                    scaled(combined([&](int z, int v) { return (*of.at({z, v}))[f]; }), sc.diffusivity));
+        }
+    }
     if (truncation > 0) {
         const std::string cut = "the velocity range [" + format_number(pr.v_lower * sc.velocity, 4) + ", " +
                                 format_number(pr.v_upper * sc.velocity, 4) + "] m/s still holds " +

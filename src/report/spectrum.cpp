@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Reports of the velocity spectrum (report.hpp): JSON, table, CSV. The
+// Kolmogorov engine's solve is reported as a solved diffusivity is
+// (solved.hpp), the closed form as `analytic`'s references are, and the
+// series at its one path whatever computed it.
+#include <cmath>
+
+#include "core/format.hpp"
+#include "report/common.hpp"
+#include "report/fields_csv.hpp"
+#include "report/fields_json.hpp"
+#include "report/solved.hpp"
+#include "stickslip/number_text.hpp"
+#include "stickslip/report.hpp"
+
+namespace stickslip {
+
+using namespace detail;
+
+std::string to_json(const SpectrumResult& r, int indent) {
+    const auto& q = r.request;
+    ordered_json j = solved_head("velocity_spectrum", q);
+    std::optional<ordered_json> work;
+    if (r.solution) {
+        const KolmogorovResult& s = *r.solution;
+        j["nondimensional"] = nondimensional_json(q, NondimensionalValues::of(scales_of(q.params), s.diffusivity.value,
+                                                                              s.mobility.value, s.mean_duration.value));
+        add_solved_estimates(j, s, r.solver_settings);
+        work = solved_work_json(s, r.solver_settings);
+    } else {
+        j["nondimensional"] = nondimensional_json(q, NondimensionalValues::of(scales_of(q.params), r.reference->diffusivity,
+                                                                              r.reference->mobility, std::nan("")));
+        append_members(j, fields_json(*r.reference, FieldJsonStyle{&q.params}));
+        j["engine_details"] = {{"method", r.grid().solver}};
+    }
+    append_members(j, fields_json(r)); // frequency, spectrum
+    add_report_tail(j, r.request, work ? &*work : nullptr, r.warnings, r.solution && r.solution->interrupted);
+    return dump(j, indent);
+}
+
+std::string to_table(const SpectrumResult& r) {
+    using number_text::pad;
+    const auto& q = r.request;
+    const Scales sc = scales_of(q.params);
+    std::ostringstream os = report_stream();
+    if (r.solution) {
+        os << engine_line("spectrum", q.engine, ", no sampling: complex resolvent solves on grids, extrapolated");
+        os << param_line(q.params, q.engine);
+        os << "\n" << solved_table_head();
+        solved_table_rows(os, *r.solution, sc);
+    } else {
+        os << "stickslip spectrum: " << r.grid().solver << "\n" << param_line(q.params, q.engine) << "\n";
+        os << pad("mobility M0", -16) << " " << pad(format_number(r.reference->mobility, 10), 15) << " m/s\n";
+        os << pad("diffusivity D", -16) << " " << pad(format_number(r.reference->diffusivity, 10), 15) << " m^2/s\n";
+    }
+    os << "\n" << pad("w [rad/s]", 14) << " " << pad("S(w) [m^2/s]", 16) << " " << pad("+- error", 12) << " "
+       << pad("w' (nondim)", 14) << " " << pad("S/D", 12) << "\n";
+    const double d = r.solution ? r.solution->diffusivity.value : r.reference->diffusivity;
+    for (std::size_t k = 0; k < r.frequencies.size(); ++k) {
+        const Estimate& e = r.spectrum[k];
+        os << pad(format_number(r.frequencies[k]), 14) << " " << pad(format_number(e.value, 8), 16) << " "
+           << pad(format_number(e.error, 3), 12) << " " << pad(format_number(r.frequencies[k] * sc.time), 14) << " "
+           << pad(format_number(e.value / d, 6), 12) << "\n";
+    }
+    if (r.solution) os << "\n" << solved_work_line(*r.solution, r.solver_settings);
+    os << notes(r.warnings);
+    return os.str();
+}
+
+std::string to_csv(const SpectrumResult& r) {
+    std::ostringstream os = report_stream();
+    const FieldCsvStyle style{.solved = true}; // a value and its discretisation error (0 when exact)
+    os << series_csv_header<SpectrumResult>(style) << "\n" << series_csv_rows(r, style);
+    return csv_provenance(r.request) + os.str();
+}
+
+} // namespace stickslip
