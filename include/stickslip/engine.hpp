@@ -107,7 +107,7 @@ void visit_settings(EngineSettings& s, Visitor&& v) {
     v(s.engine, SettingInfo{"engine", "",
                             "inclusion (time stepping with the exact Ornstein-Uhlenbeck noise step), pdmp (exact "
                             "event-driven, the noise a jump process on a lattice) or kolmogorov (no sampling: the "
-                            "Kolmogorov equations solved on a grid, diffusivity and density only, coloured noise)"});
+                            "Kolmogorov equations solved on a grid: diffusivity, density, sweep and spectrum, coloured noise)"});
     v(s.scheme, SettingInfo{"scheme", "",
                             "inclusion time stepping: event (exact within phases, events at their times), resolvent "
                             "(the paper's, first order) or auto: event, except resolvent for white-noise density and "

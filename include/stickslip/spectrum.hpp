@@ -51,10 +51,13 @@ struct SpectrumRequest : RunSettings {
     double rel_precision = 0.0;
 };
 
-/// The request's settings: RunSettings', then --frequencies and --rel-precision.
+/// The request's settings: RunSettings' less those only sampling uses (a
+/// solve has no step, lattice, seed or interval level), then --frequencies
+/// and --rel-precision.
 template <class Visitor>
 void visit_settings(SpectrumRequest& r, Visitor&& v) {
-    visit_settings(static_cast<RunSettings&>(r), v);
+    visit_settings(static_cast<RunSettings&>(r), skip_settings(v, {"scheme", "dt", "grid", "lattice-bound", "stop-rule",
+                                                                   "white-level", "max-steps", "seed", "level"}));
     v(NumberList{r.frequencies},
       SettingInfo{"frequencies", "rad/s",
                   "angular frequencies w >= 0, comma-separated or lo:hi:n (log-spaced); default: 0 and 0.01, 0.1, 1, "
@@ -81,7 +84,6 @@ struct SpectrumResult : MethodResult {
     std::optional<KolmogorovResult> solution;
     /// The white-noise references (the closed form only): M0, D, Var(V).
     std::optional<WhiteNoiseReference> reference;
-    KolmogorovSettings solver_settings; ///< the solver's settings (precision target, threads)
     /// Notes for the user, one sentence each (the solver's remarks, the law).
     std::vector<std::string> warnings;
 

@@ -30,6 +30,7 @@
 #include "stickslip/diffusivity.hpp"
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/observables.hpp"
+#include "stickslip/spectrum.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -133,6 +134,10 @@ template <class F> void fields(F& f, TrajectoryResult& x) {
 }
 template <class F> void fields(F& f, SweepResult& x) {
     f(x.request, x.points, x.exponents, x.white_limits, x.seconds, x.interrupted, x.resumed, x.warnings);
+}
+template <class F> void fields(F& f, SpectrumResult& x) {
+    f(static_cast<MethodResult&>(x), x.request, x.solution, x.reference, x.warnings);
+    declared_fields(f, x);
 }
 template <class F> void fields(F& f, WhiteNoiseResult& x) {
     f(static_cast<MethodResult&>(x), x.request, x.reference, x.stationary_density, x.transient_density, x.warnings);
@@ -345,6 +350,7 @@ void bind_pickling(py::module_& m) {
     pickled<TrajectoryResult>(m, "TrajectoryResult");
     pickled<SweepResult>(m, "SweepResult");
     pickled<WhiteNoiseResult>(m, "WhiteNoiseResult");
+    pickled<SpectrumResult>(m, "SpectrumResult");
     // The requests (a request sent to a worker process).
     pickled<DiffusivityRequest>(m, "DiffusivityRequest");
     pickled<BruteForceRequest>(m, "BruteForceRequest");
@@ -354,6 +360,7 @@ void bind_pickling(py::module_& m) {
     pickled<TrajectoryRequest>(m, "TrajectoryRequest");
     pickled<SweepRequest>(m, "SweepRequest");
     pickled<WhiteNoiseRequest>(m, "WhiteNoiseRequest");
+    pickled<SpectrumRequest>(m, "SpectrumRequest");
 }
 
 } // namespace stickslip::python

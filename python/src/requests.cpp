@@ -44,6 +44,7 @@
 #include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
+#include "stickslip/spectrum.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/white_noise.hpp"
 
@@ -348,6 +349,7 @@ const char* samples_of(const DensityRequest&) { return "excursions"; }
 const char* samples_of(const CorrelationRequest&) { return "excursions"; }
 const char* samples_of(const MomentsRequest&) { return "trajectories"; }
 const char* samples_of(const TrajectoryRequest&) { return "paths"; }
+const char* samples_of(const SpectrumRequest&) { return "frequencies"; } // no progress: nothing is sampled
 
 /// Forgets what points into a run's monitor and journal, about to go.
 template <class Result>
@@ -473,6 +475,7 @@ const std::vector<std::pair<std::string, std::string>>& keyword_table() {
         add_keywords<TrajectoryRequest>(t);
         add_keywords<SweepRequest>(t);
         add_keywords<WhiteNoiseRequest>(t);
+        add_keywords<SpectrumRequest>(t);
         for (const char* flag : {"checkpoint", "checkpoint-every", "resume"})
             t.emplace_back(std::string("--") + flag, keyword_of(flag));
         return t;
@@ -548,6 +551,7 @@ void bind_requests(py::module_& m) {
     bind_request<TrajectoryRequest>(m, "TrajectoryRequest", "The settings of a sample-path run.");
     bind_request<SweepRequest>(m, "SweepRequest", "The settings of a sweep over noise and tau.");
     bind_request<WhiteNoiseRequest>(m, "WhiteNoiseRequest", "The settings of the exact white-noise references.");
+    bind_request<SpectrumRequest>(m, "SpectrumRequest", "The settings of a velocity spectrum.");
 
     const char* run_doc =
         "Run a request and return its result. The GIL is released; progress=True prints a progress line on "
@@ -599,6 +603,9 @@ void bind_requests(py::module_& m) {
             },
             py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
             py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
+        .def(
+            "run", [](const SpectrumRequest& r, bool p) { return run_request(r, &compute_spectrum, p); },
+            py::arg("request"), py::arg("progress") = false)
         .def(
             "run",
             [](const WhiteNoiseRequest& r, bool) {

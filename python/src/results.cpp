@@ -13,6 +13,7 @@
 #include "stickslip/number_text.hpp"
 #include "stickslip/observables.hpp"
 #include "stickslip/report.hpp"
+#include "stickslip/spectrum.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::python {
@@ -370,6 +371,34 @@ void bind_results(py::module_& m) {
                        ")";
             });
 
+    }
+
+    // ---- velocity spectrum -----------------------------------------------------------------------
+    {
+        using R = SpectrumResult;
+        py::class_<R> c(m, "SpectrumResult",
+                        "Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt (stickslip.spectrum), "
+                        "S(0) = D, with D and M0 of the same solve: solved by the Kolmogorov engine (each value "
+                        "with its estimated discretisation error) or, for white noise without drag, exact. "
+                        "to_dict() is the CLI's JSON.");
+        bind_fields<R>(c, "SpectrumResult", "merged:velocity_spectrum_report");
+        add_request_params<R>(c);
+        add_renderings<R>(c);
+        c.def_property_readonly(
+             "diffusivity",
+             [](const R& r) { return r.solution ? r.solution->diffusivity : exact_estimate(r.reference->diffusivity); },
+             "D of the same solve [m^2/s] (Estimate of kind 'solved' or 'exact'): S(0)")
+            .def_property_readonly(
+                "mobility",
+                [](const R& r) { return r.solution ? r.solution->mobility : exact_estimate(r.reference->mobility); },
+                "M0 of the same solve [m/s] (Estimate of kind 'solved' or 'exact')")
+            .def_property_readonly(
+                "method", [](const R& r) { return r.grid().solver; },
+                "'kolmogorov', 'kolmogorov (near-white: ...)' or 'closed form (...)'")
+            .def("__repr__", [](const R& r) {
+                return "SpectrumResult(frequencies=" + std::to_string(r.frequencies.size()) + ", method='" +
+                       r.grid().solver + "')";
+            });
     }
 
     // ---- sweep ---------------------------------------------------------------------------------

@@ -103,6 +103,8 @@ from ._core import (  # noqa: F401  (re-exported)
     Params,
     Path,
     Scales,
+    SpectrumRequest,
+    SpectrumResult,
     SweepExponent,
     SweepRequest,
     SweepResult,
@@ -119,10 +121,11 @@ from . import _tables  # noqa: E402
 _tables.install()  # to_columns, to_dataframe, to_npz, save on every result class
 
 _REQUESTS = (BruteForceRequest, CorrelationRequest, DensityRequest, DiffusivityRequest, MomentsRequest,
-             SweepRequest, TrajectoryRequest)
+             SpectrumRequest, SweepRequest, TrajectoryRequest)
 # Show (and pickle) the compiled classes under the names users import.
 for _cls in (BruteForceResult, CorrelationResult, DensityResult, DiffusivityResult, Estimate, EstimateSeries,
-             GridEstimateSeries, Histogram, MomentsResult, Params, Path, Scales, SweepExponent, SweepResult,
+             GridEstimateSeries, Histogram, MomentsResult, Params, Path, Scales, SpectrumResult, SweepExponent,
+             SweepResult,
              SweepWhiteLimit, TrajectoryResult,
              InvalidParameterError, UntrustworthyResultError, CappedExcursionsError, StickslipWarning) + _REQUESTS:
     _cls.__module__ = __name__
@@ -132,12 +135,12 @@ del _cls
 __all__ = [
     "Params", "Scales", "Estimate", "EstimateSeries", "GridEstimate", "GridEstimateSeries", "Histogram", "Path",
     "DiffusivityResult", "BruteForceResult", "DensityResult", "CorrelationResult", "MomentsResult",
-    "TrajectoryResult", "SweepResult", "SweepExponent", "SweepWhiteLimit",
+    "TrajectoryResult", "SweepResult", "SweepExponent", "SweepWhiteLimit", "SpectrumResult",
     "DiffusivityRequest", "BruteForceRequest", "DensityRequest", "CorrelationRequest", "MomentsRequest",
-    "TrajectoryRequest", "SweepRequest", "run",
+    "TrajectoryRequest", "SweepRequest", "SpectrumRequest", "run",
     "InvalidParameterError", "UntrustworthyResultError", "CappedExcursionsError", "StickslipWarning",
     "keyword_of_flag",
-    "diffusivity", "bruteforce", "density", "correlation", "moments", "trajectory", "sweep",
+    "diffusivity", "bruteforce", "density", "correlation", "moments", "trajectory", "sweep", "spectrum",
     "logspace", "analytic", "__version__",
 ]
 
@@ -262,3 +265,25 @@ D, M0 and E[t1] over a grid of noise intensities and correlation times.
         engine="kolmogorov" they are solved series (kind 'solved', .error
         the estimated discretisation errors), .stuck_probability too, and
         .method is "kolmogorov".""")
+
+spectrum = _command("spectrum", SpectrumRequest, """\
+Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt over all t, S(0) = D.
+
+    C is the stationary autocovariance of V and w the angular frequency
+    [rad/s]; a one-sided spectrum in Hz is 2 S(2 pi f). Nothing is sampled:
+    the Kolmogorov engine (the only engine here) solves (i w - L) phi = V - M0
+    on its grids, one complex sparse LU per frequency and grid, and
+    extrapolates like D; with white noise and no drag (tau=0,
+    relaxation=inf) the closed form. Same as ``stickslip spectrum``;
+    frequencies is a sequence of floats >= 0 (None: 0 and 0.01 to 100 over
+    the time unit, one per decade).""", """\
+    SpectrumResult
+        .frequency (n,) [rad/s], .spectrum (EstimateSeries of kind 'solved'
+        or 'exact', (n,), m^2/s), .diffusivity, .mobility (Estimate), .method;
+        .to_dict() is the CLI's JSON.""", """
+
+    Example
+    -------
+    >>> r = stickslip.spectrum(stickslip.Params(), frequencies=[0, 1, 10])
+    >>> r.spectrum.value, r.spectrum.error""")
+

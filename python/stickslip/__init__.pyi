@@ -26,6 +26,8 @@ from ._core import (
     Params as Params,
     Path as Path,
     Scales as Scales,
+    SpectrumRequest as SpectrumRequest,
+    SpectrumResult as SpectrumResult,
     SweepExponent as SweepExponent,
     SweepRequest as SweepRequest,
     SweepResult as SweepResult,
@@ -227,3 +229,13 @@ def sweep(
     checkpoint_every: float = ...,
     resume: Optional[str] = None,
 ) -> SweepResult: ...
+
+def spectrum(
+    params: _ParamsLike = None,
+    *,
+    engine: Literal['inclusion', 'pdmp', 'kolmogorov'] = ...,
+    threads: int = ...,
+    frequencies: Optional[_Numbers] = ...,
+    rel_precision: float = ...,
+    progress: bool = False,
+) -> SpectrumResult: ...

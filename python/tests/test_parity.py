@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Python and the command give the same numbers for the same settings: for every
-simulating subcommand, with only non-default arguments given on both sides,
+simulating or solving subcommand, with only non-default arguments given on both sides,
 to_dict() equals the CLI's JSON less "work"."""
 import unittest
 
@@ -29,6 +29,7 @@ CASES = [
      dict(paths=2, time=0.3, dt=1e-3, every=0.1, threads=1)),
     ("sweep", ["--noise", "2,4", "--tau", "0.5", "--excursions", "64", "--dt", "2e-3"],
      dict(noise=[2, 4], tau=[0.5], excursions=64, dt=2e-3)),
+    ("spectrum", ["--frequencies", "0,1", "--rel-precision", "0.05"], dict(frequencies=[0, 1], rel_precision=0.05)),
 ]
 
 PARAMS = stickslip.Params(friction=3.84, noise=5, tau=0.5, relaxation=0.067, bias=0.342)

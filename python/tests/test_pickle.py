@@ -78,6 +78,10 @@ def examples():
         "SweepResult": [sweep, solved_sweep, white_sweep],
         "WhiteNoiseResult": [stickslip.analytic.white_noise(p.replace(bias=0.2), times=[0, 0.5], v0=0.5,
                                                             velocities=[-0.5, 0.25, 1])],
+        "SpectrumResult": [
+            stickslip.spectrum(p, frequencies=[0, 1], rel_precision=0.05),
+            stickslip.spectrum(p.replace(tau=0, relaxation=math.inf), frequencies=[0, 0.5]),
+        ],
         "DiffusivityRequest": [request],
         "BruteForceRequest": [stickslip.BruteForceRequest()],
         "DensityRequest": [stickslip.DensityRequest()],
@@ -86,6 +90,7 @@ def examples():
         "TrajectoryRequest": [stickslip.TrajectoryRequest()],
         "SweepRequest": [stickslip.SweepRequest()],
         "WhiteNoiseRequest": [stickslip._core.WhiteNoiseRequest()],
+        "SpectrumRequest": [stickslip.SpectrumRequest()],
     }
 
 

@@ -49,6 +49,7 @@ FUNCTIONS = [  # (function, request, result)
     ("moments", "MomentsRequest", "MomentsResult"),
     ("trajectory", "TrajectoryRequest", "TrajectoryResult"),
     ("sweep", "SweepRequest", "SweepResult"),
+    ("spectrum", "SpectrumRequest", "SpectrumResult"),
 ]
 
 

@@ -100,8 +100,8 @@ bool has_time_step(const EngineSettings& s) { return s.engine == Engine::Inclusi
 bool samples(const EngineSettings& s) { return s.engine != Engine::Kolmogorov; }
 
 const char* const kolmogorov_engine_scope =
-    "the kolmogorov engine solves D, M0 and P(V = 0) (`stickslip diffusivity`) and the stationary density "
-    "(`stickslip density`) on a grid, without sampling";
+    "the kolmogorov engine solves D, M0 and P(V = 0) (`stickslip diffusivity`), the stationary density "
+    "(`stickslip density`) and the velocity spectrum (`stickslip spectrum`) on a grid, without sampling";
 
 bool samples_at_steps(const EngineSettings& s) {
     return s.engine == Engine::Inclusion && s.scheme == Scheme::Resolvent;

@@ -3,6 +3,7 @@
 #include "stickslip/spectrum.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "core/format.hpp"
 #include "quantities/solved.hpp"
@@ -67,10 +68,11 @@ SpectrumResult compute_spectrum(const SpectrumRequest& req) {
         out.details = GridDetails{"closed form (white noise without drag: the resolvent on each half line)"};
         return out;
     }
-    out.solver_settings = detail::kolmogorov_settings(req, req.rel_precision, out.frequencies);
     out.solution = detail::solve(req, req.rel_precision, out.warnings, out.frequencies);
     out.details = out.solution->details;
     out.spectrum = out.solution->spectrum;
+    if (out.spectrum.size() != out.frequencies.size())
+        throw std::runtime_error("the Kolmogorov engine was stopped before the spectrum was solved");
     return out;
 }
 

@@ -9,6 +9,7 @@
 #include "report/common.hpp"
 #include "report/fields_csv.hpp"
 #include "report/fields_json.hpp"
+#include "quantities/solved.hpp"
 #include "report/solved.hpp"
 #include "stickslip/number_text.hpp"
 #include "stickslip/report.hpp"
@@ -16,6 +17,15 @@
 namespace stickslip {
 
 using namespace detail;
+
+namespace {
+
+/// The settings the Kolmogorov engine ran with (its precision target and threads).
+KolmogorovSettings solver_settings(const SpectrumResult& r) {
+    return kolmogorov_settings(r.request, r.request.rel_precision, r.frequencies);
+}
+
+} // namespace
 
 std::string to_json(const SpectrumResult& r, int indent) {
     const auto& q = r.request;
@@ -25,8 +35,8 @@ std::string to_json(const SpectrumResult& r, int indent) {
         const KolmogorovResult& s = *r.solution;
         j["nondimensional"] = nondimensional_json(q, NondimensionalValues::of(scales_of(q.params), s.diffusivity.value,
                                                                               s.mobility.value, s.mean_duration.value));
-        add_solved_estimates(j, s, r.solver_settings);
-        work = solved_work_json(s, r.solver_settings);
+        add_solved_estimates(j, s, solver_settings(r));
+        work = solved_work_json(s, solver_settings(r));
     } else {
         j["nondimensional"] = nondimensional_json(q, NondimensionalValues::of(scales_of(q.params), r.reference->diffusivity,
                                                                               r.reference->mobility, std::nan("")));
@@ -62,7 +72,7 @@ std::string to_table(const SpectrumResult& r) {
            << pad(format_number(e.error, 3), 12) << " " << pad(format_number(r.frequencies[k] * sc.time), 14) << " "
            << pad(format_number(e.value / d, 6), 12) << "\n";
     }
-    if (r.solution) os << "\n" << solved_work_line(*r.solution, r.solver_settings);
+    if (r.solution) os << "\n" << solved_work_line(*r.solution, solver_settings(r));
     os << notes(r.warnings);
     return os.str();
 }

@@ -147,3 +147,35 @@ TEST(SpectrumRequest, RefusesWhatItCannotSolve) {
     EXPECT_EQ(out.spectrum[0].value, ss::dry_friction_diffusivity(white.params));
     EXPECT_EQ(out.spectrum[1].error, 0.0);
 }
+
+/// An independent reference for the closed form: the cosine transform of
+/// Touchette, Van der Straeten and Just's closed-form autocorrelation C(t)
+/// (dry_friction_autocorrelation), S(w) = 2 int_0^inf C(t) cos(w t) dt, by
+/// Simpson's rule on [0, 40] time units (C has fallen below 1e-12 of C(0)
+/// there); and the sum rule (1/pi) int_0^inf S dw = C(0) = Var(V).
+TEST(DryFrictionSpectrum, IsTheCosineTransformOfTheClosedFormAutocorrelation) {
+    const ss::ModelParams p = dry(0.0);
+    const double t_end = 40.0;
+    const int n = 40000; // even
+    const double h = t_end / n;
+    for (double w : {0.0, 0.2, 1.0, 4.0}) {
+        double sum = 0;
+        for (int k = 0; k <= n; ++k) {
+            const double t = k * h, weight = (k == 0 || k == n) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+            sum += weight * ss::dry_friction_autocorrelation(p, t) * std::cos(w * t);
+        }
+        const double transform = 2.0 * sum * h / 3.0;
+        EXPECT_NEAR(ss::dry_friction_spectrum(p, w) / transform, 1.0, 1e-6) << "w = " << w;
+    }
+    // Sum rule: int_0^W S dw by Simpson on a log grid, plus the tail Gamma/W.
+    const double big_w = 1e4;
+    double integral = 0;
+    const int m = 20000;
+    const double lo = std::log(1e-6), step = (std::log(big_w) - lo) / m;
+    for (int k = 0; k <= m; ++k) {
+        const double u = std::exp(lo + k * step), weight = (k == 0 || k == m) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+        integral += weight * ss::dry_friction_spectrum(p, u) * u; // dw = w du
+    }
+    integral = integral * step / 3.0 + 1e-6 * ss::dry_friction_diffusivity(p) + p.noise / big_w;
+    EXPECT_NEAR(integral / M_PI / ss::white_noise_reference(p).variance, 1.0, 1e-5);
+}
