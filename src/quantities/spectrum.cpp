@@ -33,7 +33,6 @@ void validate(const SpectrumRequest& req) {
         throw InvalidParameter("engine", "the spectrum is solved by the kolmogorov engine (the default of `spectrum`) "
                                          "or, for white noise without drag, in closed form; no Monte Carlo estimator "
                                          "of it is built: drop --engine " + format_setting(req.engine.engine));
-    detail::refuse_sampling_settings(req);
     if (!std::isfinite(req.rel_precision) || req.rel_precision < 0 || req.rel_precision >= 1)
         throw InvalidParameter("rel-precision", "rel-precision must be in [0, 1) (0: the solver's default), got " +
                                                     detail::format_number(req.rel_precision));

@@ -135,9 +135,6 @@ TEST(SpectrumRequest, RefusesWhatItCannotSolve) {
     refused(r, "frequencies");
     r.frequencies = {NAN};
     refused(r, "frequencies");
-    r = {};
-    r.control.seed = 7; // a sampling setting
-    refused(r, "seed");
     // White noise without drag: the closed form, exact.
     ss::SpectrumRequest white;
     white.params = dry(0.2);

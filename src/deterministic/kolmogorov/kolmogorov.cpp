@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
-#include <future>
 #include <limits>
 #include <map>
 #include <string>
@@ -17,6 +16,7 @@
 
 #include "core/format.hpp"
 #include "core/memory.hpp"
+#include "deterministic/grid_tasks.hpp"
 #include "deterministic/kolmogorov/chain.hpp"
 #include "deterministic/near_white/near_white.hpp"
 #include "stickslip/drift_input.hpp"
@@ -497,20 +497,9 @@ KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& setti
             if (!solved.count(key)) todo.push_back(key);
         std::sort(todo.begin(), todo.end(), [&](GridKey a, GridKey b) { return states_of(a) > states_of(b); });
         std::vector<KolmogorovGridSolution> out(todo.size());
-        std::atomic<std::size_t> next{0};
-        auto work = [&] {
-            for (std::size_t i; (i = next++) < todo.size();) {
-                if (stoppable && settings.stop && settings.stop->load()) return; // a stop starts no further grid
-                out[i] = k::solve_grid(p, make_grid(todo[i]), drift);
-            }
-        };
-        if (settings.threads > 1 && todo.size() > 1) {
-            std::future<void> second = std::async(std::launch::async, work);
-            work();
-            second.get();
-        } else {
-            work();
-        }
+        // A stop starts no further grid; a grid not started keeps states == 0.
+        detail::run_grid_tasks(todo.size(), settings.threads, stoppable ? settings.stop : nullptr,
+                       [&](std::size_t i) { out[i] = k::solve_grid(p, make_grid(todo[i]), drift); });
         std::vector<double> sizes;
         bool complete = true;
         for (std::size_t i = 0; i < todo.size(); ++i) {
@@ -678,24 +667,9 @@ KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& setti
     if (!settings.frequencies.empty()) {
         const std::vector<GridKey> keys = grids_needed(at, lattice);
         std::vector<std::vector<double>> spectra(keys.size());
-        std::atomic<std::size_t> next{0};
-        std::atomic<bool> stopped{false};
-        auto work = [&] {
-            for (std::size_t i; (i = next++) < keys.size();) {
-                if (settings.stop && settings.stop->load()) {
-                    stopped = true;
-                    return;
-                }
-                spectra[i] = k::grid_spectrum(p, make_grid(keys[i]), drift, settings.frequencies);
-            }
-        };
-        if (settings.threads > 1 && keys.size() > 1) {
-            std::future<void> second = std::async(std::launch::async, work);
-            work();
-            second.get();
-        } else {
-            work();
-        }
+        const bool stopped = !detail::run_grid_tasks(keys.size(), settings.threads, settings.stop, [&](std::size_t i) {
+            spectra[i] = k::grid_spectrum(p, make_grid(keys[i]), drift, settings.frequencies);
+        });
         if (stopped) {
             interrupted();
             result.note += "; stopped before the spectrum was solved";

@@ -8,7 +8,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <future>
 #include <stdexcept>
 #include <map>
 #include <string>
@@ -17,6 +16,7 @@
 
 #include "core/format.hpp"
 #include "core/memory.hpp"
+#include "deterministic/grid_tasks.hpp"
 #include "deterministic/near_white/grid_solve.hpp"
 #include "stickslip/analytic.hpp"
 #include "stickslip/drift_law_quadrature.hpp"
@@ -308,20 +308,9 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         std::sort(todo.begin(), todo.end(),
                   [&](GridKey a, GridKey b) { return states_of(pr, a) > states_of(pr, b); });
         std::vector<GridSolution> out(todo.size());
-        std::atomic<std::size_t> next{0};
-        auto work = [&] {
-            for (std::size_t i; (i = next++) < todo.size();) {
-                if (stoppable && settings.stop && settings.stop->load()) return;
-                out[i] = solve_level(pr, todo[i]);
-            }
-        };
-        if (settings.threads > 1 && todo.size() > 1) {
-            std::future<void> second = std::async(std::launch::async, work);
-            work();
-            second.get();
-        } else {
-            work();
-        }
+        // A stop starts no further grid; a grid not started keeps states == 0.
+        run_grid_tasks(todo.size(), settings.threads, stoppable ? settings.stop : nullptr,
+                       [&](std::size_t i) { out[i] = solve_level(pr, todo[i]); });
         std::vector<double> sizes;
         bool complete = true;
         for (std::size_t i = 0; i < todo.size(); ++i) {
@@ -462,26 +451,10 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
         for (double w : settings.frequencies) scaled_w.push_back(w * sc.time);
         const std::vector<GridKey> keys = grids_needed(at);
         std::vector<std::vector<double>> spectra(keys.size());
-        std::atomic<std::size_t> next{0};
-        std::atomic<bool> stopped{false};
-        auto work = [&] {
-            for (std::size_t i; (i = next++) < keys.size();) {
-                if (settings.stop && settings.stop->load()) {
-                    stopped = true;
-                    return;
-                }
-                spectra[i] = solve_grid(make_level_layout(pr, keys[i].first, keys[i].second), pr.drift, pr.tau, nullptr,
-                                        &scaled_w)
-                                 .spectrum;
-            }
-        };
-        if (settings.threads > 1 && keys.size() > 1) {
-            std::future<void> second = std::async(std::launch::async, work);
-            work();
-            second.get();
-        } else {
-            work();
-        }
+        const bool stopped = !run_grid_tasks(keys.size(), settings.threads, settings.stop, [&](std::size_t i) {
+            const Layout layout = make_level_layout(pr, keys[i].first, keys[i].second);
+            spectra[i] = solve_grid(layout, pr.drift, pr.tau, nullptr, &scaled_w).spectrum;
+        });
         if (stopped) {
             interrupted();
             result.note += "; stopped before the spectrum was solved";
