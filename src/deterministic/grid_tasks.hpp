@@ -12,6 +12,9 @@
 #include <atomic>
 #include <cstddef>
 #include <future>
+#include <map>
+#include <optional>
+#include <vector>
 
 namespace stickslip::detail {
 
@@ -41,6 +44,20 @@ bool run_grid_tasks(std::size_t n, int threads, const std::atomic<bool>* stop, T
         work();
     }
     return !stopped;
+}
+
+/// The spectrum's values on each of `keys` (grids of a round), spectrum(key)
+/// run for each through run_grid_tasks; std::nullopt when `stop` ended it
+/// first.
+template <class Key, class Spectrum>
+std::optional<std::map<Key, std::vector<double>>> spectra_on_grids(const std::vector<Key>& keys, int threads,
+                                                                   const std::atomic<bool>* stop, Spectrum&& spectrum) {
+    std::vector<std::vector<double>> values(keys.size());
+    if (!run_grid_tasks(keys.size(), threads, stop, [&](std::size_t i) { values[i] = spectrum(keys[i]); }))
+        return std::nullopt;
+    std::map<Key, std::vector<double>> out;
+    for (std::size_t i = 0; i < keys.size(); ++i) out.emplace(keys[i], std::move(values[i]));
+    return out;
 }
 
 } // namespace stickslip::detail

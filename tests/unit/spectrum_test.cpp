@@ -13,18 +13,16 @@
 #include "stickslip/errors.hpp"
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/spectrum.hpp"
+#include "model_cases.hpp"
 
 namespace ss = stickslip;
 
 namespace {
 
+/// Pure dry friction (friction = noise = 1) with a bias.
 ss::ModelParams dry(double bias, double tau = 0.0) {
-    ss::ModelParams p;
-    p.friction = 1;
-    p.noise = 1;
-    p.relaxation = INFINITY;
+    ss::ModelParams p = ss::test::pure_dry_friction(tau);
     p.bias = bias;
-    p.tau = tau;
     return p;
 }
 

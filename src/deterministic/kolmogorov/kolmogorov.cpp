@@ -665,19 +665,17 @@ KolmogorovResult solve_validated(const Model& m, const KolmogorovSettings& setti
     // its frequencies do not steer the refinement (D's error does), and a
     // grid's complex solves are made only once the round is known.
     if (!settings.frequencies.empty()) {
-        const std::vector<GridKey> keys = grids_needed(at, lattice);
-        std::vector<std::vector<double>> spectra(keys.size());
-        const bool stopped = !detail::run_grid_tasks(keys.size(), settings.threads, settings.stop, [&](std::size_t i) {
-            spectra[i] = k::grid_spectrum(p, make_grid(keys[i]), drift, settings.frequencies);
-        });
-        if (stopped) {
+        const auto spectra = detail::spectra_on_grids(grids_needed(at, lattice), settings.threads, settings.stop,
+                                                      [&](GridKey key) {
+                                                          return k::grid_spectrum(p, make_grid(key), drift,
+                                                                                  settings.frequencies);
+                                                      });
+        if (!spectra) {
             interrupted();
             result.note += "; stopped before the spectrum was solved";
         } else {
-            std::map<GridKey, const std::vector<double>*> of;
-            for (std::size_t i = 0; i < keys.size(); ++i) of[keys[i]] = &spectra[i];
             for (std::size_t f = 0; f < settings.frequencies.size(); ++f)
-                result.spectrum.push_back(extrapolated([&](GridKey key) { return (*of.at(key))[f]; }, false));
+                result.spectrum.push_back(extrapolated([&](GridKey key) { return spectra->at(key)[f]; }, false));
         }
     }
     // The grids solved, the v sequence's finest last (its velocity density

@@ -449,21 +449,17 @@ KolmogorovResult solve(const ModelParams& p, const KolmogorovSettings& settings,
     if (!settings.frequencies.empty()) {
         std::vector<double> scaled_w;
         for (double w : settings.frequencies) scaled_w.push_back(w * sc.time);
-        const std::vector<GridKey> keys = grids_needed(at);
-        std::vector<std::vector<double>> spectra(keys.size());
-        const bool stopped = !run_grid_tasks(keys.size(), settings.threads, settings.stop, [&](std::size_t i) {
-            const Layout layout = make_level_layout(pr, keys[i].first, keys[i].second);
-            spectra[i] = solve_grid(layout, pr.drift, pr.tau, nullptr, &scaled_w).spectrum;
+        const auto spectra = spectra_on_grids(grids_needed(at), settings.threads, settings.stop, [&](GridKey key) {
+            return solve_grid(make_level_layout(pr, key.first, key.second), pr.drift, pr.tau, nullptr, &scaled_w)
+                .spectrum;
         });
-        if (stopped) {
+        if (!spectra) {
             interrupted();
             result.note += "; stopped before the spectrum was solved";
         } else {
-            std::map<GridKey, const std::vector<double>*> of;
-            for (std::size_t i = 0; i < keys.size(); ++i) of[keys[i]] = &spectra[i];
             for (std::size_t f = 0; f < scaled_w.size(); ++f)
                 result.spectrum.push_back(
-                    scaled(combined([&](int z, int v) { return (*of.at({z, v}))[f]; }), sc.diffusivity));
+                    scaled(combined([&](int z, int v) { return spectra->at({z, v})[f]; }), sc.diffusivity));
         }
     }
     if (truncation > 0) {
