@@ -299,10 +299,12 @@ std::vector<Action> register_all(CLI::App& app) {
                     &compute_white_noise, {}),
         add_command(app,
                     "Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt over all t (C the stationary "
-                    "autocovariance of V; S(0) = D) at angular frequencies --frequencies, without sampling: the "
-                    "kolmogorov engine's complex resolvent solves on its grids, extrapolated like D, each value with "
-                    "its estimated error; white noise without drag in closed form.",
-                    &compute_spectrum, {}),
+                    "autocovariance of V; S(0) = D) at angular frequencies --frequencies. Default, without sampling: "
+                    "the kolmogorov engine's complex resolvent solves on its grids, extrapolated like D, each value "
+                    "with its estimated error; white noise without drag in closed form. --engine inclusion or pdmp: "
+                    "sampled over long excursions (each cycle's transform and the geometric sum of the cross-cycle "
+                    "terms; delta-method intervals).",
+                    &compute_spectrum, {"excursions", false}),
         add_command(app,
                     "D, M0 and E[t1] over a grid of noise and tau values (the paper's Figs. 4 and 9), with the local "
                     "log-log slope d log D / d log noise and its error, and per tau the fitted exponent of D ~ "

@@ -136,7 +136,7 @@ template <class F> void fields(F& f, SweepResult& x) {
     f(x.request, x.points, x.exponents, x.white_limits, x.seconds, x.interrupted, x.resumed, x.warnings);
 }
 template <class F> void fields(F& f, SpectrumResult& x) {
-    f(static_cast<MethodResult&>(x), x.request, x.solution, x.reference, x.warnings);
+    f(static_cast<MethodResult&>(x), x.request, x.solution, x.reference, x.estimates, x.warnings);
     declared_fields(f, x);
 }
 template <class F> void fields(F& f, WhiteNoiseResult& x) {

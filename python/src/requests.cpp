@@ -349,7 +349,7 @@ const char* samples_of(const DensityRequest&) { return "excursions"; }
 const char* samples_of(const CorrelationRequest&) { return "excursions"; }
 const char* samples_of(const MomentsRequest&) { return "trajectories"; }
 const char* samples_of(const TrajectoryRequest&) { return "paths"; }
-const char* samples_of(const SpectrumRequest&) { return "frequencies"; } // no progress: nothing is sampled
+const char* samples_of(const SpectrumRequest&) { return "excursions"; } // Monte Carlo; a solve reports none
 
 /// Forgets what points into a run's monitor and journal, about to go.
 template <class Result>
@@ -604,8 +604,12 @@ void bind_requests(py::module_& m) {
             py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
             py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
-            "run", [](const SpectrumRequest& r, bool p) { return run_request(r, &compute_spectrum, p); },
-            py::arg("request"), py::arg("progress") = false)
+            "run",
+            [](const SpectrumRequest& r, bool p, const Path& c, double e, const Path& res) {
+                return run_resumable(r, &compute_spectrum, p, c, e, res);
+            },
+            py::arg("request"), py::arg("progress") = false, py::arg("checkpoint") = py::none(),
+            py::arg("checkpoint_every") = CheckpointOptions{}.every, py::arg("resume") = py::none())
         .def(
             "run",
             [](const WhiteNoiseRequest& r, bool) {

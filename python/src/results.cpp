@@ -378,26 +378,36 @@ void bind_results(py::module_& m) {
         using R = SpectrumResult;
         py::class_<R> c(m, "SpectrumResult",
                         "Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt (stickslip.spectrum), "
-                        "S(0) = D, with D and M0 of the same solve: solved by the Kolmogorov engine (each value "
-                        "with its estimated discretisation error) or, for white noise without drag, exact. "
+                        "S(0) = D, with D and M0 of the same solve or run: solved by the Kolmogorov engine (each "
+                        "value with its estimated discretisation error), exact for white noise without drag, or "
+                        "sampled over long excursions (engine='inclusion' or 'pdmp': standard errors and intervals). "
                         "to_dict() is the CLI's JSON.");
         bind_fields<R>(c, "SpectrumResult", "merged:velocity_spectrum_report");
         add_request_params<R>(c);
         add_renderings<R>(c);
+        auto method = [](const R& r) { return r.estimates ? std::string("monte carlo") : r.grid().solver; };
         c.def_property_readonly(
              "diffusivity",
-             [](const R& r) { return r.solution ? r.solution->diffusivity : exact_estimate(r.reference->diffusivity); },
-             "D of the same solve [m^2/s] (Estimate of kind 'solved' or 'exact'): S(0)")
+             [](const R& r) {
+                 if (r.estimates) return r.estimates->diffusivity;
+                 return r.solution ? r.solution->diffusivity : exact_estimate(r.reference->diffusivity);
+             },
+             "D of the same solve or excursions [m^2/s] (Estimate of kind 'solved', 'exact' or 'sampled'): S(0)")
             .def_property_readonly(
                 "mobility",
-                [](const R& r) { return r.solution ? r.solution->mobility : exact_estimate(r.reference->mobility); },
-                "M0 of the same solve [m/s] (Estimate of kind 'solved' or 'exact')")
+                [](const R& r) {
+                    if (r.estimates) return r.estimates->mobility;
+                    return r.solution ? r.solution->mobility : exact_estimate(r.reference->mobility);
+                },
+                "M0 of the same solve or excursions [m/s] (Estimate of kind 'solved', 'exact' or 'sampled')")
             .def_property_readonly(
-                "method", [](const R& r) { return r.grid().solver; },
-                "'kolmogorov', 'kolmogorov (near-white: ...)' or 'closed form (...)'")
-            .def("__repr__", [](const R& r) {
+                "excursions", [](const R& r) { return r.estimates ? r.estimates->excursions : std::uint64_t{0}; },
+                "long excursions completed (0 when solved)")
+            .def_property_readonly("method", method,
+                                   "'kolmogorov', 'kolmogorov (near-white: ...)', 'closed form (...)' or 'monte carlo'")
+            .def("__repr__", [method](const R& r) {
                 return "SpectrumResult(frequencies=" + std::to_string(r.frequencies.size()) + ", method='" +
-                       r.grid().solver + "')";
+                       method(r) + "')";
             });
     }
 

@@ -270,17 +270,20 @@ spectrum = _command("spectrum", SpectrumRequest, """\
 Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt over all t, S(0) = D.
 
     C is the stationary autocovariance of V and w the angular frequency
-    [rad/s]; a one-sided spectrum in Hz is 2 S(2 pi f). Nothing is sampled:
-    the Kolmogorov engine (the only engine here) solves (i w - L) phi = V - M0
-    on its grids, one complex sparse LU per frequency and grid, and
-    extrapolates like D; with white noise and no drag (tau=0,
-    relaxation=inf) the closed form. Same as ``stickslip spectrum``;
+    [rad/s]; a one-sided spectrum in Hz is 2 S(2 pi f). By default nothing
+    is sampled: the Kolmogorov engine solves (i w - L) phi = V - M0 on its
+    grids, one complex sparse LU per frequency and grid, and extrapolates
+    like D; with white noise and no drag (tau=0, relaxation=inf) the closed
+    form. engine="inclusion" or "pdmp" samples long excursions instead (the
+    regenerative estimator: each cycle's transform and the geometric sum of
+    the cross-cycle terms; excursions=, seed=, sample_dt= apply, and white
+    noise with drag or any law is allowed). Same as ``stickslip spectrum``;
     frequencies is a sequence of floats >= 0 (None: 0 and 0.01 to 100 over
     the time unit, one per decade).""", """\
     SpectrumResult
-        .frequency (n,) [rad/s], .spectrum (EstimateSeries of kind 'solved'
-        or 'exact', (n,), m^2/s), .diffusivity, .mobility (Estimate), .method;
-        .to_dict() is the CLI's JSON.""", """
+        .frequency (n,) [rad/s], .spectrum (EstimateSeries of kind 'solved',
+        'exact' or 'sampled', (n,), m^2/s), .diffusivity, .mobility
+        (Estimate), .excursions, .method; .to_dict() is the CLI's JSON.""", """
 
     Example
     -------

@@ -30,6 +30,8 @@ CASES = [
     ("sweep", ["--noise", "2,4", "--tau", "0.5", "--excursions", "64", "--dt", "2e-3"],
      dict(noise=[2, 4], tau=[0.5], excursions=64, dt=2e-3)),
     ("spectrum", ["--frequencies", "0,1", "--rel-precision", "0.05"], dict(frequencies=[0, 1], rel_precision=0.05)),
+    ("spectrum", ["--engine", "inclusion", "--excursions", "200", "--frequencies", "0,1,10"],
+     dict(engine="inclusion", excursions=200, frequencies=[0, 1, 10])),
 ]
 
 PARAMS = stickslip.Params(friction=3.84, noise=5, tau=0.5, relaxation=0.067, bias=0.342)

@@ -243,7 +243,7 @@ const std::map<std::string, Validate>& validations() {
         }),
         simulated<MomentsRequest>([](MomentsRequest& r) { r.trajectories = 64; }),
         simulated<TrajectoryRequest>([](TrajectoryRequest& r) { r.index = 0; }),
-        simulated<SpectrumRequest>([](SpectrumRequest&) {}), // samples nothing: no settings to make it small
+        simulated<SpectrumRequest>([](SpectrumRequest& r) { r.excursions = 64; }),
         {WhiteNoiseRequest::command,
          [](const EngineSettings&, double tau, bool law) { validate(white_noise_request(tau, law)); }},
     };

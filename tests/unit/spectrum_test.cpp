@@ -123,8 +123,12 @@ TEST(SpectrumRequest, RefusesWhatItCannotSolve) {
         }
     };
     ss::SpectrumRequest r;
+    r.control.seed = 7; // a sampling setting: the kolmogorov engine samples nothing
+    refused(r, "seed");
+    r = {};
     r.engine.engine = ss::Engine::Pdmp;
-    refused(r, "engine");
+    r.rel_precision = 0.01; // the grids' target: Monte Carlo runs --excursions
+    refused(r, "rel-precision");
     r = {};
     r.params.tau = 0; // white noise with drag (the Fig. 2 law)
     refused(r, "tau");
