@@ -301,7 +301,8 @@ std::vector<Action> register_all(CLI::App& app) {
                     "Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt over all t (C the stationary "
                     "autocovariance of V; S(0) = D) at angular frequencies --frequencies. Default, without sampling: "
                     "the kolmogorov engine's complex resolvent solves on its grids, extrapolated like D, each value "
-                    "with its estimated error; white noise without drag in closed form. --engine inclusion or pdmp: "
+                    "with its estimated error; white noise in closed form without drag, on the velocity's Fokker-Planck "
+                    "chain with drag. --engine inclusion or pdmp: "
                     "sampled over long excursions (each cycle's transform and the geometric sum of the cross-cycle "
                     "terms; delta-method intervals).",
                     &compute_spectrum, {"excursions", false}),

@@ -122,6 +122,17 @@ public:
     /// extrapolation, less the within-cell variance h^2/12).
     std::vector<double> autocorrelation(const std::vector<double>& times) const;
 
+    /// Two-sided velocity spectrum S(w) = int over all t of C(t) e^{-i w t} dt
+    /// [m^2/s], C the stationary autocovariance of V, at each angular
+    /// frequency w >= 0 [rad/s] (S(0) = D, white_noise_reference's, exact),
+    /// with its estimated error [m^2/s] in `error` (same order). No time
+    /// integration: per frequency and grid one complex tridiagonal solve of
+    /// the chain's resolvent, (i w - Q) phi = V - M0, and S = 2 Re sum_i m_i
+    /// (V_i - M0) phi_i; Richardson-extrapolated like every result, the error
+    /// |S(h) - S(2h)|/3 (what the extrapolation removed: an upper estimate).
+    /// Throws InvalidParameter ("frequencies") for a negative or non-finite w.
+    std::vector<double> spectrum(const std::vector<double>& frequencies, std::vector<double>& error) const;
+
     /// Transition density p(v, t | v0) [s/m]: one row per time t > 0 [s]
     /// (t = 0, a delta function, is rejected), one column per velocity
     /// v [m/s]; 0 outside the computational interval. Resolving the density

@@ -9,7 +9,9 @@
 // per frequency, extrapolated over the grids like D (kolmogorov.hpp). With
 // white noise and no drag (relaxation inf, the affine law) the resolvent
 // equation is solved in closed form on each half line (analytic.hpp:
-// dry_friction_spectrum), and the command gives that exact reference.
+// dry_friction_spectrum), and the command gives that exact reference; with
+// white noise and drag, the velocity's Fokker-Planck chain gives it by one
+// complex tridiagonal solve per frequency (fokker_planck.hpp).
 //
 // Monte Carlo (--engine inclusion or pdmp) needs no window and no lag grid:
 // the long excursions are i.i.d. cycles of a regenerative process, so the
@@ -83,8 +85,9 @@ void visit_settings(SpectrumRequest& r, Visitor&& v) {
 }
 
 /// What compute_spectrum returns; report.hpp writes it. Its details
-/// (MethodResult) are a GridDetails (the Kolmogorov solver's grids, or the
-/// closed form: white noise without drag) or the Monte Carlo run's.
+/// (MethodResult) are a GridDetails (the Kolmogorov solver's grids, the
+/// closed form of white noise without drag, or the Fokker-Planck chain of
+/// white noise with drag) or the Monte Carlo run's.
 struct SpectrumResult : MethodResult {
     /// The request, with the frequencies resolved (the default set filled in).
     SpectrumRequest request;
@@ -93,10 +96,10 @@ struct SpectrumResult : MethodResult {
     std::vector<double> frequencies;
     std::vector<Estimate> spectrum;
     /// @}
-    /// The Kolmogorov solve (empty for the closed form): D, M0, P(V = 0),
+    /// The Kolmogorov solve (empty for white noise and Monte Carlo): D, M0, P(V = 0),
     /// E[t1] of the same grids, their precision and the grids.
     std::optional<KolmogorovResult> solution;
-    /// The white-noise references (the closed form only): M0, D, Var(V).
+    /// The white-noise references (tau 0, closed form or Fokker-Planck): M0, D, Var(V).
     std::optional<WhiteNoiseReference> reference;
     /// Monte Carlo only: D, M0 and E[t1] of the same excursions.
     std::optional<LongExcursionEstimates> estimates;
@@ -117,7 +120,7 @@ struct SpectrumResult : MethodResult {
 
 /// Every check of the request, before any work (InvalidParameter naming the
 /// setting): the model, the frequencies, then the kolmogorov engine's own
-/// checks (white noise only without drag; no sampling setting given) or the
+/// checks (white noise with the affine law only; no sampling setting given) or the
 /// Monte Carlo run's (those of `correlation`'s sampled paths).
 void validate(const SpectrumRequest& req);
 /// Validates the request and solves or samples the spectrum.

@@ -379,7 +379,8 @@ void bind_results(py::module_& m) {
         py::class_<R> c(m, "SpectrumResult",
                         "Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt (stickslip.spectrum), "
                         "S(0) = D, with D and M0 of the same solve or run: solved by the Kolmogorov engine (each "
-                        "value with its estimated discretisation error), exact for white noise without drag, or "
+                        "value with its estimated discretisation error), exact for white noise without drag, on the "
+                        "Fokker-Planck chain for white noise with drag, or "
                         "sampled over long excursions (engine='inclusion' or 'pdmp': standard errors and intervals). "
                         "to_dict() is the CLI's JSON.");
         bind_fields<R>(c, "SpectrumResult", "merged:velocity_spectrum_report");
@@ -404,7 +405,8 @@ void bind_results(py::module_& m) {
                 "excursions", [](const R& r) { return r.estimates ? r.estimates->excursions : std::uint64_t{0}; },
                 "long excursions completed (0 when solved)")
             .def_property_readonly("method", method,
-                                   "'kolmogorov', 'kolmogorov (near-white: ...)', 'closed form (...)' or 'monte carlo'")
+                                   "'kolmogorov', 'kolmogorov (near-white: ...)', 'closed form (...)', 'fokker-planck (...)' or "
+                                   "'monte carlo'")
             .def("__repr__", [method](const R& r) {
                 return "SpectrumResult(frequencies=" + std::to_string(r.frequencies.size()) + ", method='" +
                        method(r) + "')";

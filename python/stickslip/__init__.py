@@ -273,8 +273,8 @@ Two-sided velocity power spectrum S(w) = int C(t) exp(-i w t) dt over all t, S(0
     [rad/s]; a one-sided spectrum in Hz is 2 S(2 pi f). By default nothing
     is sampled: the Kolmogorov engine solves (i w - L) phi = V - M0 on its
     grids, one complex sparse LU per frequency and grid, and extrapolates
-    like D; with white noise and no drag (tau=0, relaxation=inf) the closed
-    form. engine="inclusion" or "pdmp" samples long excursions instead (the
+    like D; with white noise (tau=0) the closed form without drag
+    (relaxation=inf), the velocity's Fokker-Planck chain with drag. engine="inclusion" or "pdmp" samples long excursions instead (the
     regenerative estimator: each cycle's transform and the geometric sum of
     the cross-cycle terms; excursions=, seed=, sample_dt= apply, and white
     noise with drag or any law is allowed). Same as ``stickslip spectrum``;

@@ -14,6 +14,7 @@
 #include "quantities/path_sampling.hpp"
 #include "quantities/solved.hpp"
 #include "stickslip/analytic.hpp"
+#include "stickslip/fokker_planck.hpp"
 #include "stickslip/prepared_engine.hpp"
 #include "stickslip/stats/moment_sums.hpp"
 #include "stickslip/white_noise.hpp"
@@ -247,10 +248,11 @@ void validate(const SpectrumRequest& req) {
     if (req.params.tau == 0) {
         validate(req.engine);
         validate(req.params);
-        if (!closed_form(req.params))
-            throw InvalidParameter("tau", "with white noise (tau 0) the spectrum is known in closed form without drag "
-                                          "only (--relaxation inf, no --drift); give tau > 0: the kolmogorov engine "
-                                          "takes every tau > 0, and below tau' = 1e-6 gives the white-noise limit");
+        if (req.params.has_drift_law())
+            throw InvalidParameter("tau", "with white noise (tau 0) the spectrum is solved for the affine law only "
+                                          "(--relaxation, --bias: closed form or Fokker-Planck); for a drift law give "
+                                          "tau > 0 (below tau' = 1e-6 the kolmogorov engine gives the white-noise "
+                                          "limit), or sample it with --engine inclusion");
         if (!has_stationary_state(req.params))
             throw InvalidParameter("bias", "no stationary state: with relaxation inf, |bias| must be < friction");
         return;
@@ -284,6 +286,22 @@ SpectrumResult compute_spectrum(const SpectrumRequest& req_in) {
         out.reference = white_noise_reference(p);
         for (double w : out.frequencies) out.spectrum.push_back(exact_estimate(dry_friction_spectrum(p, w)));
         out.details = GridDetails{"closed form (white noise without drag: the resolvent on each half line)"};
+        return out;
+    }
+    if (p.tau == 0) { // white noise with drag: the velocity's Fokker-Planck chain
+        if (p.has_static_band()) out.warnings.push_back(white_noise_static_friction_note());
+        out.reference = white_noise_reference(p);
+        const WhiteNoiseFokkerPlanck fp(p);
+        std::vector<double> error;
+        const std::vector<double> values = fp.spectrum(out.frequencies, error);
+        for (std::size_t k = 0; k < values.size(); ++k)
+            out.spectrum.push_back(out.frequencies[k] == 0 ? exact_estimate(values[k])
+                                                           : solved_estimate(values[k], error[k]));
+        GridDetails g{"fokker-planck (the resolvent of the velocity's finite-volume chain, see fokker_planck.hpp)"};
+        g.lower = fp.lower_velocity();
+        g.upper = fp.upper_velocity();
+        g.cells = static_cast<std::uint64_t>(std::llround((g.upper - g.lower) / fp.cell_width()));
+        out.details = g;
         return out;
     }
     out.solution = detail::solve(req, req.rel_precision, out.warnings, out.frequencies);

@@ -119,6 +119,7 @@ COMMANDS = [
     # white-noise closed form
     ("spectrum_kolmogorov", ["spectrum", "--frequencies", "0,1", "--rel-precision", "0.01"]),
     ("spectrum_closed_form", ["spectrum", "--tau", "0", "--relaxation", "inf", "--bias", "0.3", "--frequencies", "0,1"]),
+    ("spectrum_fokker_planck", ["spectrum", "--tau", "0", "--frequencies", "0,1"]),
     ("spectrum_sampled_event", ["spectrum", "--engine", "inclusion", "--excursions", "64", "--frequencies", "0,1"]),
     ("spectrum_sampled_white", ["spectrum", "--engine", "inclusion", "--tau", "0", "--dt", "1e-3", "--excursions", "16",
                                 "--frequencies", "1"]),

@@ -11,6 +11,7 @@
 
 #include "stickslip/analytic.hpp"
 #include "stickslip/errors.hpp"
+#include "stickslip/fokker_planck.hpp"
 #include "stickslip/kolmogorov.hpp"
 #include "stickslip/spectrum.hpp"
 #include "model_cases.hpp"
@@ -130,7 +131,8 @@ TEST(SpectrumRequest, RefusesWhatItCannotSolve) {
     r.rel_precision = 0.01; // the grids' target: Monte Carlo runs --excursions
     refused(r, "rel-precision");
     r = {};
-    r.params.tau = 0; // white noise with drag (the Fig. 2 law)
+    r.params.tau = 0; // white noise with a drift law: no solver of it
+    r.params.drift = "-v/0.067 + 0.342";
     refused(r, "tau");
     r = {};
     r.frequencies = {1.0, -1.0};
@@ -177,4 +179,49 @@ TEST(DryFrictionSpectrum, IsTheCosineTransformOfTheClosedFormAutocorrelation) {
     }
     integral = integral * step / 3.0 + 1e-6 * ss::dry_friction_diffusivity(p) + p.noise / big_w;
     EXPECT_NEAR(integral / M_PI / ss::white_noise_reference(p).variance, 1.0, 1e-5);
+}
+
+// White noise with drag: the velocity's Fokker-Planck chain (fokker_planck.hpp),
+// one complex tridiagonal solve per frequency and grid. Without drag it must be
+// the closed form: measured within 2e-8 relative from 0.01 to 100 rad/s, with
+// an estimated error (what Richardson removed) near 1e-5 relative, an upper
+// estimate by three orders of magnitude.
+TEST(FokkerPlanckSpectrum, IsTheClosedFormWithoutDrag) {
+    for (double bias : {0.0, 0.3, -0.6}) {
+        const ss::ModelParams p = dry(bias);
+        const ss::WhiteNoiseFokkerPlanck fp(p);
+        const std::vector<double> w{0.0, 0.01, 0.1, 1.0, 10.0, 100.0};
+        std::vector<double> error;
+        const std::vector<double> s = fp.spectrum(w, error);
+        for (std::size_t k = 0; k < w.size(); ++k) {
+            const double exact = ss::dry_friction_spectrum(p, w[k]);
+            EXPECT_NEAR(s[k] / exact, 1.0, 1e-7) << "bias " << bias << ", w = " << w[k];
+            EXPECT_LE(std::abs(s[k] - exact), error[k] + 1e-12 * exact) << "bias " << bias << ", w = " << w[k];
+        }
+    }
+}
+
+// With drag (the Fig. 2 law) the Kolmogorov engine's near-white discretisation
+// at tau' = 1e-5 is an independent solver of a neighbouring model: its
+// spectrum differs from the white one by the colour's own share, measured
+// -3.2e-5, -2.8e-5 and -1.8e-5 relative at 1, 10 and 30 rad/s (proportional
+// to tau': -3.2e-4 at 1e-4, -3.6e-6 at 1e-6, within the estimated errors
+// there). Allowed: both estimated errors + 5e-5 relative.
+TEST(FokkerPlanckSpectrum, IsTheNearWhiteLimitWithDrag) {
+    ss::SpectrumRequest white; // the Fig. 2 case with white noise
+    white.params.tau = 0;
+    white.frequencies = {1.0, 10.0};
+    const ss::SpectrumResult fp = ss::compute_spectrum(white);
+    ASSERT_EQ(fp.grid().solver.rfind("fokker-planck", 0), 0u) << fp.grid().solver;
+    ss::SpectrumRequest near = white;
+    near.params.tau = 1e-5 * ss::scales_of(near.params).time;
+    near.rel_precision = 0.01;
+    const ss::SpectrumResult k = ss::compute_spectrum(near);
+    for (std::size_t j = 0; j < white.frequencies.size(); ++j) {
+        const ss::Estimate &a = fp.spectrum[j], &b = k.spectrum[j];
+        EXPECT_LE(std::abs(a.value - b.value), a.error + b.error + 5e-5 * a.value)
+            << "w = " << white.frequencies[j] << ": Fokker-Planck " << a.value << " +- " << a.error
+            << ", kolmogorov at tau' = 1e-5 " << b.value << " +- " << b.error << " (relative "
+            << (b.value - a.value) / a.value << ")";
+    }
 }
