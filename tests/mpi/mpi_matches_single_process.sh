@@ -52,6 +52,8 @@ run_case "density" 3 density --scheme resolvent --dt 1e-3 --excursions 200 --bin
 run_case "density pdmp" 2 density --engine pdmp --excursions 200 --bins 6 --sample-dt 1e-3
 run_case "correlation" 3 correlation --scheme resolvent --dt 1e-3 --excursions 200 --lags 4
 run_case "moments" 2 moments --scheme resolvent --dt 1e-3 --trajectories 300 --density --bins 5
+run_case "spectrum" 3 spectrum --engine inclusion --excursions 300 --frequencies 0,1,10
+run_case "spectrum pdmp" 2 spectrum --engine pdmp --excursions 100 --sample-dt 1e-2 --frequencies 0.5
 # Killed and resumed across process counts: a run checkpointed by 2
 # processes, killed (SIGKILL) a third of its wall time after it started, then
 # resumed by 3 processes (1 thread each), prints the single-process JSON.
