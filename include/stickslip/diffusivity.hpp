@@ -40,6 +40,9 @@ void parse_setting(const SettingInfo& info, const std::string& text, ControlVari
 const char* setting_form(const ControlVariateMode&);
 /// @}
 
+/// Excursions of the control variate's pilot by default (DiffusivityRequest::control_variate_pilot).
+inline constexpr std::uint64_t default_control_variate_pilot = 8192;
+
 /// A diffusivity run (`stickslip diffusivity`): N long excursions of the
 /// engine, then D, M0 and E[t1] with their intervals (estimators.hpp). The
 /// fields are the shared settings (RunSettings, ExcursionSettings) plus the
@@ -91,7 +94,7 @@ struct DiffusivityRequest : RunSettings, ExcursionSettings {
     /// times the run's excursions (pilot_excursions), at the coarser of the
     /// run's step and the automatic one. 0: fitted on the run itself (the
     /// interval before this setting). Its cost is reported in the run's work.
-    std::uint64_t control_variate_pilot = 8192;
+    std::uint64_t control_variate_pilot = default_control_variate_pilot;
 };
 
 /// Most excursions of a control variate's pilot, 2^40: a sweep point's pilot
@@ -126,6 +129,20 @@ inline constexpr std::uint64_t check_dt_first_index = std::uint64_t{1} << 55;
 /// index limit of 2^56.
 inline constexpr std::uint64_t check_knots_first_index = (std::uint64_t{1} << 55) + (std::uint64_t{1} << 54);
 
+/// --control-variate, for `diffusivity` and every point of a `sweep`.
+inline constexpr SettingInfo control_variate_info{
+    "control-variate", "",
+    "auto (default): estimate D and M0 with a martingale control variate wherever a corrector exists (coloured "
+    "noise with tau' >= 1e-6, or white noise with the resolvent scheme), typically 20-60 times less variance; off: "
+    "the plain estimator alone. The plain estimates are reported either way"};
+/// --control-variate-pilot, for `diffusivity` and every point of a `sweep`.
+inline constexpr SettingInfo control_variate_pilot_info{
+    "control-variate-pilot", "",
+    "excursions of an independent pilot run on which the control variate's coefficients are fitted (8192 by "
+    "default, at most 4 times --excursions, at the coarser of --dt and the automatic step); 0 fits them on the "
+    "run's own excursions. Measured without drag at 2000 excursions, D's 95% interval covers 92-95% with the "
+    "pilot, 82-94% with 0"};
+
 /// The request's settings: RunSettings', ExcursionSettings', then
 /// --estimator, --rel-precision and --max-excursions.
 template <class Visitor>
@@ -149,17 +166,8 @@ void visit_settings(DiffusivityRequest& r, Visitor&& v) {
                                  "also run as many excursions with the drift law's knots twice as far apart, on "
                                  "independent streams, and report the difference of D and M0 (--drift, "
                                  "--drift-table): the interpolation's effect, with its standard error"});
-    v(r.control_variate, SettingInfo{"control-variate", "",
-                                     "auto (default): estimate D and M0 with a martingale control variate wherever a "
-                                     "corrector exists (coloured noise with tau' >= 1e-6, or white noise with the "
-                                     "resolvent scheme), typically 20-60 times less variance; off: the "
-                                     "plain estimator alone. The plain estimates are reported either way"});
-    v(r.control_variate_pilot,
-      SettingInfo{"control-variate-pilot", "",
-                  "excursions of an independent pilot run on which the control variate's coefficients are "
-                  "fitted (8192 by default, at most 4 times --excursions, at the coarser of --dt and the automatic "
-                  "step); 0 fits them on the run's own excursions. Measured without drag at 2000 excursions, D's "
-                  "95% interval covers 92-95% with the pilot, 82-94% with 0"});
+    v(r.control_variate, control_variate_info);
+    v(r.control_variate_pilot, control_variate_pilot_info);
 }
 
 /// The --check-dt comparison: the same estimates at twice the step (and the

@@ -66,6 +66,10 @@ struct SweepRequest : RunSettings, ExcursionSettings {
     std::vector<double> taus = {0.125, 0.25, 0.5, 1.0}; ///< tau values [s], >= 0
     /// The estimator of D at every point (as DiffusivityRequest::estimator).
     Estimator estimator = Estimator::RenewalReward;
+    /// The control variate at every point (as DiffusivityRequest::control_variate).
+    ControlVariateMode control_variate = ControlVariateMode::Auto;
+    /// Its pilot's excursions at every point (as DiffusivityRequest::control_variate_pilot).
+    std::uint64_t control_variate_pilot = default_control_variate_pilot;
     /// With --engine kolmogorov: the target estimated relative discretisation
     /// error of D at every point (as DiffusivityRequest::rel_precision; 0 takes
     /// the solver's default, 1e-3). A Monte Carlo sweep has no precision mode
@@ -89,7 +93,7 @@ struct SweepRequest : RunSettings, ExcursionSettings {
 inline constexpr const char* vary_static_friction = "static-friction";
 
 /// The request's settings: RunSettings' with --noise and --tau taken as
-/// lists, then ExcursionSettings' and --estimator.
+/// lists, then ExcursionSettings', --estimator and the control variate's.
 template <class Visitor>
 void visit_settings(SweepRequest& r, Visitor&& v) {
     visit_settings(static_cast<RunSettings&>(r), skip_settings(v, {"noise", "tau"}));
@@ -97,6 +101,8 @@ void visit_settings(SweepRequest& r, Visitor&& v) {
     v(NumberList{r.taus}, SettingInfo{"tau", "s", "correlation times: comma-separated or lo:hi:n (n log-spaced)"});
     visit_settings(static_cast<ExcursionSettings&>(r), v);
     v(r.estimator, SettingInfo{"estimator", "", "renewal (default) or paper (eq. 12)"});
+    v(r.control_variate, control_variate_info);
+    v(r.control_variate_pilot, control_variate_pilot_info);
     v(TextValue{r.vary}, SettingInfo{"vary", "",
                                      "a named constant of --drift to sweep over as a third axis, its values in "
                                      "--vary-values: --drift \"a*v - c*v^3\" --drift-params a=0.8 --vary c; or "

@@ -221,6 +221,8 @@ def sweep(
     excursions: int = ...,
     allow_capped: bool = ...,
     estimator: Literal['renewal', 'paper'] = ...,
+    control_variate: Literal['auto', 'off'] = ...,
+    control_variate_pilot: int = ...,
     vary: str = ...,
     vary_values: Optional[_Numbers] = ...,
     rel_precision: float = ...,

@@ -48,7 +48,8 @@ LongExcursionEstimates solved_long_excursion_estimates(const KolmogorovResult& s
 /// million excursions.
 inline constexpr const char* sampling_settings[] = {
     "scheme", "dt", "grid", "lattice-bound", "stop-rule", "white-level", "max-steps", "seed", "level",
-    "excursions", "allow-capped", "estimator", "max-excursions", "control-variate", "check-knots", "bins",
+    "excursions", "allow-capped", "estimator", "max-excursions", "control-variate", "control-variate-pilot",
+    "check-knots", "bins",
     "sample-dt", "range", "first-index"};
 
 /// Throws InvalidParameter naming the first of sampling_settings that `r`

@@ -48,6 +48,8 @@ DiffusivityRequest point_request(const SweepRequest& req, double varied, double 
     if (req.vary == vary_static_friction) d.params.static_friction = varied;
     else if (!req.vary.empty()) d.params.drift_params = drift_params_with(d.params.drift_params, req.vary, varied);
     d.estimator = req.estimator;
+    d.control_variate = req.control_variate;
+    d.control_variate_pilot = req.control_variate_pilot;
     d.rel_precision = req.rel_precision;
     d.control.first_index = req.control.first_index + k * sweep_index_stride;
     return d;

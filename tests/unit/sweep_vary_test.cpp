@@ -57,6 +57,8 @@ void expect_point_is_its_run(const ss::SweepRequest& r, const ss::SweepPoint& p,
     d.excursions = r.excursions;
     d.control.seed = r.control.seed;
     d.control.first_index = k * ss::sweep_index_stride;
+    d.control_variate = r.control_variate;
+    d.control_variate_pilot = r.control_variate_pilot;
     const ss::DiffusivityResult one = ss::compute_diffusivity(d);
     EXPECT_EQ(p.estimates.diffusivity.value, one.estimates.diffusivity.value) << k;
     EXPECT_EQ(p.estimates.mobility.value, one.estimates.mobility.value) << k;
@@ -109,6 +111,31 @@ TEST(SweepVary, WithoutItNothingChanges) {
     ASSERT_EQ(res.points.size(), 2u);
     EXPECT_TRUE(std::isnan(res.points[0].varied));
     EXPECT_EQ(ss::to_csv(res).find("varied"), std::string::npos);
+}
+
+// --control-variate and --control-variate-pilot reach every point: each is
+// still its own diffusivity run with those settings, and they change D.
+TEST(Sweep, ControlVariateSettingsReachEveryPoint) {
+    ss::SweepRequest r = varied_sweep();
+    r.params.drift = "-v/0.067 + 0.342";
+    r.params.drift_params.clear();
+    r.vary.clear();
+    r.vary_values.clear();
+    std::vector<double> d;
+    for (auto [mode, pilot] : {std::pair{ss::ControlVariateMode::Auto, ss::default_control_variate_pilot},
+                               std::pair{ss::ControlVariateMode::Auto, std::uint64_t{0}},
+                               std::pair{ss::ControlVariateMode::Off, ss::default_control_variate_pilot}}) {
+        r.control_variate = mode;
+        r.control_variate_pilot = pilot;
+        const ss::SweepResult res = ss::compute_sweep(r);
+        ASSERT_EQ(res.points.size(), 2u);
+        ss::ModelParams model;
+        model.drift = r.params.drift;
+        for (std::size_t k = 0; k < 2; ++k) expect_point_is_its_run(r, res.points[k], k, model);
+        d.push_back(res.points[0].estimates.diffusivity.value);
+    }
+    EXPECT_NE(d[0], d[1]);
+    EXPECT_NE(d[0], d[2]);
 }
 
 TEST(SweepVary, StaticFrictionIsAnAxis) {
