@@ -301,11 +301,9 @@ RunTotals run_to_precision(const DiffusivityRequest& req, const PreparedEngine& 
         total.moments = total.sums.moments();
         total.requested += t.requested;
         total.capped += t.capped;
-        total.work += t.work;
-        total.seconds += t.seconds;
+        total.add_cost(t);
         total.threads = t.threads;
         total.threads_from = t.threads_from;
-        total.resumed += t.resumed;
         total.interrupted = t.interrupted;
         ++outcome.batches;
         if (total.capped > 0 && !req.allow_capped) break; // reported by the caller
@@ -425,9 +423,7 @@ DiffusivityResult compute_diffusivity(const DiffusivityRequest& req_in, const Pr
         }
     } else totals = run_long_excursions(engine, req.excursions, req.control);
     if (pilot_ran) { // the pilot's cost is the run's
-        totals.work += pilot.work;
-        totals.seconds += pilot.seconds;
-        totals.resumed += pilot.resumed;
+        totals.add_cost(pilot);
         totals.interrupted = totals.interrupted || pilot.interrupted;
     }
     // The shape of D's influence function, where a run measured it: it

@@ -60,6 +60,14 @@ struct RunTotals {
     /// otherwise).
     ControlVariateSums control_variate;
 
+    /// Adds the cost of `other`, a run made for this one (a batch of it, its
+    /// control variate's pilot): its work, wall time and resumed samples.
+    void add_cost(const RunTotals& other) {
+        work += other.work;
+        seconds += other.seconds;
+        resumed += other.resumed;
+    }
+
     /// The counts a report gives, in report order (result_fields.hpp): the
     /// capped samples beside the estimates; the rest in the report's work.
     template <class Visit> static constexpr void fields(Visit&& visit) {
