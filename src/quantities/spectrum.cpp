@@ -93,7 +93,7 @@ enum Component : std::size_t {
     kU, kN, kGre, kGim, kHre, kHim, kGG, kGH, kHH, kAGre, kAGim, kAHre, kAHim, kCre, kCim, kComponents
 };
 
-/// S(w) > 0 from the renewal-reward ratios R of one frequency's components
+/// S(w) from the renewal-reward ratios R of one frequency's components
 /// (spectrum.hpp): with M0 = R_U / R_N, F = G - M0 H,
 ///   S = R_|F|^2 + 2 Re(R_A R_B / R_C), R_A = R_AG - M0 R_AH, R_B = R_G - M0 R_H,
 /// R_C the ratio of 1 - e^{-iw t1} (E[t1] cancels), its standard error by
@@ -221,8 +221,8 @@ void sample_spectrum(const Engine& engine, const SpectrumRequest& req, const Pre
     out.estimates = estimate_long_excursion(out.monte_carlo().totals.moments, req.level);
     detail::check_finite(*out.estimates);
     for (std::size_t f = 0; f < nf; ++f) {
-        // S(0) is D itself: the run's estimate of it (the same excursions, the
-        // exact displacements, the control variate when on).
+        // S(0) is D itself: the run's estimate of it (the same excursions and
+        // their exact displacements; the plain estimator, as correlation's D).
         const Estimate e = w[f] == 0 ? out.estimates->diffusivity
                                      : regenerative_spectrum(exact.per_frequency[f].moments(), req.level);
         if (!std::isfinite(e.value) || !std::isfinite(e.error))
