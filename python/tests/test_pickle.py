@@ -81,6 +81,7 @@ def examples():
         "SpectrumResult": [
             stickslip.spectrum(p, frequencies=[0, 1], rel_precision=0.05),
             stickslip.spectrum(p.replace(tau=0, relaxation=math.inf), frequencies=[0, 0.5]),
+            stickslip.spectrum(p.replace(tau=0), frequencies=[0, 0.5]),  # with drag: the Fokker-Planck chain
             stickslip.spectrum(p, engine="pdmp", excursions=50, sample_dt=0.01, frequencies=[0, 0.5]),
         ],
         "DiffusivityRequest": [request],

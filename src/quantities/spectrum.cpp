@@ -294,9 +294,8 @@ SpectrumResult compute_spectrum(const SpectrumRequest& req_in) {
         const WhiteNoiseFokkerPlanck fp(p);
         std::vector<double> error;
         const std::vector<double> values = fp.spectrum(out.frequencies, error);
-        for (std::size_t k = 0; k < values.size(); ++k)
-            out.spectrum.push_back(out.frequencies[k] == 0 ? exact_estimate(values[k])
-                                                           : solved_estimate(values[k], error[k]));
+        // One kind for the series: solved (S(0) = D is the closed form's, its error 0).
+        for (std::size_t k = 0; k < values.size(); ++k) out.spectrum.push_back(solved_estimate(values[k], error[k]));
         GridDetails g{"fokker-planck (the resolvent of the velocity's finite-volume chain, see fokker_planck.hpp)"};
         g.lower = fp.lower_velocity();
         g.upper = fp.upper_velocity();
