@@ -81,10 +81,7 @@ TEST(SampledSpectrum, MatchesTheWhiteNoiseClosedForm) {
     r.params.tau = 0;
     r.params.relaxation = INFINITY;
     r.params.bias = 0.3;
-    r.engine.engine = ss::Engine::Inclusion;
-    r.engine.scheme = ss::Scheme::Resolvent;
-    r.engine.dt = 1e-4;
-    r.engine.dt_auto = false;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 1e-4); // the inclusion engine
     r.excursions = 10000;
     r.control.seed = 99;
     r.frequencies = {0.1, 1.0, 10.0};
@@ -106,10 +103,7 @@ TEST(SampledSpectrum, MatchesTheFokkerPlanckSpectrumWithDrag) {
     r.params.tau = 0;
     r.frequencies = {1.0, 10.0, 30.0};
     const ss::SpectrumResult reference = ss::compute_spectrum(r);
-    r.engine.engine = ss::Engine::Inclusion;
-    r.engine.scheme = ss::Scheme::Resolvent;
-    r.engine.dt = 2e-5;
-    r.engine.dt_auto = false;
+    r.engine = ss::fixed_step_settings(ss::Scheme::Resolvent, 2e-5); // the inclusion engine
     r.excursions = 50000;
     r.control.seed = 99;
     const ss::SpectrumResult mc = ss::compute_spectrum(r);

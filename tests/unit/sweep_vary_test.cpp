@@ -35,6 +35,16 @@ ss::SweepRequest varied_sweep() {
     return r;
 }
 
+/// varied_sweep() without --vary: its law with the bias fixed at 0.342.
+ss::SweepRequest unvaried_sweep() {
+    ss::SweepRequest r = varied_sweep();
+    r.params.drift = std::string("-v/0.067 + 0.342");
+    r.params.drift_params.clear();
+    r.vary.clear();
+    r.vary_values.clear();
+    return r;
+}
+
 void expect_refused(const ss::SweepRequest& r, const std::string& setting, const std::string& words) {
     try {
         ss::validate(r);
@@ -101,11 +111,7 @@ TEST(SweepVary, PointsAreValueMajorAndEachIsItsDiffusivityRun) {
 }
 
 TEST(SweepVary, WithoutItNothingChanges) {
-    ss::SweepRequest r = varied_sweep();
-    r.params.drift = "-v/0.067 + 0.342";
-    r.params.drift_params.clear();
-    r.vary.clear();
-    r.vary_values.clear();
+    ss::SweepRequest r = unvaried_sweep();
     const ss::SweepResult res = ss::compute_sweep(r);
     ASSERT_FALSE(res.varies());
     ASSERT_EQ(res.points.size(), 2u);
@@ -116,11 +122,7 @@ TEST(SweepVary, WithoutItNothingChanges) {
 // --control-variate and --control-variate-pilot reach every point: each is
 // still its own diffusivity run with those settings, and they change D.
 TEST(Sweep, ControlVariateSettingsReachEveryPoint) {
-    ss::SweepRequest r = varied_sweep();
-    r.params.drift = "-v/0.067 + 0.342";
-    r.params.drift_params.clear();
-    r.vary.clear();
-    r.vary_values.clear();
+    ss::SweepRequest r = unvaried_sweep();
     std::vector<double> d;
     for (auto [mode, pilot] : {std::pair{ss::ControlVariateMode::Auto, ss::default_control_variate_pilot},
                                std::pair{ss::ControlVariateMode::Auto, std::uint64_t{0}},
