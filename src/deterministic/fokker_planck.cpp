@@ -502,12 +502,8 @@ namespace {
 double chain_spectrum(const Grid& g, double w) {
     using C = std::complex<double>;
     const std::size_t n = g.size();
-    double total = 0.0, m0 = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        total += g.mass[i];
-        m0 += g.mass[i] * g.mean_v[i];
-    }
-    m0 /= total; // the chain's own mean: f is orthogonal to constants
+    const double total = std::accumulate(g.mass.begin(), g.mass.end(), 0.0);
+    const double m0 = expectation(g, g.mass) / total; // the chain's own mean: f is orthogonal to constants
     std::vector<C> upper(n), rhs(n);
     C prev_upper = 0.0, prev_rhs = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
